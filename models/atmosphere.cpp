@@ -1,0 +1,3 @@
+#include "models/atmosphere.hpp"
+
+namespace navemu {}  // namespace navemu

@@ -1,0 +1,3 @@
+#include "models/constellation.hpp"
+
+namespace navemu {}  // namespace navemu

@@ -1,0 +1,3 @@
+#include "models/ephemeris.hpp"
+
+namespace navemu {}  // namespace navemu

@@ -1,0 +1,71 @@
+#pragma once
+// GPS LNAV broadcast ephemeris records and the navigation data a RINEX nav file carries.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/time.hpp"
+
+namespace navemu {
+
+// One broadcast ephemeris set, fields named and scaled as in IS-GPS-200 Table 20-III
+// (angles in radians; RINEX stores them in radians already).
+struct GpsEphemeris {
+  int prn = 0;
+  GpsTime toc;  // clock data reference time
+  double af0_s = 0.0, af1_sps = 0.0, af2_sps2 = 0.0;
+
+  int iode = 0;
+  double crs_m = 0.0;
+  double delta_n_radps = 0.0;
+  double m0_rad = 0.0;
+  double cuc_rad = 0.0;
+  double e = 0.0;
+  double cus_rad = 0.0;
+  double sqrt_a_sqrtm = 0.0;
+  GpsTime toe;  // ephemeris reference time (full week resolved)
+  double cic_rad = 0.0;
+  double omega0_rad = 0.0;  // longitude of ascending node of orbit plane at weekly epoch
+  double cis_rad = 0.0;
+  double i0_rad = 0.0;
+  double crc_m = 0.0;
+  double omega_rad = 0.0;  // argument of perigee
+  double omega_dot_radps = 0.0;
+  double idot_radps = 0.0;
+
+  int codes_on_l2 = 0;
+  int l2p_data_flag = 0;
+  double ura_m = 0.0;
+  int health = 0;
+  double tgd_s = 0.0;
+  int iodc = 0;
+  double transmission_tow_s = 0.0;  // RINEX "transmission time of message"
+  double fit_interval_h = 4.0;
+
+  // Where the record came from, for messages ("file.05n:123").
+  std::string source;
+};
+
+// Klobuchar broadcast ionosphere coefficients (IS-GPS-200 20.3.3.5.1.7, 20.3.3.5.2.5).
+struct KlobucharCoefficients {
+  std::array<double, 4> alpha{};  // s, s/semicircle, s/semicircle^2, s/semicircle^3
+  std::array<double, 4> beta{};   // s, s/semicircle, s/semicircle^2, s/semicircle^3
+};
+
+struct NavData {
+  double rinex_version = 0.0;
+  std::vector<GpsEphemeris> gps;  // every record, file order (several may share an IODE)
+  std::optional<KlobucharCoefficients> klobuchar;
+  std::optional<int> leap_seconds;  // GPS - UTC from the header, if given
+  int skipped_records = 0;          // records of other systems (parsed past, not used)
+  std::string source;               // file name
+};
+
+// The ephemeris to use for `prn` at time `t`: among healthy records, the one whose toe is
+// nearest to t (IS-GPS-200 20.3.4.5 curve fit interval centred on toe); when t precedes every
+// toe, the first one. Ties go to the later transmitted record. nullptr when the file has none.
+const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t);
+
+}  // namespace navemu

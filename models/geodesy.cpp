@@ -1,0 +1,3 @@
+#include "models/geodesy.hpp"
+
+namespace navemu {}  // namespace navemu

@@ -1,0 +1,54 @@
+#pragma once
+// WGS-84 geodesy through GeographicLib: ECEF <-> geodetic, local ENU/NED frames,
+// azimuth/elevation on the geodetic normal, and geoid (MSL) heights.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+namespace navemu {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+// WGS-84 constants as used by GPS (IS-GPS-200 Table 20-IV).
+inline constexpr double kGpsMu_m3ps2 = 3.986005e14;          // Earth's gravitational constant
+inline constexpr double kOmegaEarth_radps = 7.2921151467e-5;  // Earth rotation rate
+inline constexpr double kSpeedOfLight_mps = 299'792'458.0;
+inline constexpr double kPi = 3.1415926535898;  // the value IS-GPS-200 prescribes for orbits
+inline constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+inline constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+struct Geodetic {
+  double lat_deg = 0.0;
+  double lon_deg = 0.0;
+  double h_m = 0.0;  // height above the WGS-84 ellipsoid
+};
+
+Vec3 ecef_from_geodetic(const Geodetic& g);
+Geodetic geodetic_from_ecef(const Vec3& p_ecef_m);
+
+// Rotation taking ECEF vectors into the local East-North-Up (resp. North-East-Down) frame
+// at a geodetic position.
+Mat3 R_enu_from_ecef(const Geodetic& origin);
+Mat3 R_ned_from_ecef(const Geodetic& origin);
+
+Vec3 enu_from_ecef(const Vec3& p_ecef_m, const Geodetic& origin);  // position relative to origin
+
+struct AzEl {
+  double az_rad = 0.0;  // from north, clockwise, [0, 2pi)
+  double el_rad = 0.0;  // above the plane normal to the ellipsoid normal
+};
+// Direction from a receiver to a target (e.g. a satellite), both in ECEF.
+AzEl azimuth_elevation(const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m);
+AzEl azimuth_elevation(const Geodetic& rx, const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m);
+
+// Geoid undulation N (MSL height = h - N). Uses GeographicLib::Geoid ("egm96-5" by
+// default, searched in GEOGRAPHICLIB_GEOID_PATH / GEOGRAPHICLIB_DATA) when the data is
+// installed; otherwise returns 0 and `geoid_available()` is false. The first fallback
+// prints a one-line notice to stderr.
+double geoid_separation_m(double lat_deg, double lon_deg);
+bool geoid_available();
+std::string geoid_description();  // e.g. "egm96-5" or "none (MSL = ellipsoidal height)"
+
+}  // namespace navemu

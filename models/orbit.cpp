@@ -1,0 +1,3 @@
+#include "models/orbit.hpp"
+
+namespace navemu {}  // namespace navemu

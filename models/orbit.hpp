@@ -1,0 +1,45 @@
+#pragma once
+// Satellite position, velocity and clock from a GPS broadcast ephemeris
+// (IS-GPS-200 20.3.3.4.3, Table 20-IV; satellite clock 20.3.3.3.3.1).
+
+#include "models/ephemeris.hpp"
+#include "models/geodesy.hpp"
+#include "models/time.hpp"
+
+namespace navemu {
+
+struct SatState {
+  Vec3 p_ecef_m = Vec3::Zero();    // in the ECEF frame at time t (the ephemeris' own frame)
+  Vec3 v_ecef_mps = Vec3::Zero();  // velocity relative to the rotating ECEF frame
+  double clock_bias_s = 0.0;       // af0 + af1 dt + af2 dt^2 + relativistic term (no TGD)
+  double clock_drift_sps = 0.0;    // d(clock_bias)/dt
+  double relativistic_s = 0.0;     // F e sqrt(A) sin(E)
+};
+
+// State at GPS system time t (the satellite's transmit time).
+SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t);
+
+// Satellite clock polynomial only (no relativistic term), used to turn the satellite's own
+// time into GPS system time (IS-GPS-200 20.3.3.3.3.1).
+double gps_sat_clock_poly_s(const GpsEphemeris& eph, GpsTime t);
+
+// Rotation of an ECEF vector by the Earth's rotation during `dt_s` (the Sagnac correction):
+// a vector fixed in inertial space, expressed in the ECEF frame at t, expressed in the ECEF
+// frame at t + dt_s.
+Vec3 rotate_earth(const Vec3& v_ecef, double dt_s);
+
+// Geometry of one satellite seen by a receiver at a reception time.
+struct SatGeometry {
+  GpsTime t_transmit;            // GPS system time of transmission
+  SatState sat;                  // state at t_transmit, rotated into the ECEF frame at reception
+  double range_m = 0.0;          // |p_sat - p_rx| in the reception frame (includes Sagnac)
+  double range_rate_mps = 0.0;   // d(range)/dt seen by the receiver
+  AzEl dir;                      // azimuth/elevation on the geodetic normal
+};
+
+// Light-time iteration: finds the transmit time t_tx with |p_sat(t_tx) rotated to the frame
+// at t_rx - p_rx| = c (t_rx - t_tx), then evaluates the geometry.
+SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const Vec3& p_rx_ecef_m,
+                             const Vec3& v_rx_ecef_mps = Vec3::Zero());
+
+}  // namespace navemu

@@ -1,0 +1,3 @@
+#include "models/rinex.hpp"
+
+namespace navemu {}  // namespace navemu

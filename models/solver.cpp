@@ -1,0 +1,3 @@
+#include "models/solver.hpp"
+
+namespace navemu {}  // namespace navemu

@@ -1,0 +1,74 @@
+#pragma once
+// Receiver position/velocity/clock by iterative weighted least squares on pseudoranges
+// (and Doppler), with elevation mask, elevation-dependent weights and dilution of precision.
+// This same solver is the emulator's receiver: DOP enters the output through it.
+
+#include <optional>
+#include <vector>
+
+#include "models/atmosphere.hpp"
+#include "models/ephemeris.hpp"
+#include "models/geodesy.hpp"
+#include "models/time.hpp"
+
+namespace navemu {
+
+// One satellite's measurement, with the satellite's state already evaluated at its
+// transmit time, in the ECEF frame of that transmit time (the solver applies the Earth
+// rotation during the signal's flight for the current position estimate).
+struct RangeMeasurement {
+  int prn = 0;
+  Vec3 sat_p_ecef_m = Vec3::Zero();
+  Vec3 sat_v_ecef_mps = Vec3::Zero();
+  double sat_clock_m = 0.0;       // c * (satellite clock bias incl. relativistic, minus TGD)
+  double sat_clock_drift_mps = 0.0;
+  double pseudorange_m = 0.0;
+  std::optional<double> range_rate_mps;  // -lambda * Doppler, when Doppler is measured
+};
+
+enum class FixType { kNone = 0, kDeadReckoning = 1, k2D = 2, k3D = 3 };
+
+struct Dops {
+  double gdop = 0.0, pdop = 0.0, hdop = 0.0, vdop = 0.0, tdop = 0.0;
+};
+
+struct SolverOptions {
+  double elevation_mask_deg = 15.0;
+  std::optional<KlobucharCoefficients> klobuchar;  // none: no ionospheric correction
+  bool saastamoinen = false;                       // tropospheric correction
+  double relative_humidity = 0.7;                  // for the standard atmosphere
+  int max_iterations = 10;
+  double convergence_m = 1e-4;
+  // Elevation-dependent code noise: sigma^2 = a^2 + b^2 / sin^2(el) (RTKLIB's default a, b).
+  double sigma_a_m = 0.3;
+  double sigma_b_m = 0.3;
+  Vec3 initial_p_ecef_m = Vec3::Zero();
+};
+
+struct SatResidual {
+  int prn = 0;
+  double az_deg = 0.0, el_deg = 0.0;
+  double residual_m = 0.0;  // measured minus modelled pseudorange after the final iteration
+  double iono_m = 0.0, tropo_m = 0.0;
+  bool used = false;  // false: below mask
+};
+
+struct Solution {
+  FixType fix = FixType::kNone;
+  Vec3 p_ecef_m = Vec3::Zero();
+  double clock_m = 0.0;  // receiver clock bias * c
+  std::optional<Vec3> v_ecef_mps;
+  double clock_drift_mps = 0.0;
+  Dops dops;
+  int num_used = 0;
+  int iterations = 0;
+  std::vector<SatResidual> sats;
+};
+
+Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const SolverOptions& opt);
+
+// DOPs of a satellite set seen from a receiver (unit weights), from the line-of-sight unit
+// vectors in ENU. Needs at least 4 directions; all zero otherwise.
+Dops dops_from_directions(const std::vector<AzEl>& dirs);
+
+}  // namespace navemu

@@ -1,0 +1,3 @@
+#include "models/time.hpp"
+
+namespace navemu {}  // namespace navemu

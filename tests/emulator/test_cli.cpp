@@ -1,0 +1,5 @@
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "emulator/cli.hpp"
