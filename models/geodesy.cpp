@@ -1,3 +1,113 @@
 #include "models/geodesy.hpp"
 
-namespace navemu {}  // namespace navemu
+#include <GeographicLib/Geocentric.hpp>
+#include <GeographicLib/Geoid.hpp>
+
+#include <cmath>
+#include <exception>
+#include <iostream>
+#include <memory>
+
+namespace navemu {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+
+// The geoid model, loaded once on first use. GeographicLib::Geoid throws when its data file
+// is missing; then the model stays absent and MSL heights equal ellipsoidal heights.
+struct GeoidHolder {
+  std::unique_ptr<GeographicLib::Geoid> geoid;
+};
+
+const GeoidHolder& geoid_holder() {
+  // Function-local static: initialised exactly once, thread-safe (C++11 [stmt.dcl]/4).
+  static const GeoidHolder holder = [] {
+    GeoidHolder h;
+    try {
+      // threadsafe = true reads the whole grid into memory, after which evaluation is
+      // thread-safe (GeographicLib::Geoid documentation).
+      h.geoid = std::make_unique<GeographicLib::Geoid>("egm96-5", "", true, true);
+    } catch (const std::exception&) {
+      std::cerr << "navemu: no geoid data (GeographicLib egm96-5) found; MSL heights equal "
+                   "ellipsoidal heights (separation 0). Install geoid data with "
+                   "geographiclib-get-geoids egm96-5 or set GEOGRAPHICLIB_GEOID_PATH.\n";
+    }
+    return h;
+  }();
+  return holder;
+}
+
+}  // namespace
+
+Vec3 ecef_from_geodetic(const Geodetic& g) {
+  Vec3 p;
+  GeographicLib::Geocentric::WGS84().Forward(g.lat_deg, g.lon_deg, g.h_m, p.x(), p.y(), p.z());
+  return p;
+}
+
+Geodetic geodetic_from_ecef(const Vec3& p_ecef_m) {
+  Geodetic g;
+  GeographicLib::Geocentric::WGS84().Reverse(p_ecef_m.x(), p_ecef_m.y(), p_ecef_m.z(), g.lat_deg,
+                                             g.lon_deg, g.h_m);
+  return g;
+}
+
+// Rows are the local east, north and up unit vectors expressed in ECEF, the up vector being
+// the ellipsoid normal at the geodetic latitude (the transpose of the matrix M that
+// GeographicLib::Geocentric returns). Built directly so that no allocation takes place.
+Mat3 R_enu_from_ecef(const Geodetic& origin) {
+  const double lat = origin.lat_deg * kDegToRad;
+  const double lon = origin.lon_deg * kDegToRad;
+  const double sphi = std::sin(lat), cphi = std::cos(lat);
+  const double slam = std::sin(lon), clam = std::cos(lon);
+  Mat3 R;
+  R << -slam, clam, 0.0,                    //
+      -sphi * clam, -sphi * slam, cphi,     //
+      cphi * clam, cphi * slam, sphi;
+  return R;
+}
+
+Mat3 R_ned_from_ecef(const Geodetic& origin) {
+  const Mat3 enu = R_enu_from_ecef(origin);
+  Mat3 R;
+  R.row(0) = enu.row(1);
+  R.row(1) = enu.row(0);
+  R.row(2) = -enu.row(2);
+  return R;
+}
+
+Vec3 enu_from_ecef(const Vec3& p_ecef_m, const Geodetic& origin) {
+  return R_enu_from_ecef(origin) * (p_ecef_m - ecef_from_geodetic(origin));
+}
+
+AzEl azimuth_elevation(const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m) {
+  return azimuth_elevation(geodetic_from_ecef(p_rx_ecef_m), p_rx_ecef_m, p_target_ecef_m);
+}
+
+AzEl azimuth_elevation(const Geodetic& rx, const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m) {
+  const Vec3 enu = R_enu_from_ecef(rx) * (p_target_ecef_m - p_rx_ecef_m);
+  AzEl out;
+  out.el_rad = std::atan2(enu.z(), std::hypot(enu.x(), enu.y()));
+  double az = std::atan2(enu.x(), enu.y());
+  if (az < 0.0) az += kTwoPi;
+  if (az >= kTwoPi) az = 0.0;  // a tiny negative angle rounded up to 2*pi
+  out.az_rad = az;
+  return out;
+}
+
+double geoid_separation_m(double lat_deg, double lon_deg) {
+  const GeoidHolder& h = geoid_holder();
+  if (!h.geoid) return 0.0;
+  return (*h.geoid)(lat_deg, lon_deg);
+}
+
+bool geoid_available() { return geoid_holder().geoid != nullptr; }
+
+std::string geoid_description() {
+  const GeoidHolder& h = geoid_holder();
+  if (!h.geoid) return "none (MSL = ellipsoidal height)";
+  return h.geoid->GeoidName();
+}
+
+}  // namespace navemu
