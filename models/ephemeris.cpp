@@ -1,3 +1,47 @@
+// Choice of the broadcast ephemeris record to use at a given time.
+
 #include "models/ephemeris.hpp"
 
-namespace navemu {}  // namespace navemu
+#include <cmath>
+#include <cstdint>
+
+namespace navemu {
+
+namespace {
+
+// Time of transmission of a record in ns since the GPS epoch. The RINEX "transmission time of
+// message" is seconds of week (RINEX 2.11 section 6.8; it may be given relative to the week of
+// toe, hence outside [0, 604800)); it is taken in the week that puts it nearest to toe.
+std::int64_t transmission_ns(const GpsEphemeris& e) {
+  const std::int64_t week_ns = kSecondsPerWeek * kNsPerS;
+  const std::int64_t toe_week_start = e.toe.ns - (((e.toe.ns % week_ns) + week_ns) % week_ns);
+  std::int64_t t = toe_week_start + GpsTime::from_seconds(e.transmission_tow_s).ns;
+  while (t - e.toe.ns > week_ns / 2) t -= week_ns;
+  while (e.toe.ns - t > week_ns / 2) t += week_ns;
+  return t;
+}
+
+}  // namespace
+
+// Among the healthy records of `prn` (SV health 0, IS-GPS-200 20.3.3.3.1.4), the one whose toe
+// is nearest to t: the curve fit interval is centred on toe (IS-GPS-200 20.3.4.5), so the
+// nearest toe gives the smallest fit error. When t precedes every toe that is the earliest
+// one. Equal distances go to the record transmitted later, then to the later one in the file.
+const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t) {
+  const GpsEphemeris* best = nullptr;
+  std::int64_t best_dt = 0;
+  std::int64_t best_tx = 0;
+  for (const GpsEphemeris& e : nav.gps) {
+    if (e.prn != prn || e.health != 0) continue;
+    const std::int64_t dt = t.ns >= e.toe.ns ? t.ns - e.toe.ns : e.toe.ns - t.ns;
+    const std::int64_t tx = transmission_ns(e);
+    if (best == nullptr || dt < best_dt || (dt == best_dt && tx >= best_tx)) {
+      best = &e;
+      best_dt = dt;
+      best_tx = tx;
+    }
+  }
+  return best;
+}
+
+}  // namespace navemu

@@ -59,6 +59,10 @@ struct ObsData {
   ObsHeader header;
   std::vector<ObsEpoch> epochs;  // epochs with observations (flags 0 and 1)
   int event_records = 0;         // event-flag 2-5 records consumed
+  int cycle_slip_records = 0;    // event-flag 6 (cycle slip) records consumed
+  // Irregularities that were tolerated, one "file:line: field: problem" each (e.g. a RINEX 3
+  // epoch announcing more satellites than it lists, as some simulators write).
+  std::vector<std::string> warnings;
   std::string source;
 };
 

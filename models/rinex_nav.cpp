@@ -1,3 +1,377 @@
-#include "models/rinex.hpp"
+// RINEX navigation message files: GPS broadcast ephemerides.
+//
+//   RINEX 2.10/2.11 GPS navigation files (type 'N'): RINEX 2.11 Tables A3 (header) and A4
+//     (data record); two-digit years per section 6.5.
+//   RINEX 3.0x navigation files (GPS or mixed): RINEX 3.05 appendix, navigation message file
+//     header and GPS data record descriptions; records of the other systems (GLONASS, Galileo,
+//     SBAS, QZSS, BDS, NavIC/IRNSS data record descriptions) are parsed past.
+//   RINEX 4.0x navigation files: RINEX 4.00 navigation data records; every record starts with a
+//     "> TYPE SV MESSAGE" line; only "> EPH Gnn LNAV" records are read, whose lines have the
+//     RINEX 3 layout.
 
-namespace navemu {}  // namespace navemu
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "models/rinex.hpp"
+#include "models/rinex_fields.hpp"
+
+namespace navemu {
+namespace {
+
+using rinex::column;
+using rinex::fail;
+using rinex::is_blank;
+using rinex::Lines;
+using rinex::req_double;
+using rinex::req_int;
+using rinex::Where;
+
+enum class NavFormat { v2, v3, v4 };
+
+// Field names of the seven BROADCAST ORBIT lines of a GPS record (RINEX 2.11 Table A4,
+// RINEX 3.05 GPS navigation data record), used in error messages.
+constexpr std::array<std::array<const char*, 4>, 7> kOrbitFields{{
+    {"IODE", "Crs", "Delta n", "M0"},
+    {"Cuc", "e", "Cus", "sqrtA"},
+    {"Toe", "Cic", "OMEGA0", "Cis"},
+    {"i0", "Crc", "omega", "OMEGA DOT"},
+    {"IDOT", "codes on L2", "GPS week", "L2 P data flag"},
+    {"SV accuracy", "SV health", "TGD", "IODC"},
+    {"transmission time", "fit interval", "spare", "spare"},
+}};
+
+constexpr int kOrbitLines = 7;
+constexpr double kHalfWeek_s = 302400.0;
+
+// A continuation (BROADCAST ORBIT) line: the first `indent` columns are blank and something
+// follows (3X in RINEX 2, 4X in RINEX 3 and 4).
+bool is_continuation(std::string_view line, std::size_t indent) {
+  return line.size() > indent && is_blank(column(line, 0, indent)) && !is_blank(line);
+}
+
+// One GPS record: the "PRN / EPOCH / SV CLK" line at `n` and seven BROADCAST ORBIT lines.
+// `first_line` is where the record starts (the "> EPH" line in RINEX 4), for `source`.
+GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int first_line) {
+  const std::string& src = lines.source();
+  const std::string_view first = lines.line(n);
+  const Where w{src, n};
+  GpsEphemeris eph;
+  CalendarTime c;
+  std::size_t clock_col = 0;
+  std::size_t orbit_col = 0;
+  if (format == NavFormat::v2) {
+    // I2,1X,I2.2,1X,I2,1X,I2,1X,I2,1X,I2,F5.1,3D19.12 (RINEX 2.11 Table A4)
+    eph.prn = req_int(w, first, 0, 2, "PRN");
+    c.year = rinex::full_year(req_int(w, first, 3, 2, "epoch"));
+    c.month = req_int(w, first, 6, 2, "epoch");
+    c.day = req_int(w, first, 9, 2, "epoch");
+    c.hour = req_int(w, first, 12, 2, "epoch");
+    c.minute = req_int(w, first, 15, 2, "epoch");
+    c.second = req_double(w, first, 17, 5, "epoch");
+    clock_col = 22;
+    orbit_col = 3;
+  } else {
+    // A1,I2.2,1X,I4,5(1X,I2.2),3D19.12 (RINEX 3.05 GPS navigation data record)
+    if (column(first, 0, 1) != "G") fail(src, n, "PRN", "expected a GPS satellite number Gnn");
+    eph.prn = req_int(w, first, 1, 2, "PRN");
+    c.year = req_int(w, first, 4, 4, "epoch");
+    c.month = req_int(w, first, 9, 2, "epoch");
+    c.day = req_int(w, first, 12, 2, "epoch");
+    c.hour = req_int(w, first, 15, 2, "epoch");
+    c.minute = req_int(w, first, 18, 2, "epoch");
+    c.second = req_double(w, first, 21, 2, "epoch");
+    clock_col = 23;
+    orbit_col = 4;
+  }
+  if (eph.prn < 1 || eph.prn > 63)
+    fail(src, n, "PRN", fmt::format("GPS PRN {} out of range 1-63", eph.prn));
+  // toc: the epoch is GPS time (RINEX 2.11 Table A4, RINEX 3.05 GPS navigation data record).
+  eph.toc = rinex::epoch_to_gps(w, c, "epoch");
+  eph.af0_s = rinex::req_full_double(w, first, clock_col, 19, "af0");
+  eph.af1_sps = rinex::req_full_double(w, first, clock_col + 19, 19, "af1");
+  eph.af2_sps2 = rinex::req_full_double(w, first, clock_col + 38, 19, "af2");
+
+  // BROADCAST ORBIT 1..7, four D19.12 fields each.
+  std::array<std::array<double, 4>, kOrbitLines> v{};
+  std::optional<double> fit_interval;
+  for (int j = 0; j < kOrbitLines; ++j) {
+    const int ln = n + 1 + j;
+    const auto& names = kOrbitFields[static_cast<std::size_t>(j)];
+    if (ln > lines.size())
+      fail(src, ln, names[0],
+           fmt::format("record truncated: end of file where BROADCAST ORBIT - {} of G{:02d} "
+                       "(record at line {}) was expected",
+                       j + 1, eph.prn, n));
+    const std::string_view line = lines.line(ln);
+    if (!is_blank(column(line, 0, orbit_col)))
+      fail(src, ln, names[0],
+           fmt::format("record truncated: BROADCAST ORBIT - {} of G{:02d} (record at line {}) "
+                       "expected, found the start of another record",
+                       j + 1, eph.prn, n));
+    const Where wl{src, ln};
+    auto& row = v[static_cast<std::size_t>(j)];
+    if (j == kOrbitLines - 1) {
+      // BROADCAST ORBIT - 7: transmission time, then fit interval and spares that may be blank.
+      row[0] = rinex::req_full_double(wl, line, orbit_col, 19, names[0]);
+      fit_interval = rinex::opt_full_double(wl, line, orbit_col + 19, 19, names[1]);
+      for (std::size_t k = 2; k < 4; ++k)
+        (void)rinex::opt_full_double(wl, line, orbit_col + 19 * k, 19, names[k]);
+    } else {
+      for (std::size_t k = 0; k < 4; ++k)
+        row[k] = rinex::req_full_double(wl, line, orbit_col + 19 * k, 19, names[k]);
+    }
+  }
+
+  const Where w1{src, n + 1}, w5{src, n + 5}, w6{src, n + 6};
+  eph.iode = rinex::integral(w1, v[0][0], "IODE");
+  eph.crs_m = v[0][1];
+  eph.delta_n_radps = v[0][2];
+  eph.m0_rad = v[0][3];
+  eph.cuc_rad = v[1][0];
+  eph.e = v[1][1];
+  eph.cus_rad = v[1][2];
+  eph.sqrt_a_sqrtm = v[1][3];
+  const double toe_s = v[2][0];
+  eph.cic_rad = v[2][1];
+  eph.omega0_rad = v[2][2];
+  eph.cis_rad = v[2][3];
+  eph.i0_rad = v[3][0];
+  eph.crc_m = v[3][1];
+  eph.omega_rad = v[3][2];
+  eph.omega_dot_radps = v[3][3];
+  eph.idot_radps = v[4][0];
+  eph.codes_on_l2 = rinex::integral(w5, v[4][1], "codes on L2");
+  const int week = rinex::integral(w5, v[4][2], "GPS week");
+  eph.l2p_data_flag = rinex::integral(w5, v[4][3], "L2 P data flag");
+  eph.ura_m = v[5][0];
+  eph.health = rinex::integral(w6, v[5][1], "SV health");
+  eph.tgd_s = v[5][2];
+  eph.iodc = rinex::integral(w6, v[5][3], "IODC");
+  eph.transmission_tow_s = v[6][0];
+  // Fit interval in hours (RINEX 2.11 section 6.6); blank or 0 means "not known", i.e. the
+  // 4-hour curve fit of IS-GPS-200 20.3.3.4.3.1 (fit interval flag 0).
+  eph.fit_interval_h = fit_interval.has_value() && *fit_interval > 0.0 ? *fit_interval : 4.0;
+
+  if (!(eph.sqrt_a_sqrtm > 0.0))
+    fail(src, n + 2, "sqrtA", fmt::format("must be positive, got {}", eph.sqrt_a_sqrtm));
+  if (!(eph.e >= 0.0 && eph.e < 1.0))
+    fail(src, n + 2, "e", fmt::format("eccentricity must be in [0, 1), got {}", eph.e));
+  if (!(toe_s >= 0.0 && toe_s < static_cast<double>(kSecondsPerWeek)))
+    fail(src, n + 3, "Toe", fmt::format("must be in [0, 604800) s of week, got {}", toe_s));
+  if (week < 0) fail(src, n + 5, "GPS week", fmt::format("must not be negative, got {}", week));
+
+  // toe = continuous GPS week (RINEX 2.10+: "no roll-over") + Toe seconds. A week that puts
+  // toe more than half a week from toc (a modulo-1024 week, or the week of transmission
+  // rather than of toe) is corrected by whole weeks towards toc.
+  eph.toe = from_week_tow(week, toe_s);
+  const double d_s = seconds_between(eph.toe, eph.toc);
+  if (std::fabs(d_s) > kHalfWeek_s) {
+    const std::int64_t k = std::llround(d_s / static_cast<double>(kSecondsPerWeek));
+    eph.toe = GpsTime{eph.toe.ns - k * kSecondsPerWeek * kNsPerS};
+  }
+  eph.source = fmt::format("{}:{}", src, first_line);
+  return eph;
+}
+
+// Continuation lines per record of the systems that are parsed past in RINEX 3 files
+// (RINEX 3.05 data record descriptions of each system): GLONASS 3 (4 from version 3.05, which
+// added the status/health line), SBAS 3, Galileo, BDS, QZSS and NavIC/IRNSS 7.
+int continuation_lines(char system, double version) {
+  switch (system) {
+    case 'R':
+      return version >= 3.045 ? 4 : 3;
+    case 'S':
+      return 3;
+    case 'E':
+    case 'C':
+    case 'J':
+    case 'I':
+      return 7;
+    default:
+      return -1;
+  }
+}
+
+// Parses past one record of another system starting at line `n`; returns the next line.
+int skip_other_record(const Lines& lines, int n, double version) {
+  const std::string& src = lines.source();
+  const std::string_view first = lines.line(n);
+  const char sys = first[0];
+  const int count = continuation_lines(sys, version);
+  if (count < 0)
+    fail(src, n, "satellite system",
+         fmt::format("unknown satellite system '{}' at the start of a record", sys));
+  const Where w{src, n};
+  const int prn = req_int(w, first, 1, 2, "PRN");
+  if (prn < 1) fail(src, n, "PRN", fmt::format("satellite number {}{:02d} out of range", sys, prn));
+  (void)req_int(w, first, 4, 4, "epoch");
+  for (int j = 1; j <= count; ++j) {
+    const int ln = n + j;
+    if (ln > lines.size() || !is_continuation(lines.line(ln), 4))
+      fail(src, ln, "BROADCAST ORBIT",
+           fmt::format("record truncated: {} continuation lines expected for {}{:02d} (record at "
+                       "line {}), found {}",
+                       count, sys, prn, n, j - 1));
+  }
+  int next = n + count + 1;
+  // Writers of earlier versions may already add the later GLONASS line; take any further
+  // continuation lines as part of this record.
+  while (next <= lines.size() && is_continuation(lines.line(next), 4)) ++next;
+  return next;
+}
+
+std::array<double, 4> read_four(const Lines& lines, int n, std::size_t col, const char* field) {
+  const Where w{lines.source(), n};
+  const std::string_view line = lines.line(n);
+  std::array<double, 4> out{};
+  for (std::size_t k = 0; k < 4; ++k) out[k] = req_double(w, line, col + 12 * k, 12, field);
+  return out;
+}
+
+NavData parse_nav_text(std::string text, const std::string& source) {
+  const Lines lines(std::move(text), source);
+  const rinex::VersionLine vl = rinex::read_version_line(lines);
+
+  NavData nav;
+  nav.source = source;
+  nav.rinex_version = vl.version;
+
+  NavFormat format = NavFormat::v2;
+  if (vl.version >= 2.0 && vl.version < 3.0) {
+    format = NavFormat::v2;
+    if (vl.type == 'G' || vl.type == 'H')
+      fail(source, 1, "file type",
+           fmt::format("RINEX 2 '{}' navigation files ({}) are not supported: only GPS ('N')",
+                       vl.type, vl.type == 'G' ? "GLONASS" : "GEO/SBAS"));
+  } else if (vl.version >= 3.0 && vl.version < 4.0) {
+    format = NavFormat::v3;
+  } else if (vl.version >= 4.0 && vl.version < 5.0) {
+    format = NavFormat::v4;
+  } else {
+    fail(source, 1, "version",
+         fmt::format("unsupported RINEX version {} (navigation files 2.x, 3.x and 4.x are read)",
+                     vl.version));
+  }
+  if (vl.type != 'N')
+    fail(source, 1, "file type",
+         fmt::format("'{}' is not a navigation file type (expected 'N')", vl.type));
+
+  // Header (RINEX 2.11 Table A3; RINEX 3.05 and 4.00 navigation header descriptions).
+  std::optional<std::array<double, 4>> alpha;
+  std::optional<std::array<double, 4>> beta;
+  int n = 2;
+  bool end_of_header = false;
+  for (; n <= lines.size(); ++n) {
+    const std::string_view line = lines.line(n);
+    const std::string_view label = rinex::header_label(line);
+    if (label == "END OF HEADER") {
+      end_of_header = true;
+      break;
+    }
+    if (format == NavFormat::v2 && label == "ION ALPHA") {
+      alpha = read_four(lines, n, 2, "ION ALPHA");  // 2X,4D12.4
+    } else if (format == NavFormat::v2 && label == "ION BETA") {
+      beta = read_four(lines, n, 2, "ION BETA");
+    } else if (label == "IONOSPHERIC CORR") {
+      // A4,1X,4D12.4 (RINEX 3.05 navigation header, IONOSPHERIC CORR). Several GPSA/GPSB lines with time marks may be
+      // given (3.04+); the first applies.
+      const std::string_view kind = rinex::trim(column(line, 0, 4));
+      if (kind == "GPSA" && !alpha) alpha = read_four(lines, n, 5, "IONOSPHERIC CORR GPSA");
+      if (kind == "GPSB" && !beta) beta = read_four(lines, n, 5, "IONOSPHERIC CORR GPSB");
+    } else if (label == "LEAP SECONDS") {
+      nav.leap_seconds = req_int(Where{source, n}, line, 0, 6, "LEAP SECONDS");  // I6
+    }
+  }
+  if (!end_of_header)
+    fail(source, lines.size(), "END OF HEADER", "end of file before END OF HEADER");
+  if (alpha && beta) nav.klobuchar = KlobucharCoefficients{*alpha, *beta};
+
+  // Data records.
+  ++n;
+  while (n <= lines.size()) {
+    const std::string_view line = lines.line(n);
+    if (is_blank(line)) {
+      ++n;
+      continue;
+    }
+    switch (format) {
+      case NavFormat::v2:
+        if (is_blank(column(line, 0, 3)))
+          fail(source, n, "PRN",
+               "expected the first line of a record (PRN / EPOCH / SV CLK), found a "
+               "continuation line: the previous record has too many lines");
+        nav.gps.push_back(parse_gps_record(lines, n, NavFormat::v2, n));
+        n += 1 + kOrbitLines;
+        break;
+      case NavFormat::v3:
+        if (line[0] == ' ')
+          fail(source, n, "PRN",
+               "expected the first line of a record (SV / EPOCH / SV CLK), found a "
+               "continuation line: the previous record has too many lines");
+        if (line[0] == 'G') {
+          nav.gps.push_back(parse_gps_record(lines, n, NavFormat::v3, n));
+          n += 1 + kOrbitLines;
+        } else {
+          n = skip_other_record(lines, n, vl.version);
+          ++nav.skipped_records;
+        }
+        break;
+      case NavFormat::v4: {
+        // "> EPH G01 LNAV", "> STO G   LNAV", "> ION G   LNAV", "> EOP ..." (RINEX 4.00).
+        if (line[0] != '>')
+          fail(source, n, "record type",
+               "expected a '>' record line (e.g. '> EPH G01 LNAV'): the previous record has "
+               "too many lines");
+        std::array<std::string_view, 3> tok{};
+        std::size_t count = 0;
+        std::string_view rest = line.substr(1);
+        while (count < tok.size()) {
+          rest = rinex::trim(rest);
+          if (rest.empty()) break;
+          const std::size_t sp = rest.find(' ');
+          tok[count++] = rest.substr(0, sp);
+          rest = sp == std::string_view::npos ? std::string_view{} : rest.substr(sp);
+        }
+        if (count < 2) fail(source, n, "record type", "incomplete '>' record line");
+        if (tok[0] == "EPH" && count == 3 && tok[1].size() == 3 && tok[1][0] == 'G' &&
+            tok[2] == "LNAV") {
+          const int rec = n + 1;
+          if (rec > lines.size())
+            fail(source, rec, "PRN", "record truncated: end of file after '> EPH' line");
+          if (column(lines.line(rec), 0, 3) != tok[1])
+            fail(source, rec, "PRN",
+                 fmt::format("record of '{}' expected after line {}, found '{}'", tok[1], n,
+                             column(lines.line(rec), 0, 3)));
+          nav.gps.push_back(parse_gps_record(lines, rec, NavFormat::v4, n));
+          n = rec + 1 + kOrbitLines;
+        } else {
+          // Other systems, other GPS messages (CNAV, CNV2), STO, EOP and ION records.
+          ++nav.skipped_records;
+          ++n;
+          while (n <= lines.size() && column(lines.line(n), 0, 1) != ">") ++n;
+        }
+        break;
+      }
+    }
+  }
+  return nav;
+}
+
+}  // namespace
+
+NavData parse_rinex_nav(std::istream& in, const std::string& source) {
+  return parse_nav_text(rinex::read_stream(in, source), source);
+}
+
+NavData read_rinex_nav(const std::filesystem::path& file) {
+  return parse_nav_text(rinex::read_file(file), file.string());
+}
+
+}  // namespace navemu
