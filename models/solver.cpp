@@ -1,3 +1,218 @@
 #include "models/solver.hpp"
 
-namespace navemu {}  // namespace navemu
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "models/orbit.hpp"
+
+namespace navemu {
+
+namespace {
+
+using Mat4 = Eigen::Matrix4d;
+using MatX = Eigen::MatrixXd;
+using VecX = Eigen::VectorXd;
+
+// An ECEF position is taken as known once it is away from the Earth's centre.
+bool position_known(const Vec3& p) { return p.norm() > 1e3; }
+
+// Variance of the tropospheric model error (RTKLIB's ERR_SAAS: 0.3 m at zenith, growing
+// toward the horizon) and of the broadcast ionosphere (half the correction, 1-sigma).
+double tropo_variance_m2(double el_rad) {
+  const double s = 0.3 / (std::sin(el_rad) + 0.1);
+  return s * s;
+}
+
+struct Row {
+  Vec3 u = Vec3::Zero();  // unit line of sight, receiver to satellite (ECEF)
+  double residual_m = 0.0;
+  double variance_m2 = 1.0;
+  std::size_t index = 0;
+};
+
+// Upper bound of the URA bin a broadcast accuracy falls in (IS-GPS-200 20.3.3.3.1.3: URA
+// index N covers (bound[N-1], bound[N]] metres); 6144 m and beyond: index 15, no accuracy.
+double ura_upper_bound_m(double ura_m) {
+  static constexpr double kBound_m[] = {2.4,  3.4,   4.85,  6.85,  9.65,   13.65,  24.0,  48.0,
+                                        96.0, 192.0, 384.0, 768.0, 1536.0, 3072.0, 6144.0};
+  for (double b : kBound_m)
+    if (ura_m <= b) return b;
+  return 6144.0;
+}
+
+}  // namespace
+
+Dops dops_from_directions(const std::vector<AzEl>& dirs) {
+  Dops d;
+  if (dirs.size() < 4) return d;
+  MatX h(dirs.size(), 4);
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const double ce = std::cos(dirs[i].el_rad);
+    const auto r = static_cast<Eigen::Index>(i);
+    h(r, 0) = -ce * std::sin(dirs[i].az_rad);
+    h(r, 1) = -ce * std::cos(dirs[i].az_rad);
+    h(r, 2) = -std::sin(dirs[i].el_rad);
+    h(r, 3) = 1.0;
+  }
+  const Mat4 n = h.transpose() * h;
+  Eigen::FullPivLU<Mat4> lu(n);
+  if (!lu.isInvertible()) return d;
+  const Mat4 q = lu.inverse();
+  d.gdop = std::sqrt(q.trace());
+  d.pdop = std::sqrt(q(0, 0) + q(1, 1) + q(2, 2));
+  d.hdop = std::sqrt(q(0, 0) + q(1, 1));
+  d.vdop = std::sqrt(q(2, 2));
+  d.tdop = std::sqrt(q(3, 3));
+  return d;
+}
+
+RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m, std::optional<double> doppler_l1_hz) {
+  // Transmit time by the satellite's clock, then corrected to GPS system time.
+  GpsTime t_tx = t_receive.plus_s(-pseudorange_m / kSpeedOfLight_mps);
+  t_tx = t_tx.plus_s(-gps_sat_clock_poly_s(eph, t_tx));
+  const SatState s = gps_sat_state(eph, t_tx);
+  RangeMeasurement m;
+  m.prn = eph.prn;
+  m.sat_p_ecef_m = s.p_ecef_m;
+  m.sat_v_ecef_mps = s.v_ecef_mps;
+  m.sat_clock_m = kSpeedOfLight_mps * (s.clock_bias_s - eph.tgd_s);
+  m.sat_clock_drift_mps = kSpeedOfLight_mps * s.clock_drift_sps;
+  m.pseudorange_m = pseudorange_m;
+  const double ura = ura_upper_bound_m(eph.ura_m);
+  m.sat_variance_m2 = ura * ura;
+  if (doppler_l1_hz) m.range_rate_mps = -*doppler_l1_hz * kSpeedOfLight_mps / kGpsL1_Hz;
+  return m;
+}
+
+Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const SolverOptions& opt) {
+  Solution sol;
+  sol.sats.resize(meas.size());
+  Vec3 p = opt.initial_p_ecef_m;
+  double clk = 0.0;
+  const bool prior_known = position_known(p);
+  const double h_hold_m = prior_known ? geodetic_from_ecef(p).h_m : 0.0;
+  const double mask_rad = opt.elevation_mask_deg * kDegToRad;
+  const double sa2 = opt.sigma_a_m * opt.sigma_a_m;
+  const double sb2 = opt.sigma_b_m * opt.sigma_b_m;
+
+  std::vector<Row> rows;
+  rows.reserve(meas.size());
+  bool converged = false;
+  bool hold_height = false;
+
+  // Iterated weighted least squares on the linearised pseudorange equations
+  // P = |R(w tau) p_sat - p| + c dt_rx - c dt_sat + I + T  (RTKLIB pntpos / ESA GNSS Book I, 6.1).
+  for (int iter = 0; iter < opt.max_iterations; ++iter) {
+    rows.clear();
+    const bool known = position_known(p);
+    const Geodetic geo = known ? geodetic_from_ecef(p) : Geodetic{};
+    for (std::size_t i = 0; i < meas.size(); ++i) {
+      const RangeMeasurement& m = meas[i];
+      SatResidual& out = sol.sats[i];
+      out = SatResidual{};
+      out.prn = m.prn;
+      // Earth rotation during the signal's flight (Sagnac).
+      const double tau_s = (m.sat_p_ecef_m - p).norm() / kSpeedOfLight_mps;
+      const Vec3 p_sat = rotate_earth(m.sat_p_ecef_m, tau_s);
+      const Vec3 los = p_sat - p;
+      const double range = los.norm();
+      AzEl dir{0.0, kPi / 2.0};
+      if (known) dir = azimuth_elevation(geo, p, p_sat);
+      out.az_deg = dir.az_rad * kRadToDeg;
+      out.el_deg = dir.el_rad * kRadToDeg;
+      if (known && dir.el_rad < mask_rad) continue;
+      if (known && opt.klobuchar)
+        out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, t);
+      if (known && opt.saastamoinen)
+        out.tropo_m = saastamoinen_delay(geo, dir.el_rad,
+                                         standard_atmosphere(geo.h_m, opt.relative_humidity))
+                          .total_m();
+      out.residual_m = m.pseudorange_m - (range + clk - m.sat_clock_m + out.iono_m + out.tropo_m);
+      out.used = true;
+      const double sin_el = std::sin(dir.el_rad);
+      double var = sa2 + sb2 / sin_el + m.sat_variance_m2;
+      if (known && opt.klobuchar) var += 0.25 * out.iono_m * out.iono_m;
+      if (known && opt.saastamoinen) var += tropo_variance_m2(dir.el_rad);
+      rows.push_back(Row{los / range, out.residual_m, var, i});
+    }
+
+    hold_height = rows.size() == 3 && opt.allow_2d && prior_known;
+    const std::size_t n_rows = rows.size() + (hold_height ? 1 : 0);
+    if (rows.size() < 3 || n_rows < 4) break;
+
+    MatX h(static_cast<Eigen::Index>(n_rows), 4);
+    VecX v(static_cast<Eigen::Index>(n_rows));
+    VecX w(static_cast<Eigen::Index>(n_rows));
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      h.row(r) << -rows[k].u.transpose(), 1.0;
+      v(r) = rows[k].residual_m;
+      w(r) = 1.0 / rows[k].variance_m2;
+    }
+    if (hold_height) {
+      // Pseudo-observation: the height stays at the prior height (1 cm sigma).
+      const Geodetic g = geodetic_from_ecef(p);
+      const Vec3 up = R_enu_from_ecef(g).row(2).transpose();
+      const auto r = static_cast<Eigen::Index>(rows.size());
+      h.row(r) << up.transpose(), 0.0;
+      v(r) = h_hold_m - g.h_m;
+      w(r) = 1e4;
+    }
+    const Mat4 n = h.transpose() * w.asDiagonal() * h;
+    Eigen::FullPivLU<Mat4> lu(n);
+    if (!lu.isInvertible()) break;
+    const Eigen::Vector4d dx = lu.solve(h.transpose() * (w.asDiagonal() * v));
+    p += dx.head<3>();
+    clk += dx(3);
+    sol.iterations = iter + 1;
+    if (dx.norm() < opt.convergence_m) {
+      converged = true;
+      break;
+    }
+  }
+
+  if (!converged) return sol;
+
+  // Residuals against the final estimate were computed in the last pass before the update;
+  // the update is below the convergence threshold, so they stand.
+  sol.p_ecef_m = p;
+  sol.clock_m = clk;
+  sol.num_used = static_cast<int>(rows.size());
+  sol.fix = hold_height ? FixType::k2D : FixType::k3D;
+  std::vector<AzEl> dirs;
+  dirs.reserve(rows.size());
+  for (const Row& r : rows)
+    dirs.push_back({sol.sats[r.index].az_deg * kDegToRad, sol.sats[r.index].el_deg * kDegToRad});
+  sol.dops = dops_from_directions(dirs);
+
+  // Velocity and clock drift from range rates (-lambda * Doppler), least squares:
+  // rr = u.(v_sat - v_rx) + sagnac rate + c d(dt_rx)/dt - c d(dt_sat)/dt.
+  std::vector<std::size_t> with_rate;
+  for (const Row& r : rows)
+    if (meas[r.index].range_rate_mps) with_rate.push_back(r.index);
+  if (with_rate.size() >= 4) {
+    MatX hv(static_cast<Eigen::Index>(with_rate.size()), 4);
+    VecX vv(static_cast<Eigen::Index>(with_rate.size()));
+    for (std::size_t k = 0; k < with_rate.size(); ++k) {
+      const RangeMeasurement& m = meas[with_rate[k]];
+      const double tau_s = (m.sat_p_ecef_m - p).norm() / kSpeedOfLight_mps;
+      const Vec3 ps = rotate_earth(m.sat_p_ecef_m, tau_s);
+      const Vec3 vs = rotate_earth(m.sat_v_ecef_mps, tau_s);
+      const Vec3 u = (ps - p).normalized();
+      const double sagnac_rate =
+          kOmegaEarth_radps / kSpeedOfLight_mps * (vs.y() * p.x() - vs.x() * p.y());
+      const auto r = static_cast<Eigen::Index>(k);
+      hv.row(r) << -u.transpose(), 1.0;
+      vv(r) = *m.range_rate_mps - (u.dot(vs) + sagnac_rate - m.sat_clock_drift_mps);
+    }
+    // The Sagnac term also depends on the receiver velocity; its share (w/c * |p| ~ 1.5e-6)
+    // is below the Doppler noise and is dropped.
+    const Eigen::Vector4d x = hv.colPivHouseholderQr().solve(vv);
+    sol.v_ecef_mps = x.head<3>();
+    sol.clock_drift_mps = x(3);
+  }
+  return sol;
+}
+
+}  // namespace navemu

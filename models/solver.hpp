@@ -23,6 +23,7 @@ struct RangeMeasurement {
   double sat_clock_m = 0.0;       // c * (satellite clock bias incl. relativistic, minus TGD)
   double sat_clock_drift_mps = 0.0;
   double pseudorange_m = 0.0;
+  double sat_variance_m2 = 0.0;          // orbit and clock error variance (URA bound^2)
   std::optional<double> range_rate_mps;  // -lambda * Doppler, when Doppler is measured
 };
 
@@ -39,10 +40,15 @@ struct SolverOptions {
   double relative_humidity = 0.7;                  // for the standard atmosphere
   int max_iterations = 10;
   double convergence_m = 1e-4;
-  // Elevation-dependent code noise: sigma^2 = a^2 + b^2 / sin^2(el) (RTKLIB's default a, b).
+  // Elevation-dependent code noise: sigma^2 = a^2 + b^2 / sin(el) (RTKLIB pntpos' varerr
+  // with its default a = b = 0.3 m), plus URA^2, plus the model variances of the
+  // ionospheric (half the correction) and tropospheric (0.3 m / (sin(el) + 0.1)) corrections.
   double sigma_a_m = 0.3;
   double sigma_b_m = 0.3;
-  Vec3 initial_p_ecef_m = Vec3::Zero();
+  Vec3 initial_p_ecef_m = Vec3::Zero();  // zero: start at the Earth's centre
+  // With exactly three usable satellites and a known initial position, solve a 2D fix with
+  // the height held at the initial position's height.
+  bool allow_2d = true;
 };
 
 struct SatResidual {
@@ -64,6 +70,14 @@ struct Solution {
   int iterations = 0;
   std::vector<SatResidual> sats;
 };
+
+// A measurement from a pseudorange observed at receiver time t_receive: the satellite state
+// at transmit time t_receive - P/c - dt_sat (IS-GPS-200 20.3.3.3.3.1), the L1 C/A clock
+// correction (dt_sat - TGD), URA^2 as orbit/clock variance, and the range rate from an L1
+// Doppler in Hz when given.
+RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m,
+                                        std::optional<double> doppler_l1_hz = {});
 
 Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const SolverOptions& opt);
 
