@@ -1,7 +1,52 @@
 #include "emulator/cli.hpp"
 
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 #include <ostream>
 
+#include "emulator/commands.hpp"
+#include "models/errors.hpp"
+
+#ifndef NAVEMU_VERSION
+#define NAVEMU_VERSION "unknown"
+#endif
+
 namespace navemu {
-int run_cli(int, char**, std::ostream&, std::ostream&) { return 0; }
+
+int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
+  CLI::App app{
+      "navemu - hardware-in-the-loop emulator of GNSS receivers and MEMS IMUs.\n"
+      "Times are ISO-8601 UTC (2023-01-08T09:59:42Z) or GPS WEEK:TOW (2244:36000)."};
+  app.name("navemu");
+  app.set_version_flag("--version", std::string("navemu ") + NAVEMU_VERSION);
+  app.require_subcommand(1);
+  app.footer("Run 'navemu SUBCOMMAND --help' for the options and output of each subcommand.");
+
+  SkyOptions sky;
+  add_sky_command(app, sky);
+  SppOptions spp;
+  add_spp_command(app, spp);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version (exit code 0) print to `out`; usage errors to `err`, exit 2.
+    const int code = app.exit(e, out, err);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (app.got_subcommand("sky")) return run_sky(sky, out, err);
+    if (app.got_subcommand("spp")) return run_spp(spp, out, err);
+  } catch (const InputError& e) {
+    err << "navemu: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    err << "navemu: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}
+
 }  // namespace navemu

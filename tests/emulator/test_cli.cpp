@@ -1,5 +1,213 @@
-#include <gtest/gtest.h>
-
-#include <sstream>
+// The navemu command line, run in-process: help, version, the sky and spp commands, and the
+// one-line errors bad input must give.
 
 #include "emulator/cli.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/test_support.hpp"
+
+namespace navemu {
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+CliRun navemu(std::vector<std::string> args) {
+  args.insert(args.begin(), "navemu");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  std::ostringstream out, err;
+  CliRun r;
+  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+int count_lines(const std::string& s) {
+  return static_cast<int>(std::count(s.begin(), s.end(), '\n'));
+}
+
+std::filesystem::path write_temp(const std::string& name, const std::string& content) {
+  const auto p = std::filesystem::path(::testing::TempDir()) / name;
+  std::ofstream(p) << content;
+  return p;
+}
+
+TEST(Cli, HelpAndVersion) {
+  const CliRun help = navemu({"--help"});
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.out.find("sky"), std::string::npos);
+  EXPECT_NE(help.out.find("spp"), std::string::npos);
+  const CliRun sky_help = navemu({"sky", "--help"});
+  EXPECT_EQ(sky_help.code, 0);
+  EXPECT_NE(sky_help.out.find("--mask"), std::string::npos);
+  EXPECT_NE(sky_help.out.find("range_m"), std::string::npos);
+  const CliRun spp_help = navemu({"spp", "--help"});
+  EXPECT_EQ(spp_help.code, 0);
+  EXPECT_NE(spp_help.out.find("--iono"), std::string::npos);
+  const CliRun version = navemu({"--version"});
+  EXPECT_EQ(version.code, 0);
+  EXPECT_EQ(version.out.rfind("navemu ", 0), 0u);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(navemu({}).code, 2);
+  EXPECT_EQ(navemu({"fly"}).code, 2);
+  EXPECT_EQ(navemu({"sky", "--mask", "95"}).code, 2);
+  EXPECT_EQ(navemu({"spp", "--iono", "nequick", "a", "b"}).code, 2);
+}
+
+TEST(Cli, SkyNominalListsVisibleSatellitesAndDops) {
+  const CliRun r = navemu({"sky", "--nominal", "--time", "2023-01-08T09:59:42Z", "--at", "30,95,0"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_NE(line.find("2023-01-08T09:59:42Z"), std::string::npos);  // UTC ...
+  EXPECT_NE(line.find("2244:36000"), std::string::npos);            // ... and GPS week:TOW
+  std::getline(in, line);
+  EXPECT_EQ(line, "prn,sat_x_m,sat_y_m,sat_z_m,sat_clock_m,az_deg,el_deg,range_m");
+  int rows = 0;
+  std::string last;
+  while (std::getline(in, line)) {
+    if (line[0] == '#') {
+      last = line;
+      continue;
+    }
+    ++rows;
+    double prn, x, y, z, clk, az, el, range;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &prn, &x, &y, &z, &clk,
+                          &az, &el, &range),
+              8);
+    EXPECT_GE(el, 5.0);  // default mask
+    EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 26'559'710.0, 1.0);
+    EXPECT_GT(range, 19e6);
+    EXPECT_LT(range, 26e6);
+  }
+  EXPECT_GE(rows, 4);
+  EXPECT_NE(last.find("PDOP"), std::string::npos);
+}
+
+TEST(Cli, SkyWithSimulatorNavFileMatchesItsTruthLog) {
+  NAVEMU_REQUIRE_SHARED();
+  // Rows of sat_data_V1A1.csv at Time_ms 60000 (2023-01-08 10:00:00 GPST = 2244:36000) for
+  // PRN 1 and 7: Sat_Pos, Azimuth/Elevation (rad), Range.
+  const auto nav = test::shared_data("gnss/spirent_simgen_static_20230108/Spirent_RINEX_GN.23N");
+  const CliRun r = navemu({"sky", "--nav", nav.string(), "--time", "2244:36000", "--at", "30,95,0"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  struct Expect {
+    int prn;
+    double x, y, z, az_rad, el_rad, range;
+  };
+  const Expect expected[] = {
+      {1, -13946912.0663, 22372291.9642, -819544.0049, 2.3766, 0.6667, 21946726.8706},
+      {7, -2786000.9885, 22614766.9572, 13652520.6980, 1.0549, 1.5250, 20195366.3649},
+  };
+  for (const Expect& e : expected) {
+    const std::string prefix = std::to_string(e.prn) + ",";
+    const auto pos = r.out.find("\n" + prefix);
+    ASSERT_NE(pos, std::string::npos) << "PRN " << e.prn;
+    double prn, x, y, z, clk, az, el, range;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + pos + 1, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &prn, &x,
+                          &y, &z, &clk, &az, &el, &range),
+              8);
+    EXPECT_NEAR(x, e.x, 0.01);
+    EXPECT_NEAR(y, e.y, 0.01);
+    EXPECT_NEAR(z, e.z, 0.01);
+    EXPECT_NEAR(range, e.range, 0.01);
+    EXPECT_NEAR(az, e.az_rad * 180.0 / M_PI, 0.01);
+    EXPECT_NEAR(el, e.el_rad * 180.0 / M_PI, 0.01);
+  }
+}
+
+// Bad input: non-zero exit, exactly one line on stderr naming file, line and field.
+void expect_one_line_error(const CliRun& r, const std::string& must_contain) {
+  EXPECT_NE(r.code, 0);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(must_contain), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadTimeAndPlaceAreOneLineErrors) {
+  expect_one_line_error(navemu({"sky", "--time", "2023-13-08T00:00:00Z"}), "--time");
+  expect_one_line_error(navemu({"sky", "--time", "yesterday"}), "--time");
+  expect_one_line_error(navemu({"sky", "--at", "30,95"}), "--at");
+  expect_one_line_error(navemu({"sky", "--at", "30,nan,0"}), "--at");
+  expect_one_line_error(navemu({"sky", "--at", "95,30,0"}), "--at");
+}
+
+TEST(Cli, MissingFilesAreOneLineErrors) {
+  expect_one_line_error(navemu({"sky", "--nav", "/nonexistent/brdc.23n", "--time", "2244:0"}),
+                        "/nonexistent/brdc.23n");
+  expect_one_line_error(navemu({"spp", "/nonexistent/x.05o", "/nonexistent/x.05n"}),
+                        "/nonexistent/x.05o");
+}
+
+// A RINEX 2.10 GPS navigation file with one record (PRN 3 of 07590920.05n's style).
+const char* kNav210 =
+    "     2.10           N: GPS NAV DATA                         RINEX VERSION / TYPE\n"
+    "                                                            END OF HEADER\n"
+    " 3 05  4  2  0  0  0.0 2.350145950913D-05 3.183231456205D-12 0.000000000000D+00\n"
+    "    2.000000000000D+01-4.062500000000D+01 4.660908138937D-09-2.962350402467D+00\n"
+    "   -2.078711986542D-06 9.288521762937D-03 1.030787825584D-05 5.153746486664D+03\n"
+    "    5.184000000000D+05 1.862645149231D-08-1.006880514812D+00-1.117587089539D-08\n"
+    "    9.658744283127D-01 1.740625000000D+02 1.005373268254D+00-7.836754191457D-09\n"
+    "   -3.357282694513D-10 1.000000000000D+00 1.316000000000D+03 0.000000000000D+00\n"
+    "    2.000000000000D+00 0.000000000000D+00-4.190951585770D-09 2.000000000000D+01\n"
+    "    5.112180000000D+05 4.000000000000D+00\n";
+
+TEST(Cli, MalformedNavigationFilesNameFileLineAndField) {
+  const std::string good = kNav210;
+  // Sanity: the good file is accepted.
+  const auto ok = write_temp("good.05n", good);
+  EXPECT_EQ(navemu({"sky", "--nav", ok.string(), "--time", "1316:518400", "--at", "35,139,0",
+                    "--mask", "-90"})
+                .code,
+            0);
+
+  // Unknown version.
+  std::string bad = good;
+  bad.replace(5, 4, "9.99");
+  expect_one_line_error(navemu({"sky", "--nav", write_temp("version.05n", bad).string(), "--time",
+                                "1316:518400"}),
+                        "version.05n:1");
+  // Non-numeric field (sqrt(A) on line 5).
+  bad = good;
+  bad.replace(bad.find("5.153746486664D+03"), 18, "5.15374648666xD+03");
+  expect_one_line_error(navemu({"sky", "--nav", write_temp("alpha.05n", bad).string(), "--time",
+                                "1316:518400"}),
+                        "alpha.05n:5");
+  // NaN.
+  bad = good;
+  bad.replace(bad.find("9.288521762937D-03"), 18, "               NaN");
+  expect_one_line_error(
+      navemu({"sky", "--nav", write_temp("nan.05n", bad).string(), "--time", "1316:518400"}),
+      "nan.05n:5");
+  // Truncated record: the last two orbit lines missing.
+  bad = good.substr(0, good.find("    2.000000000000D+00 0.0"));
+  expect_one_line_error(
+      navemu({"sky", "--nav", write_temp("trunc.05n", bad).string(), "--time", "1316:518400"}),
+      "trunc.05n:");
+}
+
+TEST(Cli, SppOnRealFilesReportsEveryEpoch) {
+  NAVEMU_REQUIRE_SHARED();
+  const auto dir = test::shared_data("gnss/rtklib_geonet_20050402");
+  const CliRun r = navemu({"spp", (dir / "07590920.05o").string(), (dir / "07590920.05n").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count_lines(r.out), 1 + 120);  // header + one row per epoch (all have a fix)
+  EXPECT_NE(r.err.find("120 epochs, 120 with a 3D fix"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace navemu

@@ -1,0 +1,46 @@
+#pragma once
+// The navemu subcommands. Each registers its options on the CLI11 app and returns the
+// callback-free options struct the run function takes.
+
+#include <CLI/CLI.hpp>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "models/ephemeris.hpp"
+#include "models/geodesy.hpp"
+#include "models/time.hpp"
+
+namespace navemu {
+
+// "LAT,LON,H" in degrees, degrees and metres above the ellipsoid; InputError otherwise.
+Geodetic parse_geodetic(const std::string& text, const std::string& field);
+
+// A --time/--start value: ISO-8601 UTC, GPS WEEK:TOW, or "now" (the system clock).
+GpsTime time_option(const std::string& text, const std::string& field);
+
+// The navigation data to use: the RINEX file when given, otherwise the built-in nominal
+// constellation around `t`.
+NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t);
+
+struct SkyOptions {
+  std::string nav_file;  // empty: built-in constellation
+  bool nominal = false;
+  std::string time = "now";
+  std::string at = "32.3,-90.9,60";  // the paper's test site, Vicksburg, MS
+  double mask_deg = 5.0;
+};
+void add_sky_command(CLI::App& app, SkyOptions& opt);
+int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err);
+
+struct SppOptions {
+  std::string obs_file;
+  std::string nav_file;
+  double mask_deg = 15.0;
+  std::string iono = "klobuchar";
+  std::string tropo = "saastamoinen";
+};
+void add_spp_command(CLI::App& app, SppOptions& opt);
+int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err);
+
+}  // namespace navemu

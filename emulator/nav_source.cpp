@@ -1,0 +1,68 @@
+#include <fmt/format.h>
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "emulator/commands.hpp"
+#include "models/constellation.hpp"
+#include "models/errors.hpp"
+#include "models/rinex.hpp"
+
+namespace navemu {
+
+namespace {
+
+double parse_number(std::string_view text, const std::string& field, const char* what) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+    throw InputError(field, fmt::format("{} '{}' is not a finite number", what, text));
+  return v;
+}
+
+}  // namespace
+
+Geodetic parse_geodetic(const std::string& text, const std::string& field) {
+  std::vector<std::string_view> parts;
+  std::string_view rest = text;
+  for (std::size_t pos; (pos = rest.find(',')) != std::string_view::npos;) {
+    parts.push_back(rest.substr(0, pos));
+    rest.remove_prefix(pos + 1);
+  }
+  parts.push_back(rest);
+  if (parts.size() != 3)
+    throw InputError(field, fmt::format("expected LAT,LON,H (degrees, degrees, metres above the "
+                                        "WGS-84 ellipsoid), got '{}'",
+                                        text));
+  Geodetic g{parse_number(parts[0], field, "latitude"), parse_number(parts[1], field, "longitude"),
+             parse_number(parts[2], field, "height")};
+  if (std::abs(g.lat_deg) > 90.0)
+    throw InputError(field, fmt::format("latitude {} outside [-90, 90] degrees", g.lat_deg));
+  if (g.lon_deg < -180.0 || g.lon_deg > 360.0)
+    throw InputError(field, fmt::format("longitude {} outside [-180, 360] degrees", g.lon_deg));
+  if (g.h_m < -11000.0 || g.h_m > 1e8)
+    throw InputError(field, fmt::format("height {} m outside [-11000, 1e8] m", g.h_m));
+  return g;
+}
+
+GpsTime time_option(const std::string& text, const std::string& field) {
+  if (text != "now") return parse_time(text, field);
+  // The only wall-clock read of these commands: "now" in UTC, turned into GPS time.
+  const auto unix_s = std::chrono::duration_cast<std::chrono::seconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z
+  const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
+  return gps_from_utc(utc);
+}
+
+NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t) {
+  if (nav_file.empty()) return nominal_constellation(t);
+  return read_rinex_nav(nav_file);
+}
+
+}  // namespace navemu

@@ -1,0 +1,168 @@
+// `navemu spp` on real RINEX files: accuracy against the stations' precise coordinates, and
+// epoch-by-epoch agreement with RTKLIB's rnx2rtkp (Debian package rtklib) on the same files
+// and settings (single point, GPS only, 15 deg mask, broadcast Klobuchar, Saastamoinen).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "models/geodesy.hpp"
+#include "tests/test_support.hpp"
+
+namespace navemu {
+namespace {
+
+struct Station {
+  const char* name;
+  const char* obs;
+  const char* nav;
+  Vec3 truth_ecef_m;
+};
+
+// Truth from ../shared/data/README.md. ESBC: the marker plus the antenna height
+// (0.2160 m along the ellipsoid normal) gives the antenna reference point SPP measures.
+Vec3 esbc_arp() {
+  const Vec3 marker(3582105.2910, 532589.7313, 5232754.8054);
+  const Mat3 r = R_enu_from_ecef(geodetic_from_ecef(marker));
+  return marker + r.row(2).transpose() * 0.2160;
+}
+
+// Test names and failure messages show the station's name.
+void PrintTo(const Station& s, std::ostream* os) { *os << s.name; }
+
+std::vector<Station> stations() {
+  return {
+      {"0759", "gnss/rtklib_geonet_20050402/07590920.05o",
+       "gnss/rtklib_geonet_20050402/07590920.05n", Vec3(-3976219.1454, 3382371.6073, 3652511.1964)},
+      {"3040", "gnss/rtklib_geonet_20050402/30400920.05o",
+       "gnss/rtklib_geonet_20050402/30400920.05n", Vec3(-3978241.958, 3382840.234, 3649900.853)},
+      {"ESBC", "gnss/esbc_20200625/ESBC00DNK_R_20201770000_01H_30S_MO.rnx",
+       "gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx", esbc_arp()},
+  };
+}
+
+// Epoch (time of week rounded to the second) -> ECEF position. RTKLIB tags its solutions with
+// the receiver-clock-corrected time, navemu with the observation epoch; both round to the
+// same second at these 30 s intervals (receiver clock offsets stay below 5 ms).
+using Track = std::map<long long, Vec3>;
+
+long long key_ms(double tow_s) { return std::llround(tow_s); }
+
+Track parse_navemu_csv(const std::string& csv) {
+  Track t;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s");
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    if (f.size() != 12) continue;
+    t[key_ms(std::stod(f[11]))] = Vec3(std::stod(f[4]), std::stod(f[5]), std::stod(f[6]));
+  }
+  return t;
+}
+
+// rnx2rtkp -e output: "yyyy/mm/dd hh:mm:ss.sss x y z Q ns ..." in GPS time.
+Track parse_rtklib_pos(const std::filesystem::path& file) {
+  Track t;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '%') continue;
+    int y, mo, d, h, mi;
+    double s, x, yy, z;
+    if (std::sscanf(line.c_str(), "%d/%d/%d %d:%d:%lf %lf %lf %lf", &y, &mo, &d, &h, &mi, &s, &x,
+                    &yy, &z) != 9)
+      continue;
+    // Time of week from the calendar date (days since the GPS epoch, Sunday-based week).
+    auto days_from_civil = [](int yr, int m, int dd) {
+      yr -= m <= 2;
+      const int era = (yr >= 0 ? yr : yr - 399) / 400;
+      const int yoe = yr - era * 400;
+      const int doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + dd - 1;
+      const int doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+      return era * 146097 + doe - 719468;
+    };
+    const long long days = days_from_civil(y, mo, d) - days_from_civil(1980, 1, 6);
+    const double tow = static_cast<double>(days % 7) * 86400.0 + h * 3600.0 + mi * 60.0 + s;
+    t[key_ms(tow)] = Vec3(x, yy, z);
+  }
+  return t;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+class SppRealData : public ::testing::TestWithParam<Station> {};
+
+TEST_P(SppRealData, AccurateAndAgreesWithRtklib) {
+  NAVEMU_REQUIRE_SHARED();
+  const Station& st = GetParam();
+  const auto obs = test::shared_data(st.obs);
+  const auto nav = test::shared_data(st.nav);
+
+  const auto ours = test::run_command(
+      test::shell_quote(test::navemu_binary().string()) + " spp " + test::shell_quote(obs) + " " +
+      test::shell_quote(nav) + " --mask 15 --iono klobuchar --tropo saastamoinen 2>/dev/null");
+  ASSERT_EQ(ours.exit_code, 0);
+  const Track mine = parse_navemu_csv(ours.out);
+  ASSERT_GE(mine.size(), 100u) << st.name;
+
+  // Accuracy against the precise station position.
+  const Geodetic truth_geo = geodetic_from_ecef(st.truth_ecef_m);
+  double sum3d = 0.0;
+  Vec3 sum_enu = Vec3::Zero();
+  for (const auto& [k, p] : mine) {
+    sum3d += (p - st.truth_ecef_m).norm();
+    sum_enu += enu_from_ecef(p, truth_geo);
+  }
+  const double mean3d = sum3d / static_cast<double>(mine.size());
+  const Vec3 mean_enu = sum_enu / static_cast<double>(mine.size());
+
+  // RTKLIB on the same files and settings.
+  const auto dir = std::filesystem::path(::testing::TempDir()) / (std::string("spp_") + st.name);
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream conf(dir / "spp.conf");
+    conf << "pos1-posmode=single\npos1-elmask=15\npos1-ionoopt=brdc\npos1-tropopt=saas\n"
+            "pos1-navsys=1\n";
+  }
+  const auto pos = dir / "rtklib.pos";
+  const auto rtk = test::run_command("rnx2rtkp -k " + test::shell_quote(dir / "spp.conf") +
+                                     " -e -o " + test::shell_quote(pos) + " " +
+                                     test::shell_quote(obs) + " " + test::shell_quote(nav) +
+                                     " 2>/dev/null");
+  ASSERT_EQ(rtk.exit_code, 0) << "rnx2rtkp (Debian package rtklib) missing or failed; "
+                                 "tools/install-deps installs it";
+  const Track theirs = parse_rtklib_pos(pos);
+  ASSERT_GE(theirs.size(), 100u);
+
+  std::vector<double> diffs;
+  for (const auto& [k, p] : mine) {
+    const auto it = theirs.find(k);
+    if (it != theirs.end()) diffs.push_back((p - it->second).norm());
+  }
+  ASSERT_GE(diffs.size(), 100u);
+  const double med = median(diffs);
+  std::printf("%s: %zu epochs solved (RTKLIB %zu, common %zu); mean 3D error %.3f m, "
+              "mean ENU (%.2f, %.2f, %.2f) m; median |navemu - rnx2rtkp| %.3f m, max %.3f m\n",
+              st.name, mine.size(), theirs.size(), diffs.size(), mean3d, mean_enu.x(),
+              mean_enu.y(), mean_enu.z(), med, *std::max_element(diffs.begin(), diffs.end()));
+  EXPECT_LE(mean3d, 3.0);
+  EXPECT_LE(med, 0.3);
+}
+
+INSTANTIATE_TEST_SUITE_P(Stations, SppRealData, ::testing::ValuesIn(stations()),
+                         [](const auto& param_info) { return std::string("Station") + param_info.param.name; });
+
+}  // namespace
+}  // namespace navemu
