@@ -1,6 +1,7 @@
 #include "models/solver.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "models/orbit.hpp"
@@ -100,6 +101,10 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
   rows.reserve(meas.size());
   bool converged = false;
   bool hold_height = false;
+  // The elevation mask applies once the estimate is within 10 km (elevations then good to
+  // ~0.1 deg): from the first iteration with a prior, otherwise after the first large steps
+  // from the Earth's centre, whose intermediate estimates can be hundreds of km off.
+  bool settled = prior_known;
 
   // Iterated weighted least squares on the linearised pseudorange equations
   // P = |R(w tau) p_sat - p| + c dt_rx - c dt_sat + I + T  (RTKLIB pntpos / ESA GNSS Book I, 6.1).
@@ -121,7 +126,7 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
       if (known) dir = azimuth_elevation(geo, p, p_sat);
       out.az_deg = dir.az_rad * kRadToDeg;
       out.el_deg = dir.el_rad * kRadToDeg;
-      if (known && dir.el_rad < mask_rad) continue;
+      if (settled && dir.el_rad < mask_rad) continue;
       if (known && opt.klobuchar)
         out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, t);
       if (known && opt.saastamoinen)
@@ -165,6 +170,7 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
     const Eigen::Vector4d dx = lu.solve(h.transpose() * (w.asDiagonal() * v));
     p += dx.head<3>();
     clk += dx(3);
+    settled = settled || dx.head<3>().norm() < 1e4;
     sol.iterations = iter + 1;
     if (dx.norm() < opt.convergence_m) {
       converged = true;
@@ -186,28 +192,29 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
     dirs.push_back({sol.sats[r.index].az_deg * kDegToRad, sol.sats[r.index].el_deg * kDegToRad});
   sol.dops = dops_from_directions(dirs);
 
-  // Velocity and clock drift from range rates (-lambda * Doppler), least squares:
-  // rr = u.(v_sat - v_rx) + sagnac rate + c d(dt_rx)/dt - c d(dt_sat)/dt.
+  // Velocity and clock drift from range rates (-lambda * Doppler), least squares. With the
+  // satellite state rotated into the ECEF frame at reception (which accounts for the Earth's
+  // rotation during the flight), the geometric range rate satisfies
+  //   rr (1 + u.v_sat,inertial / c) = u.(R v_sat - v_rx),
+  // the factor being the light-time derivative; the clocks add c (d(dt_rx)/dt - d(dt_sat)/dt).
   std::vector<std::size_t> with_rate;
   for (const Row& r : rows)
     if (meas[r.index].range_rate_mps) with_rate.push_back(r.index);
   if (with_rate.size() >= 4) {
     MatX hv(static_cast<Eigen::Index>(with_rate.size()), 4);
     VecX vv(static_cast<Eigen::Index>(with_rate.size()));
+    const Vec3 w(0.0, 0.0, kOmegaEarth_radps);
     for (std::size_t k = 0; k < with_rate.size(); ++k) {
       const RangeMeasurement& m = meas[with_rate[k]];
       const double tau_s = (m.sat_p_ecef_m - p).norm() / kSpeedOfLight_mps;
       const Vec3 ps = rotate_earth(m.sat_p_ecef_m, tau_s);
       const Vec3 vs = rotate_earth(m.sat_v_ecef_mps, tau_s);
       const Vec3 u = (ps - p).normalized();
-      const double sagnac_rate =
-          kOmegaEarth_radps / kSpeedOfLight_mps * (vs.y() * p.x() - vs.x() * p.y());
+      const double light_time = 1.0 + u.dot(vs + w.cross(ps)) / kSpeedOfLight_mps;
       const auto r = static_cast<Eigen::Index>(k);
-      hv.row(r) << -u.transpose(), 1.0;
-      vv(r) = *m.range_rate_mps - (u.dot(vs) + sagnac_rate - m.sat_clock_drift_mps);
+      hv.row(r) << -u.transpose() / light_time, 1.0;
+      vv(r) = *m.range_rate_mps - (u.dot(vs) / light_time - m.sat_clock_drift_mps);
     }
-    // The Sagnac term also depends on the receiver velocity; its share (w/c * |p| ~ 1.5e-6)
-    // is below the Doppler noise and is dropped.
     const Eigen::Vector4d x = hv.colPivHouseholderQr().solve(vv);
     sol.v_ecef_mps = x.head<3>();
     sol.clock_drift_mps = x(3);

@@ -1,0 +1,164 @@
+// The receiver solver: analytic DOPs, exact recovery of a known position/clock/velocity from
+// error-free measurements, fix types by satellite count, and velocity from real Doppler.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "models/constellation.hpp"
+#include "models/orbit.hpp"
+#include "models/rinex.hpp"
+#include "models/solver.hpp"
+#include "tests/test_support.hpp"
+
+namespace navemu {
+namespace {
+
+TEST(SolverDops, AnalyticZenithPlusThreeOnTheHorizon) {
+  // One satellite at the zenith and three on the horizon 120 deg apart:
+  // H^T H = [[1.5,0,0,0],[0,1.5,0,0],[0,0,1,-1],[0,0,-1,4]], so HDOP = sqrt(4/3),
+  // VDOP = sqrt(4/3), TDOP = sqrt(1/3), PDOP = sqrt(8/3), GDOP = sqrt(3).
+  const std::vector<AzEl> dirs = {
+      {0.0, kPi / 2}, {0.0, 0.0}, {2 * kPi / 3, 0.0}, {4 * kPi / 3, 0.0}};
+  const Dops d = dops_from_directions(dirs);
+  EXPECT_NEAR(d.hdop, std::sqrt(4.0 / 3.0), 1e-12);
+  EXPECT_NEAR(d.vdop, std::sqrt(4.0 / 3.0), 1e-12);
+  EXPECT_NEAR(d.tdop, std::sqrt(1.0 / 3.0), 1e-12);
+  EXPECT_NEAR(d.pdop, std::sqrt(8.0 / 3.0), 1e-12);
+  EXPECT_NEAR(d.gdop, std::sqrt(3.0), 1e-12);
+}
+
+TEST(SolverDops, DegenerateAndTooFew) {
+  EXPECT_EQ(dops_from_directions({{0, 1}, {1, 1}, {2, 1}}).pdop, 0.0);
+  // Four satellites on one cone around the zenith: clock and height inseparable.
+  const std::vector<AzEl> cone = {{0, 0.5}, {kPi / 2, 0.5}, {kPi, 0.5}, {3 * kPi / 2, 0.5}};
+  EXPECT_EQ(dops_from_directions(cone).pdop, 0.0);
+}
+
+struct Scenario {
+  GpsTime t_tag = from_week_tow(2244, 36000.0);  // receiver time tag
+  Geodetic rx{30.0, 95.0, 120.0};
+  double clock_m = 12'345.678;   // receiver clock bias * c
+  Vec3 v_ecef_mps{12.0, -7.0, 3.0};
+  double drift_mps = 0.25;       // receiver clock drift * c
+};
+
+// Error-free measurements of the built-in constellation for a receiver whose clock runs
+// clock_m / c ahead: the signals arrive at true time t_tag - clock/c.
+std::vector<RangeMeasurement> exact_measurements(const Scenario& s, double mask_deg) {
+  const NavData nav = nominal_constellation(s.t_tag);
+  const Vec3 p = ecef_from_geodetic(s.rx);
+  const GpsTime t_true = s.t_tag.plus_s(-s.clock_m / kSpeedOfLight_mps);
+  std::vector<RangeMeasurement> out;
+  for (int prn = 1; prn <= 24; ++prn) {
+    const GpsEphemeris* eph = select_ephemeris(nav, prn, s.t_tag);
+    const SatGeometry g = gps_sat_geometry(*eph, t_true, p, s.v_ecef_mps);
+    if (g.dir.el_rad < mask_deg * kDegToRad) continue;
+    const double rr = g.range_rate_mps + s.drift_mps;
+    const double doppler_hz = -rr * kGpsL1_Hz / kSpeedOfLight_mps;
+    out.push_back(make_range_measurement(*eph, s.t_tag, g.range_m + s.clock_m, doppler_hz));
+  }
+  return out;
+}
+
+TEST(SolverExact, RecoversPositionClockAndVelocity) {
+  const Scenario s;
+  const auto meas = exact_measurements(s, 5.0);
+  ASSERT_GE(meas.size(), 6u);
+  SolverOptions opt;
+  opt.elevation_mask_deg = 5.0;
+  const Solution sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k3D);
+  EXPECT_EQ(sol.num_used, static_cast<int>(meas.size()));
+  EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 1e-3);
+  EXPECT_NEAR(sol.clock_m, s.clock_m, 1e-3);
+  for (const SatResidual& r : sol.sats) EXPECT_LT(std::abs(r.residual_m), 1e-3);
+  ASSERT_TRUE(sol.v_ecef_mps.has_value());
+  EXPECT_LT((*sol.v_ecef_mps - s.v_ecef_mps).norm(), 1e-3);
+  EXPECT_NEAR(sol.clock_drift_mps, s.drift_mps, 1e-3);
+
+  // The DOPs are those of the used directions.
+  std::vector<AzEl> dirs;
+  for (const SatResidual& r : sol.sats) dirs.push_back({r.az_deg * kDegToRad, r.el_deg * kDegToRad});
+  EXPECT_NEAR(sol.dops.pdop, dops_from_directions(dirs).pdop, 1e-9);
+}
+
+TEST(SolverExact, ElevationMaskExcludesLowSatellites) {
+  const Scenario s;
+  const auto meas = exact_measurements(s, 0.0);
+  SolverOptions opt;
+  opt.elevation_mask_deg = 30.0;
+  const Solution sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k3D);
+  int used = 0, below = 0;
+  for (const SatResidual& r : sol.sats) {
+    if (r.used) ++used;
+    if (r.el_deg < 30.0) {
+      ++below;
+      EXPECT_FALSE(r.used) << "PRN " << r.prn;
+    }
+  }
+  EXPECT_GT(below, 0);
+  EXPECT_EQ(used, sol.num_used);
+  EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 1e-3);
+}
+
+TEST(SolverFixType, ThreeSatellitesGiveTwoDWithHeightHeldFewerGiveNone) {
+  const Scenario s;
+  auto meas = exact_measurements(s, 10.0);
+  ASSERT_GE(meas.size(), 4u);
+  meas.resize(3);
+  SolverOptions opt;
+  opt.elevation_mask_deg = 10.0;
+  // Without a prior position there is nothing to hold: no fix.
+  EXPECT_EQ(solve(meas, s.t_tag, opt).fix, FixType::kNone);
+  // With a prior at the right height (but 200 m off horizontally): a 2D fix at that height.
+  Geodetic prior = s.rx;
+  prior.lat_deg += 0.001;
+  prior.lon_deg -= 0.001;
+  opt.initial_p_ecef_m = ecef_from_geodetic(prior);
+  const Solution sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k2D);
+  EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 0.01);
+  meas.resize(2);
+  EXPECT_EQ(solve(meas, s.t_tag, opt).fix, FixType::kNone);
+}
+
+TEST(SolverRealDoppler, StaticStationVelocityIsNearZero) {
+  NAVEMU_REQUIRE_SHARED();
+  // ESBC is a static IGS station: velocities from its L1 C/A Doppler (D1C) must be ~0.
+  const auto dir = test::shared_data("gnss/esbc_20200625");
+  const ObsData obs = read_rinex_obs(dir / "ESBC00DNK_R_20201770000_01H_30S_MO.rnx");
+  const NavData nav = read_rinex_nav(dir / "ESBC00DNK_R_20201770000_01D_MN.rnx");
+  const int c1c = obs.header.index_of('G', "C1C");
+  const int d1c = obs.header.index_of('G', "D1C");
+  ASSERT_GE(c1c, 0);
+  ASSERT_GE(d1c, 0);
+  SolverOptions opt;
+  opt.klobuchar = nav.klobuchar;
+  opt.saastamoinen = true;
+  double max_speed = 0.0;
+  int solved = 0;
+  for (const ObsEpoch& e : obs.epochs) {
+    std::vector<RangeMeasurement> meas;
+    for (const SatObs& so : e.sats) {
+      if (so.system != 'G') continue;
+      const double pr = so.values[static_cast<std::size_t>(c1c)];
+      const double d = so.values[static_cast<std::size_t>(d1c)];
+      const GpsEphemeris* eph = select_ephemeris(nav, so.prn, e.time);
+      if (eph == nullptr || !std::isfinite(pr) || !std::isfinite(d)) continue;
+      meas.push_back(make_range_measurement(*eph, e.time, pr, d));
+    }
+    const Solution sol = solve(meas, e.time, opt);
+    if (sol.fix != FixType::k3D || !sol.v_ecef_mps) continue;
+    ++solved;
+    max_speed = std::max(max_speed, sol.v_ecef_mps->norm());
+  }
+  std::printf("ESBC Doppler velocity: %d epochs, max speed %.4f m/s\n", solved, max_speed);
+  EXPECT_EQ(solved, static_cast<int>(obs.epochs.size()));
+  EXPECT_LT(max_speed, 0.1);
+}
+
+}  // namespace
+}  // namespace navemu
