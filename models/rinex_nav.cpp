@@ -235,6 +235,27 @@ std::array<double, 4> read_four(const Lines& lines, int n, std::size_t col, cons
   return out;
 }
 
+// RINEX 4.00 "> ION Gnn LNAV" record (GPS Klobuchar): line 1 epoch (4X,I4,5(1X,I2.2)) and
+// alpha0..alpha2 (3D19.12), line 2 alpha3 beta0..beta2 (4X,4D19.12), line 3 beta3 (4X,D19.12).
+KlobucharCoefficients read_ion_klobuchar(const Lines& lines, int ion_line) {
+  const char* names[8] = {"alpha0", "alpha1", "alpha2", "alpha3", "beta0", "beta1", "beta2", "beta3"};
+  double v[8] = {};
+  const std::size_t first_col[3] = {23, 4, 4};
+  const int per_line[3] = {3, 4, 1};
+  int k = 0;
+  for (int l = 0; l < 3; ++l) {
+    const int n = ion_line + 1 + l;
+    if (n > lines.size() || !is_continuation(lines.line(n), 4))
+      fail(lines.source(), std::min(n, lines.size()), names[k],
+           "ION record truncated: expected 3 lines after '> ION'");
+    const Where w{lines.source(), n};
+    for (int j = 0; j < per_line[l]; ++j, ++k)
+      v[k] = req_double(w, lines.line(n), first_col[l] + 19 * static_cast<std::size_t>(j), 19,
+                        names[k]);
+  }
+  return KlobucharCoefficients{{v[0], v[1], v[2], v[3]}, {v[4], v[5], v[6], v[7]}};
+}
+
 NavData parse_nav_text(std::string text, const std::string& source) {
   const Lines lines(std::move(text), source);
   const rinex::VersionLine vl = rinex::read_version_line(lines);
@@ -352,7 +373,12 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           nav.gps.push_back(parse_gps_record(lines, rec, NavFormat::v4, n));
           n = rec + 1 + kOrbitLines;
         } else {
-          // Other systems, other GPS messages (CNAV, CNV2), STO, EOP and ION records.
+          // The first GPS LNAV ionosphere record supplies the Klobuchar coefficients (RINEX 4
+          // headers carry none).
+          if (tok[0] == "ION" && count == 3 && tok[1].size() == 3 && tok[1][0] == 'G' &&
+              tok[2] == "LNAV" && !nav.klobuchar)
+            nav.klobuchar = read_ion_klobuchar(lines, n);
+          // Other systems, other GPS messages (CNAV, CNV2), STO, EOP and other ION records.
           ++nav.skipped_records;
           ++n;
           while (n <= lines.size() && column(lines.line(n), 0, 1) != ">") ++n;

@@ -342,6 +342,14 @@ TEST(RinexNav, Rinex4SnippetParses) {
   EXPECT_EQ(nav.gps[0].toe, from_week_tow(2244, 36000.0));
   EXPECT_EQ(nav.gps[1].prn, 2);
   EXPECT_EQ(nav.skipped_records, 4);  // E11 INAV, STO, ION, G03 CNAV
+  // The GPS LNAV ION record carries the Klobuchar coefficients.
+  ASSERT_TRUE(nav.klobuchar.has_value());
+  EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[0], 2.421438694000E-08);
+  EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[2], -1.192092895508E-07);
+  EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[3], 5.960464477539E-08);
+  EXPECT_DOUBLE_EQ(nav.klobuchar->beta[0], 1.474560000000E+05);
+  EXPECT_DOUBLE_EQ(nav.klobuchar->beta[2], 0.0);
+  EXPECT_DOUBLE_EQ(nav.klobuchar->beta[3], 2.621440000000E+05);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -481,6 +489,22 @@ TEST(RinexNavErrors, Rinex4Problems) {
   rec = rec.substr(0, rec.rfind("     3.600000000000E+04 4.0"));
   expect_input_error([&] { (void)nav_from(head + "> EPH G01 LNAV\n" + rec + "> EPH G01 LNAV\n" + kNavV3G01); },
                      11, "transmission time");
+  // A GPS ION record cut after its first line, and one with a non-numeric beta.
+  expect_input_error(
+      [&] {
+        (void)nav_from(head + "> ION G01 LNAV\n"
+                              "    2023 01 08 09 59 42 2.421438694000E-08 7.450580596924E-09-1.192092895508E-07\n" +
+                       "> EPH G01 LNAV\n" + kNavV3G01);
+      },
+      5, "alpha3");  // line 5 is where the second ION line should have been
+  expect_input_error(
+      [&] {
+        (void)nav_from(head + "> ION G01 LNAV\n"
+                              "    2023 01 08 09 59 42 2.421438694000E-08 7.450580596924E-09-1.192092895508E-07\n"
+                              "     5.960464477539E-08 1.474560000000E+05-1.96608000000xE+05 0.000000000000E+00\n"
+                              "     2.621440000000E+05\n");
+      },
+      5, "beta1");
 }
 
 // ---------------------------------------------------------------------------------------------
