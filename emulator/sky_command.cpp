@@ -14,10 +14,6 @@
 
 namespace navemu {
 
-// Ephemerides older or younger than this are not used (twice the nominal 4 h fit interval's
-// half-width; IS-GPS-200 20.3.4.4).
-constexpr double kMaxEphemerisAge_s = 4.0 * 3600.0;
-
 void add_sky_command(CLI::App& app, SkyOptions& opt) {
   CLI::App* sky = app.add_subcommand(
       "sky", "GPS satellites seen from one place at one time (CSV), with the DOPs of the set");

@@ -13,10 +13,6 @@
 
 namespace navemu {
 
-namespace {
-constexpr double kMaxEphemerisAge_s = 4.0 * 3600.0;
-}
-
 void add_spp_command(CLI::App& app, SppOptions& opt) {
   CLI::App* spp = app.add_subcommand(
       "spp", "Single-point positions from a real RINEX observation file (GPS L1 C/A)");

@@ -6,19 +6,6 @@
 
 namespace navemu {
 
-namespace {
-
-// GPS time of day in seconds, [0, 86400). The Klobuchar local time only needs the GPS time
-// of week modulo one day, and a GPS week is a whole number of days.
-double gps_seconds_of_day(GpsTime t) {
-  constexpr std::int64_t kNsPerDay = kSecondsPerDay * kNsPerS;
-  std::int64_t ns = t.ns % kNsPerDay;
-  if (ns < 0) ns += kNsPerDay;
-  return static_cast<double>(ns) * 1e-9;
-}
-
-}  // namespace
-
 // IS-GPS-200 20.3.3.5.2.5 and Figure 20-4 ("Ionospheric Model"). Angles in the figure are in
 // semicircles; the trigonometric functions take semicircles times pi.
 double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const AzEl& dir,
@@ -44,7 +31,7 @@ double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, 
   const double phi_m = phi_i + 0.064 * std::cos((lambda_i - 1.617) * kPi);
 
   // Local time at the pierce point, s, in [0, 86400).
-  double t_local = std::fmod(4.32e4 * lambda_i + gps_seconds_of_day(t), 86400.0);
+  double t_local = std::fmod(4.32e4 * lambda_i + to_week_tow(t).tow_s, 86400.0);
   if (t_local < 0.0) t_local += 86400.0;
 
   // Amplitude (s) and period (s) of the cosine model, cubic in phi_m, with their floors.

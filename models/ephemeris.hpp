@@ -63,6 +63,10 @@ struct NavData {
   std::string source;               // file name
 };
 
+// How far from its toe a broadcast ephemeris is still used: twice the half-width of the
+// nominal 4 h curve-fit interval (IS-GPS-200 20.3.4.4), lenient for sparse files.
+inline constexpr double kMaxEphemerisAge_s = 4.0 * 3600.0;
+
 // The ephemeris to use for `prn` at time `t`: among healthy records, the one whose toe is
 // nearest to t (IS-GPS-200 20.3.4.5 curve fit interval centred on toe); when t precedes every
 // toe, the first one. Ties go to the later transmitted record. nullptr when the file has none.

@@ -24,13 +24,6 @@ double eccentric_anomaly(double mean_anomaly_rad, double e) {
   return ecc + (mean_anomaly_rad - m);
 }
 
-double tow_of(GpsTime t) {
-  const std::int64_t week_ns = kSecondsPerWeek * kNsPerS;
-  std::int64_t r = t.ns % week_ns;
-  if (r < 0) r += week_ns;
-  return static_cast<double>(r) * 1e-9;
-}
-
 }  // namespace
 
 double gps_sat_clock_poly_s(const GpsEphemeris& eph, GpsTime t) {
@@ -67,7 +60,7 @@ SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
   const double xp = r * std::cos(u);
   const double yp = r * std::sin(u);
   const double omega_dot_k = eph.omega_dot_radps - kOmegaEarth_radps;
-  const double node = eph.omega0_rad + omega_dot_k * tk - kOmegaEarth_radps * tow_of(eph.toe);
+  const double node = eph.omega0_rad + omega_dot_k * tk - kOmegaEarth_radps * to_week_tow(eph.toe).tow_s;
   const double cn = std::cos(node), sn = std::sin(node);
   const double ci = std::cos(inc), si = std::sin(inc);
 
