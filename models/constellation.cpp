@@ -11,7 +11,6 @@ namespace navemu {
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // Baseline 24-slot constellation of the GPS SPS Performance Standard: slot assignments as of
@@ -49,7 +48,7 @@ constexpr double kInclinationDeg = 55.0;
 
 // Nodal regression of the nominal orbits: -4.4874e-7 deg/s (the SPS PS nominal-constellation
 // almanac, 3rd ed. Table A-2-1; the J2 rate -1.5 n J2 (Re/a)^2 cos i for this orbit).
-constexpr double kRaanRate_radps = -4.4874e-7 * kDeg;
+constexpr double kRaanRate_radps = -4.4874e-7 * kDegToRad;
 
 // The nominal slots keep their ground tracks: each satellite makes exactly two revolutions
 // while the Earth turns once relative to the regressing node, so the Earth-fixed geometry
@@ -61,12 +60,6 @@ constexpr double kArgLatRate_radps = 2.0 * (kOmegaEarth_radps - kRaanRate_radps)
 constexpr std::int64_t kToeSpacingS = 7200;  // GPS 2-hour boundaries
 
 double wrap_pi(double a) { return std::remainder(a, kTwoPi); }
-
-double tow_of(std::int64_t gps_s) {
-  std::int64_t r = gps_s % kSecondsPerWeek;
-  if (r < 0) r += kSecondsPerWeek;
-  return static_cast<double>(r);
-}
 
 std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   std::int64_t q = a / b;
@@ -93,16 +86,16 @@ NavData nominal_constellation(GpsTime t) {
     const std::int64_t toe_s = k * kToeSpacingS;
     const GpsTime toe{toe_s * kNsPerS};
     const double dt = static_cast<double>(toe_s - kRefEpochGpsS);
-    const double toe_tow = tow_of(toe_s);
+    const double toe_tow = to_week_tow(toe).tow_s;
     const int iode = static_cast<int>(((k % 256) + 256) % 256);
 
     for (std::size_t i = 0; i < kSlots.size(); ++i) {
       const Slot& slot = kSlots[i];
       // Geographic longitude of the node and argument of latitude at toe.
-      const double node_lon_ref = (slot.raan_deg - kGhaRefDeg) * kDeg;
+      const double node_lon_ref = (slot.raan_deg - kGhaRefDeg) * kDegToRad;
       const double node_lon =
           wrap_pi(node_lon_ref + (kRaanRate_radps - kOmegaEarth_radps) * dt);
-      const double arg_lat = wrap_pi(slot.arg_lat_deg * kDeg + kArgLatRate_radps * dt);
+      const double arg_lat = wrap_pi(slot.arg_lat_deg * kDegToRad + kArgLatRate_radps * dt);
 
       GpsEphemeris e;
       e.prn = static_cast<int>(i) + 1;
@@ -112,7 +105,7 @@ NavData nominal_constellation(GpsTime t) {
       e.iodc = iode;
       e.sqrt_a_sqrtm = std::sqrt(a);
       e.e = 0.0;
-      e.i0_rad = kInclinationDeg * kDeg;
+      e.i0_rad = kInclinationDeg * kDegToRad;
       e.omega_rad = 0.0;
       // e = 0, omega = 0: the mean anomaly is the argument of latitude.
       e.m0_rad = arg_lat;
