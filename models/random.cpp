@@ -1,0 +1,62 @@
+#include "models/random.hpp"
+
+#include <cmath>
+
+namespace navemu {
+
+namespace {
+
+// SplitMix64 finaliser (Steele, Lea, Flood 2014): decorrelates nearby seeds and ids.
+std::uint64_t mix64(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+std::uint64_t stream_id(std::string_view name, std::int64_t index) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64-bit offset basis
+  for (char c : name) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 0x100000001b3ULL;  // FNV prime
+  }
+  return mix64(h ^ mix64(static_cast<std::uint64_t>(index)));
+}
+
+RandomStream::RandomStream(std::uint64_t scenario_seed, std::uint64_t id)
+    : engine_(mix64(scenario_seed) ^ mix64(id + 0x632be59bd9b4e019ULL)) {}
+
+double RandomStream::uniform() {
+  return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+}
+
+double RandomStream::normal() {
+  if (has_spare_) {
+    has_spare_ = false;
+    return spare_;
+  }
+  // Marsaglia polar method: a point uniform in the unit disc gives two independent normals.
+  double u, v, s;
+  do {
+    u = 2.0 * uniform() - 1.0;
+    v = 2.0 * uniform() - 1.0;
+    s = u * u + v * v;
+  } while (s >= 1.0 || s == 0.0);
+  const double f = std::sqrt(-2.0 * std::log(s) / s);
+  spare_ = v * f;
+  has_spare_ = true;
+  return u * f;
+}
+
+GaussMarkov::GaussMarkov(double sigma, double tau_s, RandomStream& rng)
+    : sigma_(sigma), tau_s_(tau_s), x_(sigma * rng.normal()) {}
+
+double GaussMarkov::step(double dt_s, RandomStream& rng) {
+  const double phi = std::exp(-dt_s / tau_s_);
+  x_ = phi * x_ + sigma_ * std::sqrt(1.0 - phi * phi) * rng.normal();
+  return x_;
+}
+
+}  // namespace navemu

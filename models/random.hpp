@@ -1,0 +1,53 @@
+#pragma once
+// Explicit, reproducible randomness (../shared/DESIGN.md): one stream per error term and
+// satellite, seeded from the scenario seed and a stable stream id. The engine is
+// std::mt19937_64, whose output the C++ standard specifies exactly; the uniform and normal
+// samplers are our own, so the same seed gives the same numbers on every compiler.
+
+#include <cstdint>
+#include <random>
+#include <string_view>
+
+namespace navemu {
+
+// A stable 64-bit id for a named stream and an index (e.g. "iono", PRN 12): FNV-1a of the
+// name, mixed with the index. Never changes between versions, so seeds stay meaningful.
+std::uint64_t stream_id(std::string_view name, std::int64_t index = 0);
+
+class RandomStream {
+ public:
+  RandomStream(std::uint64_t scenario_seed, std::uint64_t id);
+
+  // Uniform in [0, 1) with 53 random bits.
+  double uniform();
+  // Standard normal N(0, 1), Marsaglia's polar method.
+  double normal();
+
+ private:
+  std::mt19937_64 engine_;
+  double spare_ = 0.0;
+  bool has_spare_ = false;
+};
+
+// First-order Gauss-Markov process with stationary standard deviation `sigma` and correlation
+// time `tau_s`, advanced with its exact discretisation (e.g. Brown & Hwang, Introduction to
+// Random Signals and Applied Kalman Filtering, 4th ed., 2.9):
+//   x_k = phi x_(k-1) + w_k,  phi = exp(-dt / tau),  Var(w_k) = sigma^2 (1 - phi^2).
+// Starts from a draw of the stationary distribution, so every epoch has variance sigma^2.
+class GaussMarkov {
+ public:
+  GaussMarkov() = default;
+  GaussMarkov(double sigma, double tau_s, RandomStream& rng);
+
+  double step(double dt_s, RandomStream& rng);
+  double value() const { return x_; }
+  double sigma() const { return sigma_; }
+  double tau_s() const { return tau_s_; }
+
+ private:
+  double sigma_ = 0.0;
+  double tau_s_ = 1.0;
+  double x_ = 0.0;
+};
+
+}  // namespace navemu
