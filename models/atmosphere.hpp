@@ -36,4 +36,48 @@ struct TropoDelay {
 // tropmodel uses, hydrostatic zenith delay after Davis et al. 1985).
 TropoDelay saastamoinen_delay(const Geodetic& rx, double el_rad, const Meteo& m);
 
+// ---- Ionosphere, first-order (issue: GNSS error physics) -----------------------------------
+
+// Zenith group delay of a vertical total electron content at a carrier frequency:
+// 40.3 TEC / f^2 (TEC in electrons/m^2; 1 TECU = 1e16). Code is delayed, carrier advanced.
+double iono_zenith_delay_m(double vtec_tecu, double freq_hz);
+
+// The paper's ionospheric mapping (Durst & Goodin, section 2.1, after Montenbruck):
+// 2.037 / (sqrt(sin^2 el + 0.076) + sin el): 0.99985 at the zenith, 3.20 at 15 deg, 4.08 at
+// 10 deg and 2.037 / sqrt(0.076) = 7.389 at the horizon (the slant-to-vertical ratio of a
+// ~240 km thick layer starting at the ground, not of a thin shell at 350 km, which gives ~3 at
+// the horizon). Negative elevations are taken as the horizon.
+double iono_paper_mapping(double el_rad);
+
+// The vertical total electron content of the paper's validation runs (section 3: "VTEC set
+// at 12"), TECU.
+inline constexpr double kPaperValidationVtec_tecu = 12.0;
+
+// Scales an L1 ionospheric delay to another frequency: (f_L1 / f)^2.
+double iono_scale_from_l1(double delay_l1, double freq_hz);
+
+// ---- Troposphere with meteorology and Niell mapping ----------------------------------------
+
+// Saturation water-vapour pressure over water, hPa, at a temperature in K: the Magnus-type
+// law 6.108 exp((17.15 T - 4684) / (T - 38.45)) that RTKLIB's tropmodel (and
+// saastamoinen_delay) uses.
+double saturation_vapour_pressure_hpa(double temperature_k);
+// Water-vapour partial pressure e = RH e_s(T), hPa.
+double water_vapour_pressure_hpa(const Meteo& m);
+
+// Zenith delays from surface meteorology: hydrostatic after Saastamoinen in the form of
+// Davis et al. (1985) (the paper's Park & Ha form), wet after Saastamoinen (1972).
+TropoDelay tropo_zenith_delay(const Geodetic& rx, const Meteo& m);
+
+// Niell (1996) mapping functions: hydrostatic (latitude and day-of-year tables, with the
+// height correction) and wet (latitude table).
+struct NiellMapping {
+  double hydrostatic = 1.0;
+  double wet = 1.0;
+};
+NiellMapping niell_mapping(const Geodetic& rx, double el_rad, GpsTime t);
+
+// Slant delay: zenith delays from `m` mapped with Niell. Zero below the horizon.
+TropoDelay tropo_slant_delay(const Geodetic& rx, double el_rad, GpsTime t, const Meteo& m);
+
 }  // namespace navemu
