@@ -1,0 +1,73 @@
+#include "models/sat_errors.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace navemu {
+
+double paper_sv_ephemeris_error_m(double sat_lat_rad, double orbit_radius_m) {
+  // Durst & Goodin section 2.1, implemented as printed:
+  //   dR = sqrt((1 + sin(theta) / 2) 10^(2 R_ref / R_0) + c^2 1e-18 + 0.918).
+  // With R_0 = R_ref the middle factor is 10^2 = 100, c^2 1e-18 = 0.0899, so the result is
+  // sqrt(101.008) = 10.05 m at the equator and sqrt(151.008) = 12.29 m over the poles.
+  constexpr double kRref_m = 26'550'000.0;
+  const double c2 = kSpeedOfLight_mps * kSpeedOfLight_mps;
+  const double v = (1.0 + 0.5 * std::sin(sat_lat_rad)) * std::pow(10.0, 2.0 * kRref_m / orbit_radius_m) +
+                   c2 * 1e-18 + 0.918;
+  return std::sqrt(v);
+}
+
+Mat3 R_rac_from_ecef(const Vec3& sat_p_ecef_m, const Vec3& sat_v_ecef_mps) {
+  const Vec3 radial = sat_p_ecef_m.normalized();
+  const Vec3 cross = sat_p_ecef_m.cross(sat_v_ecef_mps).normalized();
+  const Vec3 along = cross.cross(radial);
+  Mat3 r;
+  r.row(0) = radial.transpose();
+  r.row(1) = along.transpose();
+  r.row(2) = cross.transpose();
+  return r;
+}
+
+SatErrors::SatErrors(const SatErrorParams& p, std::uint64_t seed) : p_(p), seed_(seed) {}
+
+double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
+                                const Vec3& sat_v_ecef_mps, const Vec3& los_unit_ecef) {
+  auto it = sats_.find(prn);
+  if (it == sats_.end()) {
+    // One stream per PRN; the four processes draw from it in a fixed order (radial, along,
+    // cross, clock) so a PRN's errors do not depend on which other PRNs were seen.
+    RandomStream rng(seed_, stream_id("sat_errors", prn));
+    GaussMarkov radial(p_.radial_sigma_m, p_.tau_s, rng);
+    GaussMarkov along(p_.along_sigma_m, p_.tau_s, rng);
+    GaussMarkov cross(p_.cross_sigma_m, p_.tau_s, rng);
+    GaussMarkov clock(p_.clock_sigma_m, p_.tau_s, rng);
+    it = sats_.emplace(prn, Sat{t_s, radial, along, cross, clock, rng}).first;
+  } else {
+    Sat& s = it->second;
+    const double dt = t_s - s.t_s;
+    if (dt > 0.0) {
+      s.radial.step(dt, s.rng);
+      s.along.step(dt, s.rng);
+      s.cross.step(dt, s.rng);
+      s.clock.step(dt, s.rng);
+      s.t_s = t_s;
+    }
+  }
+  const Sat& s = it->second;
+
+  // Orbit error of the broadcast position (broadcast - true) in ECEF: the radial / along /
+  // cross components on the frame's unit vectors (rows of R_rac_from_ecef).
+  const Vec3 rac(s.radial.value(), s.along.value(), s.cross.value());
+  const Vec3 dr_ecef = R_rac_from_ecef(sat_p_ecef_m, sat_v_ecef_mps).transpose() * rac;
+  // The value to add to the pseudorange (sign convention in the header).
+  return -dr_ecef.dot(los_unit_ecef) + s.clock.value();
+}
+
+SatErrors::Terms SatErrors::terms(int prn) const {
+  const auto it = sats_.find(prn);
+  if (it == sats_.end()) return {};
+  const Sat& s = it->second;
+  return {s.radial.value(), s.along.value(), s.cross.value(), s.clock.value()};
+}
+
+}  // namespace navemu
