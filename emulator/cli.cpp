@@ -27,6 +27,8 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   add_sky_command(app, sky);
   SppOptions spp;
   add_spp_command(app, spp);
+  ObsOptions obs;
+  add_obs_command(app, obs);
 
   try {
     app.parse(argc, argv);
@@ -39,6 +41,7 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   try {
     if (app.got_subcommand("sky")) return run_sky(sky, out, err);
     if (app.got_subcommand("spp")) return run_spp(spp, out, err);
+    if (app.got_subcommand("obs")) return run_obs(obs, out, err);
   } catch (const InputError& e) {
     err << "navemu: " << e.what() << "\n";
     return 1;

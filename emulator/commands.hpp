@@ -5,7 +5,9 @@
 #include <CLI/CLI.hpp>
 #include <iosfwd>
 #include <optional>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "models/ephemeris.hpp"
 #include "models/geodesy.hpp"
@@ -39,8 +41,29 @@ struct SppOptions {
   double mask_deg = 15.0;
   std::string iono = "klobuchar";
   std::string tropo = "saastamoinen";
+  std::string residuals_file;  // empty: none
 };
 void add_spp_command(CLI::App& app, SppOptions& opt);
 int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err);
+
+struct ObsOptions {
+  std::string nav_file;  // empty: built-in constellation
+  bool nominal = false;
+  std::string at = "32.3,-90.9,60";
+  std::string start;
+  double duration_s = 3600.0;
+  double interval_s = 30.0;
+  std::string out_file;
+  std::string mode = "standalone";
+  std::string receiver = "consumer";
+  std::optional<double> sisre_m;  // broadcast orbit/clock accuracy; unset: the model default
+  std::uint64_t seed = 1;
+  std::vector<std::string> disable;  // error sources switched off
+  std::string iono = "klobuchar";
+  double vtec_tecu = 12.0;
+  std::optional<double> pressure_hpa, temperature_c, humidity;
+};
+void add_obs_command(CLI::App& app, ObsOptions& opt);
+int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err);
 
 }  // namespace navemu

@@ -9,6 +9,7 @@
 
 #include "emulator/commands.hpp"
 #include "models/errors.hpp"
+#include "models/atmosphere.hpp"
 #include "models/orbit.hpp"
 #include "models/solver.hpp"
 
@@ -28,6 +29,10 @@ void add_sky_command(CLI::App& app, SkyOptions& opt) {
       "                           satellite clock correction\n"
       "  az_deg, el_deg           azimuth (from north, clockwise) and elevation on the ellipsoid normal\n"
       "  range_m                  geometric range including the Earth-rotation correction\n"
+      "  iono_m                   L1 ionospheric delay: the nav file's Klobuchar model, or the\n"
+      "                           paper's mapping of 12 TECU when it has none\n"
+      "  tropo_m                  tropo_hydro_m + tropo_wet_m: Saastamoinen zenith delays of the\n"
+      "                           standard atmosphere (50 % humidity), Niell mapping\n"
       "Examples:\n"
       "  navemu sky --nominal --time 2023-01-08T09:59:42Z --at 30,95,0\n"
       "  navemu sky --nav brdc.23n --time 2244:36000 --at 30,95,0 --mask 10");
@@ -60,7 +65,10 @@ int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {
   fmt::print(out, "# navemu sky: {} = GPS {}, receiver {:.9f},{:.9f},{:.3f}, {}, mask {:.1f} deg\n",
              format_iso_utc(t, nav.leap_seconds), format_week_tow(t), rx.lat_deg, rx.lon_deg,
              rx.h_m, nav.source, opt.mask_deg);
-  fmt::print(out, "prn,sat_x_m,sat_y_m,sat_z_m,sat_clock_m,az_deg,el_deg,range_m\n");
+  fmt::print(out,
+             "prn,sat_x_m,sat_y_m,sat_z_m,sat_clock_m,az_deg,el_deg,range_m,iono_m,tropo_m,"
+             "tropo_hydro_m,tropo_wet_m\n");
+  const Meteo meteo = standard_atmosphere(std::max(rx.h_m, 0.0), 0.5);
 
   std::vector<AzEl> visible;
   int stale = 0;
@@ -74,10 +82,16 @@ int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {
     const SatGeometry g = gps_sat_geometry(*eph, t, p_rx);
     if (g.dir.el_rad < opt.mask_deg * kDegToRad) continue;
     visible.push_back(g.dir);
-    fmt::print(out, "{},{:.4f},{:.4f},{:.4f},{:.4f},{:.6f},{:.6f},{:.4f}\n", prn,
-               g.sat.p_ecef_m.x(), g.sat.p_ecef_m.y(), g.sat.p_ecef_m.z(),
+    const double iono_m =
+        nav.klobuchar
+            ? kSpeedOfLight_mps * klobuchar_delay_l1_s(*nav.klobuchar, rx, g.dir, t)
+            : iono_paper_mapping(g.dir.el_rad) * iono_zenith_delay_m(kPaperValidationVtec_tecu, kGpsL1_Hz);
+    const TropoDelay tropo = tropo_slant_delay(rx, g.dir.el_rad, t, meteo);
+    fmt::print(out, "{},{:.4f},{:.4f},{:.4f},{:.4f},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n",
+               prn, g.sat.p_ecef_m.x(), g.sat.p_ecef_m.y(), g.sat.p_ecef_m.z(),
                kSpeedOfLight_mps * (g.sat.clock_bias_s - eph->tgd_s), g.dir.az_rad * kRadToDeg,
-               g.dir.el_rad * kRadToDeg, g.range_m);
+               g.dir.el_rad * kRadToDeg, g.range_m, iono_m, tropo.total_m(), tropo.hydrostatic_m,
+               tropo.wet_m);
   }
   if (prns.empty() || stale == static_cast<int>(prns.size()))
     throw InputError(nav.source, 0, "--time",

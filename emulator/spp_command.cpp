@@ -4,6 +4,7 @@
 #include <fmt/ostream.h>
 
 #include <cmath>
+#include <fstream>
 #include <ostream>
 
 #include "emulator/commands.hpp"
@@ -36,6 +37,9 @@ void add_spp_command(CLI::App& app, SppOptions& opt) {
                   "Tropospheric correction: saastamoinen (standard atmosphere) or off")
       ->capture_default_str()
       ->check(CLI::IsMember({"saastamoinen", "off"}));
+  spp->add_option("--residuals", opt.residuals_file,
+                  "Also write per-satellite residuals of every solved epoch to this CSV file "
+                  "(gps_week, gps_tow_s, prn, az_deg, el_deg, residual_m, iono_m, tropo_m, used)");
 }
 
 int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
@@ -64,6 +68,14 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
   }
   const std::optional<int> leap = obs.header.leap_seconds ? obs.header.leap_seconds
                                                           : nav.leap_seconds;
+
+  std::ofstream residuals;
+  if (!opt.residuals_file.empty()) {
+    residuals.open(opt.residuals_file);
+    if (!residuals)
+      throw InputError(opt.residuals_file, 0, "--residuals", "cannot open for writing");
+    fmt::print(residuals, "gps_week,gps_tow_s,prn,az_deg,el_deg,residual_m,iono_m,tropo_m,used\n");
+  }
 
   fmt::print(out, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s\n");
   int solved = 0;
@@ -101,6 +113,11 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
                format_iso_utc(epoch.time, leap), g.lat_deg, g.lon_deg, g.h_m, sol.p_ecef_m.x(),
                sol.p_ecef_m.y(), sol.p_ecef_m.z(), sol.clock_m, sol.num_used, sol.dops.pdop,
                wt.week, wt.tow_s);
+    if (residuals.is_open())
+      for (const SatResidual& r : sol.sats)
+        fmt::print(residuals, "{},{:.3f},{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{}\n", wt.week,
+                   wt.tow_s, r.prn, r.az_deg, r.el_deg, r.residual_m, r.iono_m, r.tropo_m,
+                   r.used ? 1 : 0);
   }
   fmt::print(err, "navemu spp: {} epochs, {} with a 3D fix, {} without\n", obs.epochs.size(),
              solved, unsolved);

@@ -70,4 +70,20 @@ SatErrors::Terms SatErrors::terms(int prn) const {
   return {s.radial.value(), s.along.value(), s.cross.value(), s.clock.value()};
 }
 
+double SatErrorParams::sisre_m() const {
+  const double wr = 0.98, wac2 = 1.0 / 49.0;
+  return std::sqrt(wr * wr * radial_sigma_m * radial_sigma_m + clock_sigma_m * clock_sigma_m +
+                   wac2 * (along_sigma_m * along_sigma_m + cross_sigma_m * cross_sigma_m));
+}
+
+SatErrorParams SatErrorParams::scaled_to_sisre(double sisre) const {
+  const double k = sisre / sisre_m();
+  SatErrorParams p = *this;
+  p.radial_sigma_m *= k;
+  p.along_sigma_m *= k;
+  p.cross_sigma_m *= k;
+  p.clock_sigma_m *= k;
+  return p;
+}
+
 }  // namespace navemu

@@ -29,6 +29,13 @@ struct SatErrorParams {
   double cross_sigma_m = 0.6;
   double clock_sigma_m = 0.5;
   double tau_s = 3600.0;
+
+  // Global-average signal-in-space range error of these parameters (Montenbruck et al. 2015,
+  // GPS Solutions 19: SISRE^2 = (w_r sigma_r - sigma_clk)^2 + w_ac^2 (sigma_a^2 + sigma_c^2) with
+  // w_r = 0.98, w_ac^2 = 1/49 for GPS; the radial and clock errors taken as uncorrelated).
+  double sisre_m() const;
+  // The same parameters scaled to a given SISRE (the ratios between the terms kept).
+  SatErrorParams scaled_to_sisre(double sisre) const;
 };
 
 // Per-satellite orbit and clock error processes, one random stream per term and PRN.

@@ -1,0 +1,273 @@
+#include "models/measurement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "models/orbit.hpp"
+
+namespace navemu {
+
+namespace {
+
+constexpr double wavelength_m(Band b) { return kSpeedOfLight_mps / kBandFreq_Hz[static_cast<std::size_t>(b)]; }
+
+// (f_L1 / f)^2: ionospheric delay and TGD scale between bands (IS-GPS-200 20.3.3.3.3.2).
+constexpr double gamma(Band b) {
+  const double r = kGpsL1_Hz / kBandFreq_Hz[static_cast<std::size_t>(b)];
+  return r * r;
+}
+
+// C/N0 of the modernised signals relative to L1 C/A: L2C is broadcast ~1.5 dB weaker (IS-GPS-200
+// Table 3-Va minimum powers -158.5 vs -158.5 dBW with the pilot/data split), L5 ~+0.5 dB.
+constexpr std::array<double, 3> kCn0OffsetDb = {0.0, -3.0, 0.5};
+
+}  // namespace
+
+void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc) {
+  switch (rc) {
+    case ReceiverClass::kGeodetic:
+      // Narrow correlator (0.1 chip) and a carrier-aided code loop of 0.1 Hz; a choke-ring
+      // antenna: 50 dB-Hz at the zenith and little multipath.
+      cfg.tracking.chip_spacing = 0.1;
+      cfg.tracking.dll_bandwidth_hz = 0.1;
+      cfg.cn0.zenith_dbhz = 50.0;
+      cfg.multipath_zenith_sigma_m = 0.05;
+      break;
+    case ReceiverClass::kConsumer:
+      // Standard 1-chip correlator, 1 Hz code loop; a patch antenna at 45 dB-Hz at the zenith
+      // on a less benign site.
+      cfg.tracking.chip_spacing = 1.0;
+      cfg.tracking.dll_bandwidth_hz = 1.0;
+      cfg.cn0.zenith_dbhz = 45.0;
+      cfg.multipath_zenith_sigma_m = 0.3;
+      break;
+  }
+}
+
+// Per-satellite processes, created when the satellite is first seen.
+struct SatProcesses {
+  RandomStream rng;
+  GaussMarkov iono_fraction;
+  GaussMarkov multipath;  // unit variance, scaled by the elevation-dependent sigma
+  double last_t_s = 0.0;
+};
+
+struct MeasurementGenerator::State {
+  explicit State(const MeasurementConfig& cfg)
+      : clock(cfg.clock, RandomStream(cfg.seed, stream_id("receiver_clock"))),
+        sat_errors(cfg.sat_errors, cfg.seed),
+        arcs(cfg.seed),
+        common_rng(cfg.seed, stream_id("common")),
+        iono_common(cfg.iono_common_error_fraction, cfg.iono_error_tau_s, common_rng),
+        tropo_wet(cfg.tropo_wet_sigma_m, cfg.tropo_wet_tau_s, common_rng),
+        dgps_tropo(cfg.dgps_tropo_residual_sigma_m, cfg.tropo_wet_tau_s, common_rng) {}
+
+  ReceiverClock clock;
+  SatErrors sat_errors;
+  CarrierArcs arcs;
+  RandomStream common_rng;
+  GaussMarkov iono_common;
+  GaussMarkov tropo_wet;
+  GaussMarkov dgps_tropo;
+  std::map<int, SatProcesses> sats;
+  std::optional<GpsTime> last;
+  std::vector<int> prns;
+};
+
+MeasurementGenerator::MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg)
+    : nav_(nav), cfg_(cfg), state_(std::make_unique<State>(cfg)) {
+  if (cfg_.mode == ReceiverMode::kDualFrequency) cfg_.dual_frequency_signals = true;
+  if (cfg_.iono_model == IonoModel::kKlobuchar && !nav_.klobuchar)
+    cfg_.iono_model = IonoModel::kPaperVtec;
+  std::set<int> prns;
+  for (const GpsEphemeris& e : nav_.gps) prns.insert(e.prn);
+  state_->prns.assign(prns.begin(), prns.end());
+}
+
+MeasurementGenerator::~MeasurementGenerator() = default;
+
+EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx,
+                                                 const Vec3& v_rx) {
+  State& st = *state_;
+  const ErrorSwitches& on = cfg_.errors;
+  const double dt = st.last ? seconds_between(t_receiver, *st.last) : 0.0;
+  const bool first = !st.last;
+  st.last = t_receiver;
+
+  if (!first) {
+    st.clock.step(dt);
+    st.iono_common.step(dt, st.common_rng);
+    st.tropo_wet.step(dt, st.common_rng);
+    st.dgps_tropo.step(dt, st.common_rng);
+  }
+
+  EpochMeasurements out;
+  out.t_receiver = t_receiver;
+  out.rx_clock_bias_s = on.receiver_clock ? st.clock.bias_s() : 0.0;
+  out.rx_clock_drift_sps = on.receiver_clock ? st.clock.drift_sps() : 0.0;
+  // The receiver's time tag runs ahead of GPS time by its clock bias.
+  out.t_true = t_receiver.plus_s(-out.rx_clock_bias_s);
+  const double t_s = out.t_true.seconds();
+
+  const Geodetic geo = geodetic_from_ecef(p_rx);
+  const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
+  const double c = kSpeedOfLight_mps;
+
+  for (int prn : st.prns) {
+    const GpsEphemeris* eph = select_ephemeris(nav_, prn, out.t_true);
+    if (eph == nullptr || std::abs(seconds_between(out.t_true, eph->toe)) > kMaxEphemerisAge_s)
+      continue;
+    const SatGeometry g = gps_sat_geometry(*eph, out.t_true, p_rx, v_rx);
+    const double cn0_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad);
+    const bool tracked = g.dir.el_rad > 0.0 && cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
+    const CarrierArcs::Arc arc = st.arcs.update(prn, t_s, tracked);
+    if (!tracked) continue;
+
+    auto [it, inserted] = st.sats.try_emplace(prn, SatProcesses{RandomStream(cfg_.seed, stream_id("satellite", prn)), {}, {}, t_s});
+    SatProcesses& sp = it->second;
+    if (inserted) {
+      sp.iono_fraction = GaussMarkov(cfg_.iono_satellite_error_fraction, cfg_.iono_error_tau_s, sp.rng);
+      sp.multipath = GaussMarkov(1.0, cfg_.multipath_tau_s, sp.rng);
+    } else {
+      const double sdt = t_s - sp.last_t_s;
+      sp.iono_fraction.step(sdt, sp.rng);
+      sp.multipath.step(sdt, sp.rng);
+    }
+    sp.last_t_s = t_s;
+
+    SatMeasurement m;
+    m.prn = prn;
+    m.eph = eph;
+    m.dir = g.dir;
+    m.range_m = g.range_m;
+    m.range_rate_mps = g.range_rate_mps;
+    const double sin_el = std::sin(g.dir.el_rad);
+
+    // Ionosphere on L1: the broadcast (or the paper's) model, with the model's error.
+    if (on.ionosphere) {
+      double model_m = 0.0;
+      if (cfg_.iono_model == IonoModel::kKlobuchar)
+        model_m = c * klobuchar_delay_l1_s(*nav_.klobuchar, geo, g.dir, out.t_true);
+      else
+        model_m = iono_paper_mapping(g.dir.el_rad) * iono_zenith_delay_m(cfg_.vtec_tecu, kGpsL1_Hz);
+      m.iono_l1_m = std::max(0.0, model_m * (1.0 + st.iono_common.value() + sp.iono_fraction.value()));
+    }
+    // Troposphere: Saastamoinen zenith delays from the meteorology, Niell mapping, plus the
+    // wet delay's unmodelled variability.
+    if (on.troposphere) {
+      const TropoDelay td = tropo_slant_delay(geo, g.dir.el_rad, out.t_true, meteo);
+      const NiellMapping nm = niell_mapping(geo, g.dir.el_rad, out.t_true);
+      m.tropo_hydro_m = td.hydrostatic_m;
+      m.tropo_wet_m = std::max(0.0, td.wet_m + nm.wet * st.tropo_wet.value());
+    }
+    // Broadcast orbit and clock errors on the line of sight.
+    if (on.satellite) {
+      if (cfg_.sat_error_model == SatErrorModel::kPaper) {
+        const Vec3& ps = g.sat.p_ecef_m;
+        m.sat_error_m = paper_sv_ephemeris_error_m(std::asin(ps.z() / ps.norm()), ps.norm());
+      } else {
+        const Vec3 los = (g.sat.p_ecef_m - p_rx).normalized();
+        m.sat_error_m = st.sat_errors.range_error_m(prn, t_s, g.sat.p_ecef_m, g.sat.v_ecef_mps, los);
+      }
+    }
+    if (on.multipath)
+      m.multipath_m = cfg_.multipath_zenith_sigma_m / std::max(sin_el, 0.05) * sp.multipath.value();
+
+    // Satellite clock as the broadcast record gives it (relativistic term included): what a
+    // user corrects with; the L1 C/A correction subtracts TGD (IS-GPS-200 20.3.3.3.3.2).
+    m.sat_clock_m = c * (g.sat.clock_bias_s - eph->tgd_s);
+    const double rx_clock_m = c * out.rx_clock_bias_s;
+    const double common_m = m.range_m + rx_clock_m - c * g.sat.clock_bias_s + m.tropo_hydro_m +
+                            m.tropo_wet_m + m.sat_error_m;
+    const double rate_mps = m.range_rate_mps + c * (out.rx_clock_drift_sps - g.sat.clock_drift_sps);
+
+    const int n_bands = cfg_.dual_frequency_signals ? 3 : 1;
+    double l1_code_noise_m = 0.0;
+    for (int b = 0; b < n_bands; ++b) {
+      const Band band = static_cast<Band>(b);
+      const double gm = gamma(band);
+      const double lambda = wavelength_m(band);
+      SignalObs so;
+      so.cn0_dbhz = cn0_l1 + kCn0OffsetDb[static_cast<std::size_t>(b)];
+      const double code_sigma = on.noise ? dll_noise_m(so.cn0_dbhz, cfg_.tracking) : 0.0;
+      const double phase_sigma = on.noise ? pll_noise_cycles(so.cn0_dbhz, cfg_.tracking) : 0.0;
+      const double doppler_sigma = on.noise ? fll_noise_hz(so.cn0_dbhz, cfg_.tracking) : 0.0;
+      // Code: TGD scaled by gamma; multipath shared by the bands at this level of modelling.
+      const double code_noise_m = code_sigma * sp.rng.normal();
+      if (b == 0) l1_code_noise_m = code_noise_m;
+      so.pseudorange_m =
+          common_m + c * gm * eph->tgd_s + gm * m.iono_l1_m + m.multipath_m + code_noise_m;
+      // Carrier: advanced by the ionosphere, an integer ambiguity per arc.
+      so.carrier_cycles = (common_m + c * gm * eph->tgd_s - gm * m.iono_l1_m) / lambda +
+                          arc.ambiguity_cycles + phase_sigma * sp.rng.normal();
+      so.doppler_hz = -rate_mps / lambda + doppler_sigma * sp.rng.normal();
+      so.loss_of_lock = arc.new_arc;
+      so.lock_time_s = arc.lock_time_s;
+      m.signals[static_cast<std::size_t>(b)] = so;
+    }
+
+    // What the position engine uses in each mode of the paper.
+    const double geometric_m = m.range_m + rx_clock_m - m.sat_clock_m;  // clocks as broadcast
+    switch (cfg_.mode) {
+      case ReceiverMode::kStandalone:
+        m.engine_pseudorange_m = m.signals[0]->pseudorange_m;
+        break;
+      case ReceiverMode::kDualFrequency: {
+        // Iono-free combination (IS-GPS-200 20.3.3.3.3.3): the ionosphere and TGD cancel and
+        // the noise grows ~3x; TGD is added back for the solver's L1 C/A clock correction.
+        const double gm2 = gamma(Band::kL2);
+        m.engine_pseudorange_m =
+            (gm2 * m.signals[0]->pseudorange_m - m.signals[1]->pseudorange_m) / (gm2 - 1.0) +
+            c * eph->tgd_s;
+        break;
+      }
+      case ReceiverMode::kDgps: {
+        // Corrections from a nearby base remove what base and rover share (ionosphere,
+        // troposphere, broadcast orbit and clock); the troposphere difference, the rover's
+        // multipath and the noise of both receivers remain.
+        const NiellMapping nm = niell_mapping(geo, g.dir.el_rad, out.t_true);
+        const double dtropo = on.troposphere ? nm.wet * st.dgps_tropo.value() : 0.0;
+        m.engine_pseudorange_m =
+            geometric_m + dtropo + m.multipath_m + std::sqrt(2.0) * l1_code_noise_m;
+        break;
+      }
+      case ReceiverMode::kRtkFixed:
+        // Carrier phase with fixed ambiguities: centimetre-level noise only.
+        m.engine_pseudorange_m =
+            geometric_m + (on.noise ? cfg_.rtk_noise_sigma_m * sp.rng.normal() : 0.0);
+        break;
+    }
+    out.sats.push_back(std::move(m));
+  }
+  return out;
+}
+
+SolverOptions MeasurementGenerator::solver_options() const {
+  SolverOptions o;
+  o.elevation_mask_deg = cfg_.elevation_mask_deg;
+  switch (cfg_.mode) {
+    case ReceiverMode::kStandalone:
+      o.klobuchar = nav_.klobuchar;
+      o.saastamoinen = true;
+      break;
+    case ReceiverMode::kDualFrequency:
+      o.saastamoinen = true;
+      break;
+    case ReceiverMode::kDgps:
+    case ReceiverMode::kRtkFixed:
+      break;
+  }
+  return o;
+}
+
+std::vector<RangeMeasurement> MeasurementGenerator::solver_input(const EpochMeasurements& e) const {
+  std::vector<RangeMeasurement> out;
+  out.reserve(e.sats.size());
+  for (const SatMeasurement& m : e.sats)
+    out.push_back(make_range_measurement(*m.eph, e.t_receiver, m.engine_pseudorange_m,
+                                         m.signals[0]->doppler_hz));
+  return out;
+}
+
+}  // namespace navemu

@@ -1,0 +1,171 @@
+#pragma once
+// The GNSS measurement generator: what a receiver at a true position measures from every
+// satellite in view. Each pseudorange is assembled from its physical terms (Durst & Goodin
+// section 2.1, extended):
+//   P = R + dR_iono + dR_trop,hydro + dR_trop,wet + dR_SV + c (dt_rx - dt_sv) + noise
+// with Doppler and carrier phase consistent with it. Every term evolves continuously in time
+// and draws from its own seeded random stream, so a stationary receiver wanders as a real
+// one does and the same seed gives the same numbers.
+//
+// The emulator's receiver is this generator plus the solver (models/solver.hpp).
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "models/atmosphere.hpp"
+#include "models/ephemeris.hpp"
+#include "models/geodesy.hpp"
+#include "models/random.hpp"
+#include "models/receiver_clock.hpp"
+#include "models/sat_errors.hpp"
+#include "models/solver.hpp"
+#include "models/time.hpp"
+#include "models/tracking.hpp"
+
+namespace navemu {
+
+// Receiver modes of the paper (section 2.1): which errors reach the position engine.
+enum class ReceiverMode {
+  kStandalone,     // single frequency, every error; broadcast corrections applied
+  kDualFrequency,  // L1 + L2: the ionosphere removed by the iono-free combination
+  kDgps,           // differential code: only the differential troposphere and noise remain
+  kRtkFixed,       // carrier-phase fixed: centimetre-level noise only
+};
+
+enum class IonoModel {
+  kKlobuchar,  // the broadcast model of the navigation file (default when it carries one)
+  kPaperVtec,  // the paper's mapping of a configured vertical TEC
+};
+
+enum class SatErrorModel {
+  kGaussMarkov,  // correlated radial/along/cross orbit and clock errors (default)
+  kPaper,        // the paper's formula (Hwang & Parkinson)
+};
+
+// Every error source can be switched off on its own.
+struct ErrorSwitches {
+  bool ionosphere = true;
+  bool troposphere = true;
+  bool satellite = true;       // broadcast orbit and clock errors
+  bool receiver_clock = true;
+  bool noise = true;           // tracking noise of code, phase and Doppler
+  bool multipath = true;       // statistical code multipath (the scene model replaces it)
+};
+
+struct MeasurementConfig {
+  ReceiverMode mode = ReceiverMode::kStandalone;
+  ErrorSwitches errors;
+
+  IonoModel iono_model = IonoModel::kKlobuchar;
+  double vtec_tecu = 12.0;  // for kPaperVtec (the paper's validation value)
+  // The broadcast model describes the true ionosphere only to ~50 % RMS (Klobuchar 1987):
+  // the true delay is the model's times (1 + s), s a Gauss-Markov process common to the sky,
+  // plus a per-satellite Gauss-Markov fraction (spatial structure the model lacks). The
+  // fractions were set so that synthetic and real single-point solutions of the reference
+  // stations in ../shared/data agree (tools/real-vs-synthetic).
+  double iono_common_error_fraction = 0.2;
+  double iono_satellite_error_fraction = 0.10;
+  double iono_error_tau_s = 1800.0;
+
+  // Surface meteorology for the true troposphere (Saastamoinen zenith delays, Niell mapping);
+  // unset: standard atmosphere at the receiver height, 50 % relative humidity.
+  std::optional<Meteo> meteo;
+  // Wet zenith delay variability not described by surface meteorology.
+  double tropo_wet_sigma_m = 0.03;
+  double tropo_wet_tau_s = 3600.0;
+  // DGPS: the residual of the troposphere difference between base and rover, zenith.
+  double dgps_tropo_residual_sigma_m = 0.05;
+
+  SatErrorModel sat_error_model = SatErrorModel::kGaussMarkov;
+  SatErrorParams sat_errors;
+
+  ReceiverClockParams clock;
+  TrackingParams tracking;
+  Cn0Model cn0;
+  // Code multipath, 1-sigma at the zenith, growing as 1/sin(el) toward the horizon, with a
+  // correlation time of a minute (typical open-sky geodetic site).
+  double multipath_zenith_sigma_m = 0.1;
+  double multipath_tau_s = 60.0;
+  double rtk_noise_sigma_m = 0.01;
+
+  bool dual_frequency_signals = false;  // also generate L2 (L2C) and L5; on in kDualFrequency
+  double elevation_mask_deg = 5.0;      // the position engine's mask
+  std::uint64_t seed = 1;
+};
+
+enum class Band { kL1 = 0, kL2 = 1, kL5 = 2 };
+inline constexpr std::array<double, 3> kBandFreq_Hz = {kGpsL1_Hz, kGpsL2_Hz, kGpsL5_Hz};
+
+struct SignalObs {
+  double pseudorange_m = 0.0;
+  double carrier_cycles = 0.0;  // accumulated carrier phase (advances with the ionosphere)
+  double doppler_hz = 0.0;
+  double cn0_dbhz = 0.0;
+  bool loss_of_lock = false;  // first epoch of a new carrier arc
+  double lock_time_s = 0.0;
+};
+
+struct SatMeasurement {
+  int prn = 0;
+  const GpsEphemeris* eph = nullptr;  // the broadcast record used
+  AzEl dir;
+  double range_m = 0.0;          // true geometric range (light time and Earth rotation)
+  double range_rate_mps = 0.0;
+  // The terms of the L1 pseudorange, metres (for inspection and tests).
+  double iono_l1_m = 0.0;
+  double tropo_hydro_m = 0.0;
+  double tropo_wet_m = 0.0;
+  double sat_error_m = 0.0;        // broadcast orbit + clock error on the line of sight
+  double sat_clock_m = 0.0;        // c (dt_sv - TGD) from the broadcast record
+  double multipath_m = 0.0;
+  std::array<std::optional<SignalObs>, 3> signals;  // by Band
+  // The pseudorange the position engine uses in the configured mode (L1 in standalone, the
+  // iono-free combination in dual-frequency, the differentially corrected one in DGPS/RTK).
+  double engine_pseudorange_m = 0.0;
+};
+
+struct EpochMeasurements {
+  GpsTime t_receiver;           // the receiver's time tag (GPS time + clock bias)
+  GpsTime t_true;               // true GPS time of reception
+  double rx_clock_bias_s = 0.0;
+  double rx_clock_drift_sps = 0.0;
+  std::vector<SatMeasurement> sats;  // tracked satellites above the horizon, by PRN
+};
+
+// Receiver classes: tracking loops, antenna and site as they differ between a geodetic receiver
+// (narrow correlator, carrier-aided code loop, choke-ring antenna) and a mass-market one
+// (standard correlator, patch antenna); everything else keeps its defaults.
+enum class ReceiverClass { kGeodetic, kConsumer };
+void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc);
+
+class MeasurementGenerator {
+ public:
+  MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg);
+  ~MeasurementGenerator();
+  MeasurementGenerator(const MeasurementGenerator&) = delete;
+  MeasurementGenerator& operator=(const MeasurementGenerator&) = delete;
+
+  // Measurements at receiver time tag `t_receiver` for a receiver at `p_rx_ecef_m` moving with
+  // `v_rx_ecef_mps`. Calls must come in increasing time.
+  EpochMeasurements generate(GpsTime t_receiver, const Vec3& p_rx_ecef_m,
+                             const Vec3& v_rx_ecef_mps = Vec3::Zero());
+
+  // The measurements the receiver's position engine uses in the configured mode, with the
+  // solver options that go with them (which corrections the receiver applies).
+  std::vector<RangeMeasurement> solver_input(const EpochMeasurements& e) const;
+  SolverOptions solver_options() const;
+
+  const MeasurementConfig& config() const { return cfg_; }
+
+ private:
+  struct State;
+  const NavData& nav_;
+  MeasurementConfig cfg_;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace navemu

@@ -1,0 +1,210 @@
+// The measurement generator: pseudorange assembly term by term, carrier and Doppler consistent
+// with it, the paper's receiver modes, continuity in time, determinism and seeded statistics.
+
+#include "models/measurement.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "models/constellation.hpp"
+#include "models/rinex.hpp"
+#include "models/solver.hpp"
+
+namespace navemu {
+namespace {
+
+const Geodetic kSite{32.3, -90.9, 60.0};  // the paper's test site, Vicksburg, MS
+const GpsTime kStart = from_week_tow(2244, 36000.0);
+
+MeasurementConfig all_off() {
+  MeasurementConfig c;
+  c.errors = ErrorSwitches{false, false, false, false, false, false};
+  return c;
+}
+
+TEST(Measurement, ErrorFreePseudorangesAreRangeMinusBroadcastClock) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementGenerator gen(nav, all_off());
+  const Vec3 p = ecef_from_geodetic(kSite);
+  const EpochMeasurements e = gen.generate(kStart, p);
+  ASSERT_GE(e.sats.size(), 6u);
+  for (const SatMeasurement& m : e.sats) {
+    ASSERT_TRUE(m.signals[0]);
+    EXPECT_NEAR(m.signals[0]->pseudorange_m, m.range_m - m.sat_clock_m, 1e-6) << m.prn;
+  }
+  // ... and the solver gets the position back exactly.
+  SolverOptions o;
+  o.elevation_mask_deg = 0.0;
+  const Solution s = solve(gen.solver_input(e), e.t_receiver, o);
+  ASSERT_EQ(s.fix, FixType::k3D);
+  EXPECT_LT((s.p_ecef_m - p).norm(), 1e-3);
+}
+
+TEST(Measurement, PseudorangeIsTheSumOfItsTermsAndCarrierAndDopplerAgree) {
+  NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c;
+  c.errors.noise = false;
+  c.dual_frequency_signals = true;
+  MeasurementGenerator gen(nav, c);
+  const Vec3 p = ecef_from_geodetic(kSite);
+  const EpochMeasurements e0 = gen.generate(kStart, p);
+  const EpochMeasurements e1 = gen.generate(kStart.plus_s(1.0), p);
+  const double cc = kSpeedOfLight_mps;
+  for (const SatMeasurement& m : e0.sats) {
+    const double tgd_m = cc * m.eph->tgd_s;
+    const double rest = m.range_m + cc * e0.rx_clock_bias_s - m.sat_clock_m + m.tropo_hydro_m +
+                        m.tropo_wet_m + m.sat_error_m + m.multipath_m;
+    EXPECT_NEAR(m.signals[0]->pseudorange_m, rest + m.iono_l1_m, 1e-6);
+    // L2: the ionosphere and TGD scale with (f1/f2)^2 (IS-GPS-200 20.3.3.3.3.2).
+    const double g2 = std::pow(kGpsL1_Hz / kGpsL2_Hz, 2);
+    EXPECT_NEAR(m.signals[1]->pseudorange_m, rest + g2 * m.iono_l1_m + (g2 - 1) * tgd_m, 1e-6);
+    // Carrier: advanced by the ionosphere by as much as the code is delayed, plus N lambda;
+    // code multipath (metres) does not reach the carrier (centimetres at most).
+    const double lambda1 = cc / kGpsL1_Hz;
+    const double n =
+        (m.signals[0]->carrier_cycles * lambda1 - (rest - m.multipath_m - m.iono_l1_m)) / lambda1;
+    EXPECT_NEAR(n, std::round(n), 1e-3);
+    EXPECT_TRUE(m.signals[0]->loss_of_lock);  // first epoch of the arc
+  }
+}
+
+TEST(Measurement, DopplerIsMinusTheCarrierPhaseRate) {
+  // The deterministic terms only: the Gauss-Markov error terms have no derivative.
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementGenerator gen(nav, all_off());
+  const Vec3 p = ecef_from_geodetic(kSite);
+  const EpochMeasurements e0 = gen.generate(kStart, p);
+  const EpochMeasurements e1 = gen.generate(kStart.plus_s(1.0), p);
+  ASSERT_EQ(e0.sats.size(), e1.sats.size());
+  for (const SatMeasurement& m1 : e1.sats) {
+    for (const SatMeasurement& m0 : e0.sats) {
+      if (m0.prn != m1.prn) continue;
+      const double phase_rate = m1.signals[0]->carrier_cycles - m0.signals[0]->carrier_cycles;
+      const double mean_doppler = 0.5 * (m0.signals[0]->doppler_hz + m1.signals[0]->doppler_hz);
+      EXPECT_NEAR(-phase_rate, mean_doppler, 0.005) << m1.prn;
+      EXPECT_FALSE(m1.signals[0]->loss_of_lock);
+    }
+  }
+}
+
+TEST(Measurement, SameSeedSameNumbersOtherSeedOther) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c;
+  c.seed = 11;
+  MeasurementGenerator a(nav, c), b(nav, c);
+  c.seed = 12;
+  MeasurementGenerator d(nav, c);
+  const Vec3 p = ecef_from_geodetic(kSite);
+  for (int k = 0; k < 5; ++k) {
+    const GpsTime t = kStart.plus_s(k);
+    const auto ea = a.generate(t, p), eb = b.generate(t, p), ed = d.generate(t, p);
+    ASSERT_EQ(ea.sats.size(), eb.sats.size());
+    for (std::size_t i = 0; i < ea.sats.size(); ++i) {
+      EXPECT_EQ(ea.sats[i].signals[0]->pseudorange_m, eb.sats[i].signals[0]->pseudorange_m);
+      EXPECT_NE(ea.sats[i].signals[0]->pseudorange_m, ed.sats[i].signals[0]->pseudorange_m);
+    }
+  }
+}
+
+// Position error of the configured receiver over a run, ENU, per epoch.
+std::vector<Vec3> position_errors(MeasurementConfig c, double duration_s, double step_s) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementGenerator gen(nav, c);
+  const Vec3 p = ecef_from_geodetic(kSite);
+  std::vector<Vec3> out;
+  SolverOptions o = gen.solver_options();
+  for (double t = 0; t <= duration_s; t += step_s) {
+    const auto e = gen.generate(kStart.plus_s(t), p);
+    const Solution s = solve(gen.solver_input(e), e.t_receiver, o);
+    if (s.fix != FixType::k3D) continue;
+    o.initial_p_ecef_m = s.p_ecef_m;
+    out.push_back(enu_from_ecef(s.p_ecef_m, kSite));
+  }
+  return out;
+}
+
+double rms(const std::vector<Vec3>& v) {
+  double s = 0;
+  for (const Vec3& x : v) s += x.squaredNorm();
+  return std::sqrt(s / static_cast<double>(v.size()));
+}
+
+TEST(Measurement, StationaryReceiverDriftsSmoothlyRatherThanJumpingWhite) {
+  MeasurementConfig c;
+  c.errors.noise = false;  // the slowly varying terms only
+  const auto err = position_errors(c, 600.0, 1.0);
+  ASSERT_GT(err.size(), 590u);
+  // Epoch-to-epoch change far below the error itself: a drift, as in the paper's Fig. 4-5.
+  double step2 = 0;
+  for (std::size_t i = 1; i < err.size(); ++i) step2 += (err[i] - err[i - 1]).squaredNorm();
+  const double step_rms = std::sqrt(step2 / static_cast<double>(err.size() - 1));
+  EXPECT_GT(rms(err), 0.3);
+  EXPECT_LT(step_rms, 0.05 * rms(err));
+}
+
+TEST(Measurement, ModesOrderTheAccuracyAsThePaperDescribes) {
+  // A geodetic receiver: its code noise is below the ionospheric error, so removing the
+  // ionosphere pays for the iono-free combination's ~3x noise.
+  MeasurementConfig c;
+  apply_receiver_class(c, ReceiverClass::kGeodetic);
+  c.seed = 3;
+  c.mode = ReceiverMode::kStandalone;
+  const double standalone = rms(position_errors(c, 1800.0, 30.0));
+  c.mode = ReceiverMode::kDualFrequency;
+  const double dual = rms(position_errors(c, 1800.0, 30.0));
+  c.mode = ReceiverMode::kDgps;
+  const double dgps = rms(position_errors(c, 1800.0, 30.0));
+  c.mode = ReceiverMode::kRtkFixed;
+  const double rtk = rms(position_errors(c, 1800.0, 30.0));
+  std::printf("position RMS: standalone %.2f m, dual %.2f m, DGPS %.2f m, RTK %.3f m\n",
+              standalone, dual, dgps, rtk);
+  EXPECT_LT(dgps, standalone);
+  EXPECT_LT(rtk, 0.1);  // centimetre noise through a DOP of a few
+  EXPECT_LT(rtk, dgps);
+  // Dual frequency: no ionosphere (the largest term here) but ~3x noise; still below standalone.
+  EXPECT_LT(dual, standalone);
+}
+
+TEST(Measurement, IonosphericModelErrorHasItsConfiguredSigma) {
+  // Across many seeds, the true/model ratio of the ionosphere minus one has the standard
+  // deviation sqrt(common^2 + satellite^2) (both Gauss-Markov, stationary from the start).
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c;
+  c.errors = ErrorSwitches{true, false, false, false, false, false};
+  c.iono_model = IonoModel::kPaperVtec;
+  const Vec3 p = ecef_from_geodetic(kSite);
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
+    c.seed = seed;
+    MeasurementGenerator gen(nav, c);
+    const auto e = gen.generate(kStart, p);
+    const SatMeasurement& m = e.sats.front();
+    const double model = iono_paper_mapping(m.dir.el_rad) * iono_zenith_delay_m(12.0, kGpsL1_Hz);
+    const double x = m.iono_l1_m / model - 1.0;
+    sum += x;
+    sum2 += x * x;
+    ++n;
+  }
+  const double sd = std::sqrt(sum2 / n - (sum / n) * (sum / n));
+  const double expected = std::hypot(c.iono_common_error_fraction, c.iono_satellite_error_fraction);
+  // Standard error of a standard deviation: sd / sqrt(2 n); bound at 5 sigma.
+  EXPECT_NEAR(sd, expected, 5.0 * expected / std::sqrt(2.0 * n));
+  EXPECT_NEAR(sum / n, 0.0, 5.0 * expected / std::sqrt(n));
+}
+
+TEST(Measurement, TrackingThresholdDropsWeakSignals) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c = all_off();
+  c.cn0.zenith_dbhz = 30.0;  // with the default gain table only high satellites stay above 28
+  MeasurementGenerator gen(nav, c);
+  const auto e = gen.generate(kStart, ecef_from_geodetic(kSite));
+  ASSERT_FALSE(e.sats.empty());
+  for (const SatMeasurement& m : e.sats) EXPECT_GE(m.signals[0]->cn0_dbhz, 28.0);
+  MeasurementGenerator strong(nav, all_off());
+  EXPECT_GT(strong.generate(kStart, ecef_from_geodetic(kSite)).sats.size(), e.sats.size());
+}
+
+}  // namespace
+}  // namespace navemu
