@@ -83,4 +83,9 @@ CarrierArcs::Arc CarrierArcs::update(int prn, double t_s, bool tracked) {
   return Arc{s.ambiguity, t_s - s.start_s, new_arc};
 }
 
+std::vector<std::pair<double, double>> patch_antenna_gain_table() {
+  return {{0.0, -13.0}, {5.0, -10.0}, {10.0, -8.0}, {20.0, -5.0}, {30.0, -3.5},
+          {45.0, -2.0}, {60.0, -1.0}, {75.0, -0.3}, {90.0, 0.0}};
+}
+
 }  // namespace navemu

@@ -39,11 +39,12 @@ double fll_noise_hz(double cn0_dbhz, const TrackingParams& p);
 // interpolated in a table of (elevation deg, gain dB) sorted by elevation and held at its end
 // values outside it. Default table: a patch antenna whose gain falls ~10 dB from the zenith
 // to 5 deg.
+// (elevation deg, gain dB relative to the zenith) of a typical GPS patch antenna.
+std::vector<std::pair<double, double>> patch_antenna_gain_table();
+
 struct Cn0Model {
   double zenith_dbhz = 49.0;
-  std::vector<std::pair<double, double>> gain_db_by_el_deg = {
-      {0.0, -13.0}, {5.0, -10.0}, {10.0, -8.0}, {20.0, -5.0}, {30.0, -3.5},
-      {45.0, -2.0}, {60.0, -1.0}, {75.0, -0.3}, {90.0, 0.0}};
+  std::vector<std::pair<double, double>> gain_db_by_el_deg = patch_antenna_gain_table();
 };
 double cn0_dbhz(const Cn0Model& m, double el_rad);
 

@@ -214,6 +214,28 @@ TEST(Cli, MalformedNavigationFilesNameFileLineAndField) {
       "trunc.05n:");
 }
 
+TEST(Cli, ObsWritesRinexAndRejectsBadInput) {
+  const auto out = std::filesystem::path(::testing::TempDir()) / "cli_obs.rnx";
+  const CliRun ok = navemu({"obs", "--nominal", "--at", "30,95,0", "--start", "2244:36000",
+                            "--duration", "60", "--interval", "10", "--out", out.string()});
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.err.find("wrote 7 epochs"), std::string::npos) << ok.err;
+  std::ifstream in(out);
+  std::string first;
+  std::getline(in, first);
+  EXPECT_NE(first.find("3.04"), std::string::npos);
+  EXPECT_NE(first.find("RINEX VERSION / TYPE"), std::string::npos);
+
+  EXPECT_EQ(navemu({"obs", "--nominal", "--out", out.string()}).code, 2);  // --start required
+  EXPECT_EQ(navemu({"obs", "--start", "2244:0", "--out", out.string(), "--mode", "ppp"}).code, 2);
+  EXPECT_EQ(navemu({"obs", "--start", "2244:0", "--out", out.string(), "--disable", "gravity"}).code,
+            2);
+  expect_one_line_error(navemu({"obs", "--start", "2244:0", "--out", "/nonexistent/dir/x.rnx"}),
+                        "/nonexistent/dir/x.rnx");
+  expect_one_line_error(navemu({"obs", "--start", "2244:99999999", "--out", out.string()}),
+                        "--start");
+}
+
 TEST(Cli, SppOnRealFilesReportsEveryEpoch) {
   NAVEMU_REQUIRE_SHARED();
   const auto dir = test::shared_data("gnss/rtklib_geonet_20050402");
