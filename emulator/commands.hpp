@@ -57,6 +57,8 @@ struct ObsOptions {
   std::string mode = "standalone";
   std::string receiver = "consumer";
   std::optional<double> sisre_m;  // broadcast orbit/clock accuracy; unset: the model default
+  std::string sat_errors = "gauss-markov";
+  std::optional<double> clock_h0, clock_h_minus2;
   std::uint64_t seed = 1;
   std::vector<std::string> disable;  // error sources switched off
   std::string iono = "klobuchar";

@@ -75,8 +75,19 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
       ->check(CLI::IsMember({"consumer", "geodetic"}));
   obs->add_option("--sisre", opt.sisre_m,
                   "Signal-in-space range error of the broadcast orbits and clocks, m RMS "
-                  "(default 0.55, today's GPS; about 1.0 before 2008)")
+                  "(default 0.56, GPS of recent years; roughly 0.6-1 in the mid-2000s)")
       ->check(CLI::Range(0.0, 100.0));
+  obs->add_option("--sat-errors", opt.sat_errors,
+                  "Broadcast orbit/clock error model: gauss-markov (radial/along/cross and clock, "
+                  "correlated in time) or paper (the paper's Hwang-Parkinson formula, ~10 m)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"gauss-markov", "paper"}));
+  obs->add_option("--clock-h0", opt.clock_h0,
+                  "Receiver oscillator white-frequency coefficient h0 (default 2e-19, a TCXO)")
+      ->check(CLI::Range(0.0, 1e-15));
+  obs->add_option("--clock-h-2", opt.clock_h_minus2,
+                  "Receiver oscillator random-walk-frequency coefficient h-2 (default 2e-20)")
+      ->check(CLI::Range(0.0, 1e-15));
   obs->add_option("--seed", opt.seed, "Scenario seed")->capture_default_str();
   obs->add_option("--disable", opt.disable, "Error sources to switch off (comma-separated)")
       ->delimiter(',')
@@ -109,6 +120,9 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
                                                        : ReceiverClass::kConsumer);
   cfg.seed = opt.seed;
   if (opt.sisre_m) cfg.sat_errors = cfg.sat_errors.scaled_to_sisre(*opt.sisre_m);
+  if (opt.sat_errors == "paper") cfg.sat_error_model = SatErrorModel::kPaper;
+  if (opt.clock_h0) cfg.clock.h0 = *opt.clock_h0;
+  if (opt.clock_h_minus2) cfg.clock.h_minus2 = *opt.clock_h_minus2;
   cfg.iono_model = opt.iono == "vtec" ? IonoModel::kPaperVtec : IonoModel::kKlobuchar;
   cfg.vtec_tecu = opt.vtec_tecu;
   for (const std::string& d : opt.disable) {

@@ -71,6 +71,7 @@ struct MeasurementGenerator::State {
   GaussMarkov tropo_wet;
   GaussMarkov dgps_tropo;
   std::map<int, SatProcesses> sats;
+  std::map<int, double> receivable_since;  // PRN -> time its signal became receivable, s
   std::optional<GpsTime> last;
   std::vector<int> prns;
 };
@@ -120,7 +121,17 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
       continue;
     const SatGeometry g = gps_sat_geometry(*eph, out.t_true, p_rx, v_rx);
     const double cn0_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad);
-    const bool tracked = g.dir.el_rad > 0.0 && cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
+    // Tracked while above the threshold; a signal that returns (rises, or comes back above the
+    // threshold) is re-acquired only after the receiver's re-acquisition time.
+    const bool receivable = g.dir.el_rad > 0.0 && cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
+    auto [since, fresh] = st.receivable_since.try_emplace(prn, t_s);
+    if (!receivable) {
+      st.receivable_since.erase(since);
+    } else if (fresh && first) {
+      since->second = t_s - cfg_.tracking.reacquisition_s;  // in track when the run starts
+    }
+    const bool tracked =
+        receivable && t_s - since->second >= cfg_.tracking.reacquisition_s - 1e-9;
     const CarrierArcs::Arc arc = st.arcs.update(prn, t_s, tracked);
     if (!tracked) continue;
 

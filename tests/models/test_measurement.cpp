@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "models/constellation.hpp"
 #include "models/rinex.hpp"
@@ -204,6 +205,33 @@ TEST(Measurement, TrackingThresholdDropsWeakSignals) {
   for (const SatMeasurement& m : e.sats) EXPECT_GE(m.signals[0]->cn0_dbhz, 28.0);
   MeasurementGenerator strong(nav, all_off());
   EXPECT_GT(strong.generate(kStart, ecef_from_geodetic(kSite)).sats.size(), e.sats.size());
+}
+
+TEST(Measurement, RisingSatelliteIsTrackedAfterTheReacquisitionTime) {
+  // First epoch at which each PRN is tracked, with immediate and with 60 s re-acquisition.
+  const NavData nav = nominal_constellation(kStart);
+  auto first_tracked = [&](double reacq_s) {
+    MeasurementConfig c = all_off();
+    c.tracking.reacquisition_s = reacq_s;
+    MeasurementGenerator gen(nav, c);
+    std::map<int, double> first;
+    for (double t = 0; t <= 7200; t += 10)
+      for (const SatMeasurement& m : gen.generate(kStart.plus_s(t), ecef_from_geodetic(kSite)).sats)
+        first.try_emplace(m.prn, t);
+    return first;
+  };
+  const auto immediate = first_tracked(0.0), delayed = first_tracked(60.0);
+  int risers = 0;
+  for (const auto& [prn, t] : immediate) {
+    ASSERT_TRUE(delayed.count(prn));
+    if (t == 0.0) {
+      EXPECT_EQ(delayed.at(prn), 0.0) << "in track at the start: PRN " << prn;
+    } else {
+      ++risers;
+      EXPECT_EQ(delayed.at(prn), t + 60.0) << "rising: PRN " << prn;
+    }
+  }
+  EXPECT_GT(risers, 0);
 }
 
 }  // namespace
