@@ -1,5 +1,6 @@
 #pragma once
-// Shared helpers for tests: where the reference data lives, and skipping without it.
+// Shared helpers for tests: where the reference data lives, skipping without it, running
+// commands, and reading RTKLIB rnx2rtkp output.
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,12 @@
 #include <cstdlib>
 #include <sys/wait.h>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
+
+#include "models/geodesy.hpp"
+#include "models/time.hpp"
 
 namespace navemu::test {
 
@@ -52,6 +58,35 @@ inline std::string shell_quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
+}
+
+// One solution of RTKLIB rnx2rtkp's -e (ECEF) output, tagged with its GPS time of week.
+struct RtklibFix {
+  double gps_tow_s = 0.0;
+  Vec3 p_ecef_m = Vec3::Zero();
+};
+
+// Reads a rnx2rtkp -e .pos file: "yyyy/mm/dd hh:mm:ss.sss x y z ..." (GPS time) or
+// "week tow x y z ..." lines; '%' lines are comments.
+inline std::vector<RtklibFix> read_rtklib_ecef_pos(const std::filesystem::path& file) {
+  std::vector<RtklibFix> out;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '%') continue;
+    int y, mo, d, h, mi;
+    double s, x, yy, z;
+    if (std::sscanf(line.c_str(), "%d/%d/%d %d:%d:%lf %lf %lf %lf", &y, &mo, &d, &h, &mi, &s, &x,
+                    &yy, &z) == 9) {
+      const WeekTow wt = to_week_tow(gps_from_calendar(CalendarTime{y, mo, d, h, mi, s}));
+      out.push_back({wt.tow_s, Vec3(x, yy, z)});
+      continue;
+    }
+    int week;
+    double tow;
+    if (std::sscanf(line.c_str(), "%d %lf %lf %lf %lf", &week, &tow, &x, &yy, &z) == 5)
+      out.push_back({tow, Vec3(x, yy, z)});
+  }
+  return out;
 }
 
 }  // namespace navemu::test

@@ -69,30 +69,11 @@ Track parse_navemu_csv(const std::string& csv) {
   return t;
 }
 
-// rnx2rtkp -e output: "yyyy/mm/dd hh:mm:ss.sss x y z Q ns ..." in GPS time.
+// rnx2rtkp -e output, keyed like navemu's.
 Track parse_rtklib_pos(const std::filesystem::path& file) {
   Track t;
-  std::ifstream in(file);
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '%') continue;
-    int y, mo, d, h, mi;
-    double s, x, yy, z;
-    if (std::sscanf(line.c_str(), "%d/%d/%d %d:%d:%lf %lf %lf %lf", &y, &mo, &d, &h, &mi, &s, &x,
-                    &yy, &z) != 9)
-      continue;
-    // Time of week from the calendar date (days since the GPS epoch, Sunday-based week).
-    auto days_from_civil = [](int yr, int m, int dd) {
-      yr -= m <= 2;
-      const int era = (yr >= 0 ? yr : yr - 399) / 400;
-      const int yoe = yr - era * 400;
-      const int doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + dd - 1;
-      const int doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-      return era * 146097 + doe - 719468;
-    };
-    const long long days = days_from_civil(y, mo, d) - days_from_civil(1980, 1, 6);
-    const double tow = static_cast<double>(days % 7) * 86400.0 + h * 3600.0 + mi * 60.0 + s;
-    t[key_ms(tow)] = Vec3(x, yy, z);
-  }
+  for (const test::RtklibFix& fix : test::read_rtklib_ecef_pos(file))
+    t[key_ms(fix.gps_tow_s)] = fix.p_ecef_m;
   return t;
 }
 

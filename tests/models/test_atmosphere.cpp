@@ -2,15 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
+#include <cstdio>
 #include <fstream>
-#include <map>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include "models/atmosphere.hpp"
 #include "models/rinex.hpp"
+#include "tests/spirent_log.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
@@ -19,62 +17,12 @@ namespace {
 constexpr double kC = kSpeedOfLight_mps;
 
 // ---------------------------------------------------------------------------------------
-// Reference data: the Spirent SimGEN static scenario (../shared/data/README.md, 1c).
+// Reference data: the Spirent SimGEN static scenario (../shared/data/README.md, 1c), its
+// truth log read by tests/spirent_log.hpp (every constellation's rows).
 // Receiver at 30 N, 95 E, 0 m (a simulator input, exact).
 
-const Geodetic kSpirentRx{30.0, 95.0, 0.0};
-
-struct SpirentRow {
-  GpsTime t;  // receive time
-  std::string system;
-  int prn = 0;
-  double az_rad = 0.0, el_rad = 0.0;
-  double iono_l1_s = 0.0;
-  double tropo_s = 0.0;
-};
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(cell);
-  return out;
-}
-
-// sat_data_V1A1.csv: 5 header lines; line 2 holds the scenario start "GPS Time" in seconds
-// since the GPS epoch, line 5 the column names. Time_ms counts from that start.
-std::vector<SpirentRow> read_spirent_log() {
-  const auto path = test::shared_data(
-      "gnss/spirent_simgen_static_20230108/klobuchar_saastamoinen/sat_data_V1A1.csv");
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  std::vector<std::string> header(5);
-  for (auto& h : header) std::getline(in, h);
-  const auto start = split_csv(header[1]);
-  const double start_s = std::stod(start.at(1));  // 1357207140.0
-  const std::int64_t start_ms = static_cast<std::int64_t>(std::llround(start_s * 1e3));
-  const auto names = split_csv(header[4]);
-  std::map<std::string, std::size_t> col;
-  for (std::size_t i = 0; i < names.size(); ++i) col[names[i]] = i;
-
-  std::vector<SpirentRow> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    const auto c = split_csv(line);
-    SpirentRow r;
-    const std::int64_t ms = std::stoll(c.at(col.at("Time_ms")));
-    r.t = GpsTime{(start_ms + ms) * 1'000'000};
-    r.system = c.at(col.at("Sat_type"));
-    r.prn = std::stoi(c.at(col.at("Sat_PRN")));
-    r.az_rad = std::stod(c.at(col.at("Azimuth")));
-    r.el_rad = std::stod(c.at(col.at("Elevation")));
-    r.iono_l1_s = std::stod(c.at(col.at("Iono_delay Group A")));
-    r.tropo_s = std::stod(c.at(col.at("Tropo_delay")));
-    rows.push_back(r);
-  }
-  return rows;
-}
+using test::kSpirentRx;
+using test::SpirentRow;
 
 // GPSA / GPSB lines of the RINEX 3.04 nav header the scenario used (format A4,1X,4D12.4).
 KlobucharCoefficients read_spirent_klobuchar() {
@@ -184,7 +132,7 @@ TEST(KlobucharSpirent, MatchesSimulatorLogWithinFiveMillimetres) {
   }
   EXPECT_DOUBLE_EQ(k.alpha[0], 2.4214e-08);
   EXPECT_DOUBLE_EQ(k.beta[3], 2.6214e+05);
-  const auto rows = read_spirent_log();
+  const auto rows = test::read_spirent_rows();
   int n = 0;
   double max_err_s = 0.0;
   SpirentRow worst;
@@ -192,13 +140,13 @@ TEST(KlobucharSpirent, MatchesSimulatorLogWithinFiveMillimetres) {
     if (r.system != "GPS") continue;
     ++n;
     AzEl dir{r.az_rad < 0.0 ? r.az_rad + 2.0 * kPi : r.az_rad, r.el_rad};
-    const double d = klobuchar_delay_l1_s(k, kSpirentRx, dir, r.t);
+    const double d = klobuchar_delay_l1_s(k, kSpirentRx, dir, r.t_receive);
     const double err = std::abs(d - r.iono_l1_s);
     if (err > max_err_s) {
       max_err_s = err;
       worst = r;
     }
-    EXPECT_LT(err, 5e-3 / kC) << "PRN " << r.prn << " t " << r.t.ns << " el " << r.el_rad;
+    EXPECT_LT(err, 5e-3 / kC) << "PRN " << r.prn << " t " << r.t_receive.ns << " el " << r.el_rad;
   }
   EXPECT_EQ(n, 465);
   std::printf("[ Klobuchar vs SimGEN ] %d GPS rows, max |error| = %.3e s = %.2f mm "
@@ -277,7 +225,7 @@ TEST(Saastamoinen, RtklibDomain) {
 // (least squares over those rows); it comes out at 0.77.
 TEST(TropoSpirent, MatchesSimulatorLogAboveThirtyDegrees) {
   NAVEMU_REQUIRE_SHARED();
-  const auto rows = read_spirent_log();
+  const auto rows = test::read_spirent_rows();
   const double min_el = 30.0 * kDegToRad;
 
   // total(RH) = hydro + RH * wet1: least squares for RH.

@@ -7,17 +7,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <fstream>
-#include <map>
-#include <sstream>
-#include <string>
 #include <vector>
 
 #include "models/atmosphere.hpp"
 #include "models/orbit.hpp"
 #include "models/rinex.hpp"
+#include "tests/spirent_log.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
@@ -241,62 +237,16 @@ TEST(TropoSlant, ZenithMappingAndHorizon) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Spirent SimGEN truth log (sat_data_V1A1.csv): 5 header rows, the scenario start "GPS Time"
-// in row 2 (seconds since the GPS epoch), column names in row 5; Time_ms counts from the start.
-// Receiver at 30 N, 95 E, 0 m ellipsoidal; ECEF given in ../shared/data/README.md 1c.
+// Spirent SimGEN truth log (sat_data_V1A1.csv, read by tests/spirent_log.hpp). Receiver at
+// 30 N, 95 E, 0 m ellipsoidal; ECEF given in ../shared/data/README.md 1c.
 
-const Geodetic kSpirentRx{30.0, 95.0, 0.0};
-const Vec3 kSpirentRxEcef{-481819.31349724, 5507219.95375401, 3170373.73538364};
-
-struct SimGenRow {
-  GpsTime t_receive;
-  int prn = 0;
-  double el_rad = 0.0;
-  double range_m = 0.0;
-  double prange_a_m = 0.0;
-  double iono_a_s = 0.0;
-  double tropo_s = 0.0;
-};
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
-  return out;
-}
-
-std::vector<SimGenRow> read_simgen_gps_rows() {
-  const auto path = test::shared_data(
-      "gnss/spirent_simgen_static_20230108/klobuchar_saastamoinen/sat_data_V1A1.csv");
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  std::array<std::string, 5> header;
-  for (auto& h : header) std::getline(in, h);
-  const std::int64_t start_ms = std::llround(std::stod(split_csv(header[1]).at(1)) * 1e3);
-  const auto names = split_csv(header[4]);
-  std::map<std::string, std::size_t> col;
-  for (std::size_t i = 0; i < names.size(); ++i) col[names[i]] = i;
-  std::vector<SimGenRow> rows;
-  for (std::string line; std::getline(in, line);) {
-    const auto f = split_csv(line);
-    if (f.size() < names.size() - 1 || f.at(col.at("Sat_type")) != "GPS") continue;
-    auto num = [&](const char* name) { return std::stod(f.at(col.at(name))); };
-    SimGenRow r;
-    r.t_receive = GpsTime{(start_ms + std::stoll(f.at(col.at("Time_ms")))) * 1'000'000};
-    r.prn = std::stoi(f.at(col.at("Sat_PRN")));
-    r.el_rad = num("Elevation");
-    r.range_m = num("Range");
-    r.prange_a_m = num("P-Range Group A");
-    r.iono_a_s = num("Iono_delay Group A");
-    r.tropo_s = num("Tropo_delay");
-    rows.push_back(r);
-  }
-  return rows;
-}
+using test::kSpirentRx;
+using test::kSpirentRxEcef;
+using test::SpirentRow;
 
 // Standard atmosphere at 0 m with the relative humidity that best fits the log's troposphere
 // (least squares over every GPS row; the delay is linear in RH).
-double fit_simgen_humidity(const std::vector<SimGenRow>& rows) {
+double fit_simgen_humidity(const std::vector<SpirentRow>& rows) {
   double num = 0.0;
   double den = 0.0;
   for (const auto& r : rows) {
@@ -316,7 +266,7 @@ double fit_simgen_humidity(const std::vector<SimGenRow>& rows) {
 // at 5 deg (d(m)/d(el) ~ -cos/sin^2 = -131 per rad, times ZTD 2.45 m, times 0.5e-4 rad).
 TEST(TropoSlantSpirent, NiellMatchesSimulatorAtEveryElevation) {
   NAVEMU_REQUIRE_SHARED();
-  const auto rows = read_simgen_gps_rows();
+  const auto rows = test::read_spirent_gps_rows();
   ASSERT_EQ(rows.size(), 465u);
   const double rh = fit_simgen_humidity(rows);
   EXPECT_NEAR(rh, 0.7875, 0.005);
@@ -353,7 +303,7 @@ TEST(TropoSlantSpirent, NiellMatchesSimulatorAtEveryElevation) {
 // from the log's own range, iono and tropo; then the full sum from navemu's models only.
 TEST(PseudorangeSpirent, ClockTermAndFullSumMatchSimulator) {
   NAVEMU_REQUIRE_SHARED();
-  const auto rows = read_simgen_gps_rows();
+  const auto rows = test::read_spirent_gps_rows();
   ASSERT_EQ(rows.size(), 465u);
   const NavData nav =
       read_rinex_nav(test::shared_data("gnss/spirent_simgen_static_20230108/Spirent_RINEX_GN.23N"));
@@ -371,7 +321,7 @@ TEST(PseudorangeSpirent, ClockTermAndFullSumMatchSimulator) {
     const SatGeometry g = gps_sat_geometry(*eph, r.t_receive, kSpirentRxEcef);
     const double clock_m = -kC * (g.sat.clock_bias_s - eph->tgd_s);
 
-    const double log_clock_m = r.prange_a_m - r.range_m - r.iono_a_s * kC - r.tropo_s * kC;
+    const double log_clock_m = r.prange_l1_m - r.range_m - r.iono_l1_s * kC - r.tropo_s * kC;
     const double clock_err = clock_m - log_clock_m;
     max_clock_err = std::max(max_clock_err, std::abs(clock_err));
     EXPECT_LT(std::abs(clock_err), 0.01) << "PRN " << r.prn << " t " << r.t_receive.ns;
@@ -379,10 +329,10 @@ TEST(PseudorangeSpirent, ClockTermAndFullSumMatchSimulator) {
     const double iono_m = kC * klobuchar_delay_l1_s(*nav.klobuchar, kSpirentRx, g.dir, r.t_receive);
     const double tropo_m = tropo_slant_delay(kSpirentRx, g.dir.el_rad, r.t_receive, m).total_m();
     const double p_m = g.range_m + iono_m + tropo_m + clock_m;
-    const double sum_err = p_m - r.prange_a_m;
+    const double sum_err = p_m - r.prange_l1_m;
     max_sum_err = std::max(max_sum_err, std::abs(sum_err));
     max_range_err = std::max(max_range_err, std::abs(g.range_m - r.range_m));
-    max_iono_err = std::max(max_iono_err, std::abs(iono_m - r.iono_a_s * kC));
+    max_iono_err = std::max(max_iono_err, std::abs(iono_m - r.iono_l1_s * kC));
     max_tropo_err = std::max(max_tropo_err, std::abs(tropo_m - r.tropo_s * kC));
     EXPECT_LT(std::abs(sum_err), 0.21) << "PRN " << r.prn << " t " << r.t_receive.ns;
     // Regression guard at the measured level: with unrounded elevations the troposphere

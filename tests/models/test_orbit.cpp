@@ -6,69 +6,15 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
-#include <fstream>
-#include <map>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include "models/orbit.hpp"
 #include "models/rinex.hpp"
+#include "tests/spirent_log.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
 namespace {
-
-// GPS rows of sat_data_V1A1.csv: 5 header rows, then one row per channel and epoch.
-struct SpirentRow {
-  GpsTime t_receive;
-  int prn = 0;
-  Vec3 p_ecef_m, v_ecef_mps;
-  double az_rad = 0, el_rad = 0, range_m = 0, prange_l1_m = 0, iono_l1_s = 0, tropo_s = 0;
-};
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string f; std::getline(ss, f, ',');) out.push_back(f);
-  return out;
-}
-
-std::vector<SpirentRow> read_spirent_gps_rows(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);  // Build,GPS Time,...
-  std::getline(in, line);
-  const double start_s = std::stod(split_csv(line).at(1));
-  std::getline(in, line);  // frequency groups
-  std::getline(in, line);
-  std::getline(in, line);  // column names
-  std::map<std::string, std::size_t> col;
-  const auto names = split_csv(line);
-  for (std::size_t i = 0; i < names.size(); ++i) col[names[i]] = i;
-  std::vector<SpirentRow> rows;
-  while (std::getline(in, line)) {
-    const auto f = split_csv(line);
-    if (f.size() < names.size() - 1 || f[col.at("Sat_type")] != "GPS") continue;
-    auto num = [&](const char* name) { return std::stod(f.at(col.at(name))); };
-    SpirentRow r;
-    r.t_receive = GpsTime::from_seconds(start_s + num("Time_ms") / 1000.0);
-    r.prn = static_cast<int>(num("Sat_PRN"));
-    r.p_ecef_m = Vec3(num("Sat_Pos_X"), num("Sat_Pos_Y"), num("Sat_Pos_Z"));
-    r.v_ecef_mps = Vec3(num("Sat_Vel_X"), num("Sat_Vel_Y"), num("Sat_Vel_Z"));
-    r.az_rad = num("Azimuth");
-    r.el_rad = num("Elevation");
-    r.range_m = num("Range");
-    r.prange_l1_m = num("P-Range Group A");
-    r.iono_l1_s = num("Iono_delay Group A");
-    r.tropo_s = num("Tropo_delay");
-    rows.push_back(r);
-  }
-  return rows;
-}
-
-// The scenario's static antenna (an exact simulator input).
-const Vec3 kSpirentRx(-481819.31349724, 5507219.95375401, 3170373.73538364);
 
 double angle_diff_deg(double a_rad, double b_rad) {
   return std::abs(std::remainder(a_rad - b_rad, 2.0 * M_PI)) * 180.0 / M_PI;
@@ -78,14 +24,14 @@ TEST(OrbitSpirent, PositionsRangesAnglesAndVelocitiesMatchSimulatorTruth) {
   NAVEMU_REQUIRE_SHARED();
   const auto dir = test::shared_data("gnss/spirent_simgen_static_20230108");
   const NavData nav = read_rinex_nav(dir / "Spirent_RINEX_GN.23N");
-  const auto rows = read_spirent_gps_rows(dir / "klobuchar_saastamoinen/sat_data_V1A1.csv");
+  const auto rows = test::read_spirent_gps_rows();
   ASSERT_EQ(rows.size(), 465u);  // GPS rows, per ../shared/data/README.md
 
   double max_pos = 0, max_range = 0, max_az = 0, max_el = 0, max_vel = 0;
-  for (const SpirentRow& r : rows) {
+  for (const test::SpirentRow& r : rows) {
     const GpsEphemeris* eph = select_ephemeris(nav, r.prn, r.t_receive);
     ASSERT_NE(eph, nullptr) << "PRN " << r.prn;
-    const SatGeometry g = gps_sat_geometry(*eph, r.t_receive, kSpirentRx);
+    const SatGeometry g = gps_sat_geometry(*eph, r.t_receive, test::kSpirentRxEcef);
     max_pos = std::max(max_pos, (g.sat.p_ecef_m - r.p_ecef_m).norm());
     max_range = std::max(max_range, std::abs(g.range_m - r.range_m));
     max_az = std::max(max_az, angle_diff_deg(g.dir.az_rad, r.az_rad));

@@ -333,27 +333,6 @@ TEST(RinexWriter, LongCommentsWrap) {
 
 // ---- RTKLIB reads the written file ---------------------------------------------------------
 
-// rnx2rtkp -e output: "yyyy/mm/dd hh:mm:ss.sss x y z ..." or "week tow x y z ...".
-std::vector<Vec3> parse_rtklib_ecef(const std::filesystem::path& file) {
-  std::vector<Vec3> out;
-  std::ifstream in(file);
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '%') continue;
-    int y, mo, d, h, mi;
-    double s, x, yy, z;
-    if (std::sscanf(line.c_str(), "%d/%d/%d %d:%d:%lf %lf %lf %lf", &y, &mo, &d, &h, &mi, &s, &x,
-                    &yy, &z) == 9) {
-      out.emplace_back(x, yy, z);
-      continue;
-    }
-    int week;
-    double tow;
-    if (std::sscanf(line.c_str(), "%d %lf %lf %lf %lf", &week, &tow, &x, &yy, &z) == 5)
-      out.emplace_back(x, yy, z);
-  }
-  return out;
-}
-
 // Error-free C1C pseudoranges for a static receiver at GEONET station 0759's precise position,
 // built so that RTKLIB's single-point corrections cancel exactly: satellite clock with TGD
 // (IS-GPS-200 20.3.3.3.3.2), broadcast Klobuchar ionosphere, Saastamoinen troposphere in a
@@ -416,11 +395,11 @@ TEST(RinexWriter, RtklibPositionsFromWrittenFile) {
       test::shell_quote(obs.string()) + " " + test::shell_quote(nav_file.string()) + " 2>/dev/null");
   ASSERT_EQ(rtk.exit_code, 0) << "rnx2rtkp (Debian package rtklib) missing or failed";
 
-  const std::vector<Vec3> sol = parse_rtklib_ecef(pos);
+  const std::vector<test::RtklibFix> sol = test::read_rtklib_ecef_pos(pos);
   ASSERT_EQ(sol.size(), epochs.size()) << "RTKLIB solved " << sol.size() << " of "
                                        << epochs.size() << " epochs";
   double max_err = 0.0;
-  for (const Vec3& p : sol) max_err = std::max(max_err, (p - truth).norm());
+  for (const test::RtklibFix& fix : sol) max_err = std::max(max_err, (fix.p_ecef_m - truth).norm());
   std::printf("RTKLIB single-point solutions from the written file: %zu epochs, max 3D error "
               "%.4f m\n",
               sol.size(), max_err);
