@@ -22,6 +22,25 @@ constexpr double gamma(Band b) {
 // Table 3-Va minimum powers -158.5 vs -158.5 dBW with the pilot/data split), L5 ~+0.5 dB.
 constexpr std::array<double, 3> kCn0OffsetDb = {0.0, -3.0, 0.5};
 
+// Ionospheric pierce point offset from the receiver and the obliquity factor, with the
+// single-layer geometry of IS-GPS-200 20.3.3.5.2.5 (Figure 20-4): earth-centred angle
+// psi = 0.0137 / (E + 0.11) - 0.022 semicircles, F = 1 + 16 (0.53 - E)^3.
+struct PiercePoint {
+  double dlat_deg = 0.0;
+  double dlon_deg = 0.0;
+  double obliquity = 1.0;
+};
+PiercePoint iono_pierce_point(const Geodetic& rx, const AzEl& dir) {
+  const double e_sc = std::max(dir.el_rad, 0.0) / kPi;
+  const double psi_deg = (0.0137 / (e_sc + 0.11) - 0.022) * 180.0;
+  const double lat_i = std::clamp(rx.lat_deg + psi_deg * std::cos(dir.az_rad), -75.0, 75.0);
+  PiercePoint p;
+  p.dlat_deg = lat_i - rx.lat_deg;
+  p.dlon_deg = psi_deg * std::sin(dir.az_rad) / std::cos(lat_i * kDegToRad);
+  p.obliquity = 1.0 + 16.0 * std::pow(0.53 - e_sc, 3);
+  return p;
+}
+
 }  // namespace
 
 void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc) {
@@ -45,9 +64,33 @@ void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc) {
   }
 }
 
-// Per-satellite processes, created when the satellite is first seen.
+// Per-satellite processes, created when the satellite is first seen. One random stream per
+// term and satellite, so switching one term (or a band) leaves the others' numbers unchanged.
 struct SatProcesses {
-  RandomStream rng;
+  using BandStreams = std::array<RandomStream, 3>;
+  static BandStreams band_streams(std::uint64_t seed, const char* term, int prn) {
+    auto one = [&](int band) { return RandomStream(seed, stream_id(term, prn * 10 + band)); };
+    return {one(0), one(1), one(2)};
+  }
+
+  SatProcesses(std::uint64_t seed, int prn, const MeasurementConfig& cfg, double t_s)
+      : iono_rng(seed, stream_id("iono", prn)),
+        multipath_rng(seed, stream_id("multipath", prn)),
+        rtk_rng(seed, stream_id("rtk_noise", prn)),
+        code_rng(band_streams(seed, "code_noise", prn)),
+        phase_rng(band_streams(seed, "phase_noise", prn)),
+        doppler_rng(band_streams(seed, "doppler_noise", prn)),
+        iono_fraction(cfg.iono_satellite_error_fraction, cfg.iono_error_tau_s, iono_rng),
+        multipath(1.0, cfg.multipath_tau_s, multipath_rng),
+        last_t_s(t_s) {}
+  void advance(double t_s) {
+    iono_fraction.step(t_s - last_t_s, iono_rng);
+    multipath.step(t_s - last_t_s, multipath_rng);
+    last_t_s = t_s;
+  }
+
+  RandomStream iono_rng, multipath_rng, rtk_rng;
+  BandStreams code_rng, phase_rng, doppler_rng;
   GaussMarkov iono_fraction;
   GaussMarkov multipath;  // unit variance, scaled by the elevation-dependent sigma
   double last_t_s = 0.0;
@@ -58,16 +101,21 @@ struct MeasurementGenerator::State {
       : clock(cfg.clock, RandomStream(cfg.seed, stream_id("receiver_clock"))),
         sat_errors(cfg.sat_errors, cfg.seed),
         arcs(cfg.seed),
-        common_rng(cfg.seed, stream_id("common")),
-        iono_common(cfg.iono_common_error_fraction, cfg.iono_error_tau_s, common_rng),
-        tropo_wet(cfg.tropo_wet_sigma_m, cfg.tropo_wet_tau_s, common_rng),
-        dgps_tropo(cfg.dgps_tropo_residual_sigma_m, cfg.tropo_wet_tau_s, common_rng) {}
+        iono_common_rng(cfg.seed, stream_id("iono_common")),
+        tropo_wet_rng(cfg.seed, stream_id("tropo_wet")),
+        dgps_tropo_rng(cfg.seed, stream_id("dgps_tropo")),
+        iono_gradient_rng(cfg.seed, stream_id("iono_gradient")),
+        iono_common(cfg.iono_common_error_fraction, cfg.iono_error_tau_s, iono_common_rng),
+        iono_gradient_north(cfg.iono_gradient_sigma_m_per_deg, cfg.iono_error_tau_s, iono_gradient_rng),
+        iono_gradient_east(cfg.iono_gradient_sigma_m_per_deg, cfg.iono_error_tau_s, iono_gradient_rng),
+        tropo_wet(cfg.tropo_wet_sigma_m, cfg.tropo_wet_tau_s, tropo_wet_rng),
+        dgps_tropo(cfg.dgps_tropo_residual_sigma_m, cfg.tropo_wet_tau_s, dgps_tropo_rng) {}
 
   ReceiverClock clock;
   SatErrors sat_errors;
   CarrierArcs arcs;
-  RandomStream common_rng;
-  GaussMarkov iono_common;
+  RandomStream iono_common_rng, tropo_wet_rng, dgps_tropo_rng, iono_gradient_rng;
+  GaussMarkov iono_common, iono_gradient_north, iono_gradient_east;
   GaussMarkov tropo_wet;
   GaussMarkov dgps_tropo;
   std::map<int, SatProcesses> sats;
@@ -98,9 +146,11 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
 
   if (!first) {
     st.clock.step(dt);
-    st.iono_common.step(dt, st.common_rng);
-    st.tropo_wet.step(dt, st.common_rng);
-    st.dgps_tropo.step(dt, st.common_rng);
+    st.iono_common.step(dt, st.iono_common_rng);
+    st.iono_gradient_north.step(dt, st.iono_gradient_rng);
+    st.iono_gradient_east.step(dt, st.iono_gradient_rng);
+    st.tropo_wet.step(dt, st.tropo_wet_rng);
+    st.dgps_tropo.step(dt, st.dgps_tropo_rng);
   }
 
   EpochMeasurements out;
@@ -135,17 +185,9 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
     const CarrierArcs::Arc arc = st.arcs.update(prn, t_s, tracked);
     if (!tracked) continue;
 
-    auto [it, inserted] = st.sats.try_emplace(prn, SatProcesses{RandomStream(cfg_.seed, stream_id("satellite", prn)), {}, {}, t_s});
+    auto [it, inserted] = st.sats.try_emplace(prn, cfg_.seed, prn, cfg_, t_s);
     SatProcesses& sp = it->second;
-    if (inserted) {
-      sp.iono_fraction = GaussMarkov(cfg_.iono_satellite_error_fraction, cfg_.iono_error_tau_s, sp.rng);
-      sp.multipath = GaussMarkov(1.0, cfg_.multipath_tau_s, sp.rng);
-    } else {
-      const double sdt = t_s - sp.last_t_s;
-      sp.iono_fraction.step(sdt, sp.rng);
-      sp.multipath.step(sdt, sp.rng);
-    }
-    sp.last_t_s = t_s;
+    if (!inserted) sp.advance(t_s);
 
     SatMeasurement m;
     m.prn = prn;
@@ -162,7 +204,12 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
         model_m = c * klobuchar_delay_l1_s(*nav_.klobuchar, geo, g.dir, out.t_true);
       else
         model_m = iono_paper_mapping(g.dir.el_rad) * iono_zenith_delay_m(cfg_.vtec_tecu, kGpsL1_Hz);
-      m.iono_l1_m = std::max(0.0, model_m * (1.0 + st.iono_common.value() + sp.iono_fraction.value()));
+      const PiercePoint ipp = iono_pierce_point(geo, g.dir);
+      const double gradient_m =
+          ipp.obliquity * (st.iono_gradient_north.value() * ipp.dlat_deg +
+                           st.iono_gradient_east.value() * ipp.dlon_deg * std::cos(geo.lat_deg * kDegToRad));
+      m.iono_l1_m = std::max(
+          0.0, model_m * (1.0 + st.iono_common.value() + sp.iono_fraction.value()) + gradient_m);
     }
     // Troposphere: Saastamoinen zenith delays from the meteorology, Niell mapping, plus the
     // wet delay's unmodelled variability.
@@ -205,14 +252,15 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
       const double phase_sigma = on.noise ? pll_noise_cycles(so.cn0_dbhz, cfg_.tracking) : 0.0;
       const double doppler_sigma = on.noise ? fll_noise_hz(so.cn0_dbhz, cfg_.tracking) : 0.0;
       // Code: TGD scaled by gamma; multipath shared by the bands at this level of modelling.
-      const double code_noise_m = code_sigma * sp.rng.normal();
+      const std::size_t bi = static_cast<std::size_t>(b);
+      const double code_noise_m = code_sigma * sp.code_rng[bi].normal();
       if (b == 0) l1_code_noise_m = code_noise_m;
       so.pseudorange_m =
           common_m + c * gm * eph->tgd_s + gm * m.iono_l1_m + m.multipath_m + code_noise_m;
       // Carrier: advanced by the ionosphere, an integer ambiguity per arc.
       so.carrier_cycles = (common_m + c * gm * eph->tgd_s - gm * m.iono_l1_m) / lambda +
-                          arc.ambiguity_cycles + phase_sigma * sp.rng.normal();
-      so.doppler_hz = -rate_mps / lambda + doppler_sigma * sp.rng.normal();
+                          arc.ambiguity_cycles + phase_sigma * sp.phase_rng[bi].normal();
+      so.doppler_hz = -rate_mps / lambda + doppler_sigma * sp.doppler_rng[bi].normal();
       so.loss_of_lock = arc.new_arc;
       so.lock_time_s = arc.lock_time_s;
       m.signals[static_cast<std::size_t>(b)] = so;
@@ -246,7 +294,7 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
       case ReceiverMode::kRtkFixed:
         // Carrier phase with fixed ambiguities: centimetre-level noise only.
         m.engine_pseudorange_m =
-            geometric_m + (on.noise ? cfg_.rtk_noise_sigma_m * sp.rng.normal() : 0.0);
+            geometric_m + (on.noise ? cfg_.rtk_noise_sigma_m * sp.rtk_rng.normal() : 0.0);
         break;
     }
     out.sats.push_back(std::move(m));

@@ -62,13 +62,16 @@ struct MeasurementConfig {
 
   IonoModel iono_model = IonoModel::kKlobuchar;
   double vtec_tecu = 12.0;  // for kPaperVtec (the paper's validation value)
-  // The broadcast model describes the true ionosphere only to ~50 % RMS (Klobuchar 1987):
-  // the true delay is the model's times (1 + s), s a Gauss-Markov process common to the sky,
-  // plus a per-satellite Gauss-Markov fraction (spatial structure the model lacks). The
-  // fractions were set so that synthetic and real single-point solutions of the reference
-  // stations in ../shared/data agree (tools/real-vs-synthetic).
-  double iono_common_error_fraction = 0.2;
-  double iono_satellite_error_fraction = 0.10;
+  // The broadcast model describes the true ionosphere only to ~50 % RMS (Klobuchar 1987).
+  // The true delay is the model's times (1 + s), s a Gauss-Markov scale error common to the
+  // sky, plus the horizontal gradients the model lacks: north and east gradients of the
+  // vertical delay (Gauss-Markov, m per degree) evaluated at each satellite's ionospheric
+  // pierce point (IS-GPS-200 20.3.3.5.2.5 geometry) and mapped with the Klobuchar obliquity,
+  // plus a small per-satellite fraction. The sizes were set so that synthetic and real
+  // single-point solutions of the reference stations agree (tools/real-vs-synthetic).
+  double iono_common_error_fraction = 0.3;
+  double iono_gradient_sigma_m_per_deg = 0.05;
+  double iono_satellite_error_fraction = 0.03;
   double iono_error_tau_s = 1800.0;
 
   // Surface meteorology for the true troposphere (Saastamoinen zenith delays, Niell mapping);

@@ -169,11 +169,13 @@ TEST(Measurement, ModesOrderTheAccuracyAsThePaperDescribes) {
 
 TEST(Measurement, IonosphericModelErrorHasItsConfiguredSigma) {
   // Across many seeds, the true/model ratio of the ionosphere minus one has the standard
-  // deviation sqrt(common^2 + satellite^2) (both Gauss-Markov, stationary from the start).
+  // deviation sqrt(common^2 + satellite^2) (both Gauss-Markov, stationary from the start);
+  // the gradient term is switched off here and checked below.
   const NavData nav = nominal_constellation(kStart);
   MeasurementConfig c;
   c.errors = ErrorSwitches{true, false, false, false, false, false};
   c.iono_model = IonoModel::kPaperVtec;
+  c.iono_gradient_sigma_m_per_deg = 0.0;
   const Vec3 p = ecef_from_geodetic(kSite);
   double sum = 0, sum2 = 0;
   int n = 0;
@@ -193,6 +195,38 @@ TEST(Measurement, IonosphericModelErrorHasItsConfiguredSigma) {
   // Standard error of a standard deviation: sd / sqrt(2 n); bound at 5 sigma.
   EXPECT_NEAR(sd, expected, 5.0 * expected / std::sqrt(2.0 * n));
   EXPECT_NEAR(sum / n, 0.0, 5.0 * expected / std::sqrt(n));
+}
+
+TEST(Measurement, IonosphericGradientErrorVanishesOverheadAndGrowsTowardTheHorizon) {
+  // Gradients only: the error of a satellite is obliquity x (gradient . pierce-point offset),
+  // zero at the zenith; its spread across seeds grows with the pierce point's distance.
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c;
+  c.errors = ErrorSwitches{true, false, false, false, false, false};
+  c.iono_model = IonoModel::kPaperVtec;
+  c.iono_common_error_fraction = 0.0;
+  c.iono_satellite_error_fraction = 0.0;
+  const Vec3 p = ecef_from_geodetic(kSite);
+  std::map<int, std::pair<double, double>> err2_and_el;  // PRN -> (sum of error^2, elevation)
+  const int n = 200;
+  for (std::uint64_t seed = 1; seed <= static_cast<std::uint64_t>(n); ++seed) {
+    c.seed = seed;
+    MeasurementGenerator gen(nav, c);
+    for (const SatMeasurement& m : gen.generate(kStart, p).sats) {
+      const double model = iono_paper_mapping(m.dir.el_rad) * iono_zenith_delay_m(12.0, kGpsL1_Hz);
+      auto& [e2, el] = err2_and_el[m.prn];
+      e2 += (m.iono_l1_m - model) * (m.iono_l1_m - model);
+      el = m.dir.el_rad;
+    }
+  }
+  double highest_el = 0, rms_highest = 0, lowest_el = kPi, rms_lowest = 0;
+  for (const auto& [prn, v] : err2_and_el) {
+    const double r = std::sqrt(v.first / n);
+    if (v.second > highest_el) highest_el = v.second, rms_highest = r;
+    if (v.second < lowest_el) lowest_el = v.second, rms_lowest = r;
+  }
+  EXPECT_LT(rms_highest, 0.3);  // a high satellite's pierce point is near the receiver
+  EXPECT_GT(rms_lowest, 3.0 * rms_highest);
 }
 
 TEST(Measurement, TrackingThresholdDropsWeakSignals) {
