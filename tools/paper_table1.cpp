@@ -113,6 +113,7 @@ int main(int argc, char** argv) {
       c.vtec_tecu = kPaperValidationVtec_tecu;
       c.iono_common_error_fraction = 0.0;
       c.iono_satellite_error_fraction = 0.0;
+      c.iono_gradient_sigma_m_per_deg = 0.0;
       c.meteo = paper_meteo;
       c.tropo_wet_sigma_m = 0.0;
       c.sat_error_model = SatErrorModel::kPaper;
