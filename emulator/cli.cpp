@@ -29,6 +29,9 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   add_spp_command(app, spp);
   ObsOptions obs;
   add_obs_command(app, obs);
+  const auto imu = add_imu_command(app);
+  const auto allan = add_allan_command(app);
+  const auto deadreckon = add_deadreckon_command(app);
 
   try {
     app.parse(argc, argv);
@@ -42,6 +45,9 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
     if (app.got_subcommand("sky")) return run_sky(sky, out, err);
     if (app.got_subcommand("spp")) return run_spp(spp, out, err);
     if (app.got_subcommand("obs")) return run_obs(obs, out, err);
+    if (app.got_subcommand("imu")) return run_imu(*imu, out, err);
+    if (app.got_subcommand("allan")) return run_allan(*allan, out, err);
+    if (app.got_subcommand("deadreckon")) return run_deadreckon(*deadreckon, out, err);
   } catch (const InputError& e) {
     err << "navemu: " << e.what() << "\n";
     return 1;

@@ -6,6 +6,7 @@
 #include <iosfwd>
 #include <optional>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,5 +68,17 @@ struct ObsOptions {
 };
 void add_obs_command(CLI::App& app, ObsOptions& opt);
 int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err);
+
+// IMU commands (emulator/imu_command.cpp, allan_command.cpp, deadreckon_command.cpp). Each
+// options struct is owned by its file's add_* function, which may add fields.
+struct ImuOptions;
+struct AllanOptions;
+struct DeadreckonOptions;
+std::shared_ptr<ImuOptions> add_imu_command(CLI::App& app);
+int run_imu(const ImuOptions& opt, std::ostream& out, std::ostream& err);
+std::shared_ptr<AllanOptions> add_allan_command(CLI::App& app);
+int run_allan(const AllanOptions& opt, std::ostream& out, std::ostream& err);
+std::shared_ptr<DeadreckonOptions> add_deadreckon_command(CLI::App& app);
+int run_deadreckon(const DeadreckonOptions& opt, std::ostream& out, std::ostream& err);
 
 }  // namespace navemu

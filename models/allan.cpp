@@ -1,0 +1,3 @@
+#include "models/allan.hpp"
+
+namespace navemu {}  // namespace navemu

@@ -1,0 +1,3 @@
+#include "models/imu_kinematics.hpp"
+
+namespace navemu {}  // namespace navemu

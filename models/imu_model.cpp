@@ -1,0 +1,3 @@
+#include "models/imu_model.hpp"
+
+namespace navemu {}  // namespace navemu

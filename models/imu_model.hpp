@@ -1,0 +1,104 @@
+#pragma once
+// MEMS accelerometer and gyroscope error models, in two parameterisations:
+//  - the paper's (Durst & Goodin section 2.2): thermal noise from the spring-mass design,
+//    quantization from the Allan-variance method, first-order Gauss-Markov bias with
+//    correlation time and zero offset, null offsets per axis;
+//  - the datasheet's (IEEE Std 952 / 1293 style): white-noise density, bias instability,
+//    rate/acceleration random walk, turn-on bias, scale factor and nonlinearity,
+//    misalignment, g-sensitivity, temperature coefficients, saturation, resolution,
+//    output low-pass filter, decimation and latency.
+// Both map onto one plain parameter struct per sensor triad (ImuSensorParams).
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "models/geodesy.hpp"
+#include "models/imu_kinematics.hpp"
+#include "models/random.hpp"
+#include "models/time.hpp"
+
+namespace navemu {
+
+// One sensor triad (3 accelerometers or 3 gyroscopes). Units: "unit" = m/s^2 for the
+// accelerometer, rad/s for the gyroscope.
+struct ImuSensorParams {
+  double white_density = 0.0;            // unit/sqrt(Hz) (VRW / ARW)
+  double bias_instability = 0.0;         // unit, 1-sigma of the Gauss-Markov bias
+  double bias_instability_tau_s = 100.0; // its correlation time
+  double random_walk = 0.0;              // unit*sqrt(Hz) (rate random walk / acc. random walk)
+  double turn_on_bias_sigma = 0.0;       // unit, drawn once per run
+  Vec3 null_offset = Vec3::Zero();       // unit, fixed per axis (the paper's zero offsets)
+  double scale_factor_sigma_ppm = 0.0;   // drawn once per run, per axis
+  double nonlinearity_ppm = 0.0;         // of full scale, quadratic
+  double misalignment_sigma_rad = 0.0;   // cross-axis terms drawn once per run
+  double g_sensitivity = 0.0;            // gyroscope only: rad/s per m/s^2
+  double bias_temp_coeff_per_c = 0.0;    // unit per degC from the reference temperature
+  double scale_temp_coeff_ppm_per_c = 0.0;
+  double full_scale = 0.0;               // saturation, unit; 0: none
+  double resolution = 0.0;               // LSB, unit; 0: none
+};
+
+struct ImuParams {
+  std::string name;
+  ImuSensorParams accel;
+  ImuSensorParams gyro;
+  double internal_rate_hz = 1000.0;  // rate of the sensor's own sampling
+  double output_rate_hz = 125.0;     // after the low-pass filter and decimation
+  double bandwidth_hz = 0.0;         // output low-pass filter (first order); 0: none
+  double latency_s = 0.0;            // sample latency
+  double reference_temperature_c = 25.0;
+};
+
+// The paper's parameterisation (section 2.2) and its mapping onto ImuParams.
+struct PaperImuParams {
+  // Accelerometer thermal noise sqrt(4 kB T w0 / (m Q)) (m/s^2/sqrt(Hz)).
+  double temperature_k = 300.0;
+  double accel_omega0_radps = 2.0 * 3.14159265358979 * 2000.0;
+  double accel_proof_mass_kg = 1e-9;
+  // Gyroscope thermal noise (Q / k) sqrt(4 kB T R B) (rad/s ... see the mapping notes).
+  double gyro_k = 1.0;
+  double gyro_r_ohm = 1e6;
+  double gyro_bandwidth_hz = 50.0;
+  double quality_factor = 0.2;  // Q
+  // The paper's quantization term 0.01745 sqrt(3 Q^2 / t), t the run time in hours.
+  double run_time_h = 1.0;
+  // First-order Gauss-Markov bias: correlation time and the "mean offset from zero".
+  double tau_s = 10.0;
+  double accel_white_noise = 0.12;  // the paper's "white noise process" coefficients
+  double gyro_white_noise = 0.15;
+  Vec3 accel_null_offset = Vec3::Zero();
+  Vec3 gyro_null_offset = Vec3::Zero();
+};
+ImuParams imu_params_from_paper(const PaperImuParams& p, double output_rate_hz);
+
+struct ImuSample {
+  GpsTime t;                 // the measurement's time of validity
+  Vec3 f_body_mps2 = Vec3::Zero();
+  Vec3 w_body_radps = Vec3::Zero();
+  double temperature_c = 25.0;
+  bool saturated = false;
+};
+
+// The sensor: advanced at its internal rate, emits at its output rate. One random stream per
+// error term and axis.
+class ImuModel {
+ public:
+  ImuModel(const ImuParams& p, std::uint64_t seed);
+  ~ImuModel();
+  ImuModel(const ImuModel&) = delete;
+  ImuModel& operator=(const ImuModel&) = delete;
+
+  // Feeds the ideal output valid at time t (called at the internal rate, increasing times);
+  // returns true and fills `out` when an output sample is due.
+  bool step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuSample& out);
+  const ImuParams& params() const { return p_; }
+
+ private:
+  struct State;
+  ImuParams p_;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace navemu
