@@ -48,6 +48,9 @@ IdealImu ideal_imu_static(const Geodetic& where, const Quat& q_ned_from_body);
 // The ideal output at `now` from three consecutive truth states (before, now, after):
 // w_ib = w_nb + C_bn (w_ie + w_en), f = C_bn (dv/dt + (2 w_ie + w_en) x v - g), with dv/dt and
 // w_nb by central differences. Provided f/w in `now` take precedence.
+// (w_nb: rotation vector of q_before^-1 q_after over the span; dv/dt = C_nb (dv_body/dt +
+// w_nb x v_body) with the body-frame velocity differenced; exact for constant body rate and
+// velocity, e.g. circles at constant speed. Details in imu_kinematics.cpp.)
 IdealImu ideal_imu_from_kinematics(const ImuTruth& before, const ImuTruth& now,
                                    const ImuTruth& after);
 
@@ -74,5 +77,14 @@ class Strapdown {
 // Roll, pitch, yaw (rad, ZYX Euler) of q_ned_from_body, and back.
 Vec3 euler_rpy_from_quat(const Quat& q_ned_from_body);
 Quat quat_from_euler_rpy(const Vec3& rpy_rad);
+
+// WGS-84 radii of curvature (m) at a geodetic latitude (deg): meridian (north-south) and
+// transverse (prime vertical, east-west).
+double meridian_radius_m(double lat_deg);
+double transverse_radius_m(double lat_deg);
+
+// The unit quaternion of a rotation vector (axis times angle, rad), and back (angle in [0, pi]).
+Quat quat_from_rotation_vector(const Vec3& phi_rad);
+Vec3 rotation_vector_from_quat(const Quat& q);
 
 }  // namespace navemu
