@@ -24,8 +24,11 @@ namespace navemu {
 // One sensor triad (3 accelerometers or 3 gyroscopes). Units: "unit" = m/s^2 for the
 // accelerometer, rad/s for the gyroscope.
 struct ImuSensorParams {
-  double white_density = 0.0;            // unit/sqrt(Hz) (VRW / ARW)
-  double bias_instability = 0.0;         // unit, 1-sigma of the Gauss-Markov bias
+  double white_density = 0.0;            // unit/sqrt(Hz) (VRW / ARW), as seen at the output:
+                                         // the Allan deviation at tau = 1 s
+  double bias_instability = 0.0;         // unit, IEEE Std 952 bias-instability coefficient B:
+                                         // realised as a Gauss-Markov bias of 1-sigma
+                                         // kGmSigmaPerBiasInstability * B (see below)
   double bias_instability_tau_s = 100.0; // its correlation time
   double random_walk = 0.0;              // unit*sqrt(Hz) (rate random walk / acc. random walk)
   double turn_on_bias_sigma = 0.0;       // unit, drawn once per run
@@ -39,6 +42,20 @@ struct ImuSensorParams {
   double full_scale = 0.0;               // saturation, unit; 0: none
   double resolution = 0.0;               // LSB, unit; 0: none
 };
+
+// A first-order Gauss-Markov process of stationary 1-sigma s and correlation time T has the
+// Allan variance (IEEE Std 952-1997 annex C; El-Sheimy, Hou & Niu 2008, IEEE Trans. Instrum.
+// Meas. 57(1))
+//   sigma_A^2(tau) = (2 s^2 T / tau) [1 - (T / (2 tau)) (3 - 4 e^(-tau/T) + e^(-2 tau/T))],
+// whose maximum is 0.61736 s (= 0.4365 sqrt(q T), q = 2 s^2 / T) at tau = 1.8926 T. Bias
+// instability B shows in the Allan deviation as the flicker floor sqrt(2 ln 2 / pi) B =
+// 0.66428 B (IEEE Std 952-1997 C.1.3). Mapping B to s = 0.66428 / 0.61736 B = 1.07600 B makes
+// the Gauss-Markov bump peak at exactly that floor value, 0.664 B, around tau = 1.89 T.
+inline constexpr double kAllanFlickerFloorPerBiasInstability = 0.66428247;
+inline constexpr double kGmAllanPeakPerSigma = 0.61736428;
+inline constexpr double kGmAllanPeakTauPerCorrelationTime = 1.8926;
+inline constexpr double kGmSigmaPerBiasInstability =
+    kAllanFlickerFloorPerBiasInstability / kGmAllanPeakPerSigma;
 
 struct ImuParams {
   std::string name;
@@ -66,15 +83,25 @@ struct PaperImuParams {
   double run_time_h = 1.0;
   // First-order Gauss-Markov bias: correlation time and the "mean offset from zero".
   double tau_s = 10.0;
-  double accel_white_noise = 0.12;  // the paper's "white noise process" coefficients
-  double gyro_white_noise = 0.15;
-  Vec3 accel_null_offset = Vec3::Zero();
-  Vec3 gyro_null_offset = Vec3::Zero();
+  double accel_white_noise = 0.12;  // the paper's "white noise process" coefficients: per-sample
+  double gyro_white_noise = 0.15;   // 1-sigma at the output rate, m/s^2 and deg/s (section 3)
+  Vec3 accel_null_offset = Vec3::Zero();  // m/s^2
+  Vec3 gyro_null_offset = Vec3::Zero();   // rad/s
+  // 1-sigma of the Gauss-Markov bias about the null offset (m/s^2, rad/s).
+  double accel_gm_sigma = 0.0;
+  double gyro_gm_sigma = 0.0;
 };
 ImuParams imu_params_from_paper(const PaperImuParams& p, double output_rate_hz);
 
+// The per-sample 1-sigma of the white noise at the internal rate that gives `white_density` at
+// the output after the first-order low-pass filter and decimation of `p` (equal to
+// white_density * sqrt(internal_rate_hz) without filter and decimation).
+double internal_white_sigma(const ImuParams& p, double white_density);
+// Internal samples per output sample.
+int imu_decimation(const ImuParams& p);
+
 struct ImuSample {
-  GpsTime t;                 // the measurement's time of validity
+  GpsTime t;                 // when the sample is output: its time of validity + latency_s
   Vec3 f_body_mps2 = Vec3::Zero();
   Vec3 w_body_radps = Vec3::Zero();
   double temperature_c = 25.0;

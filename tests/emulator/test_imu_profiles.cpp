@@ -1,0 +1,274 @@
+// IMU profiles (emulator/imu_profile.hpp): every shipped profile loads; units convert once; bad
+// files give "<file>:<line>: <key>: <problem>". And `navemu imu` run in-process.
+
+#include "emulator/imu_profile.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "emulator/cli.hpp"
+#include "models/errors.hpp"
+
+namespace navemu {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::filesystem::path write_temp(const std::string& name, const std::string& content) {
+  const auto p = std::filesystem::path(::testing::TempDir()) / name;
+  std::ofstream(p) << content;
+  return p;
+}
+
+// The message of the InputError that loading `content` raises ("" when none).
+std::string load_error(const std::string& name, const std::string& content) {
+  const auto file = write_temp(name, content);
+  try {
+    load_imu_profile_file(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::path(::testing::TempDir()) / name).string();
+}
+
+const std::string kMinimal =
+    "model: datasheet\n"                              // 1
+    "output_rate_hz: 100\n"                           // 2
+    "accel_white_density_mps2_per_rthz: 1e-3\n"       // 3
+    "gyro_white_density_radps_per_rthz: 1e-4\n";      // 4
+
+TEST(ImuProfile, EveryShippedProfileLoadsAndRuns) {
+  const auto names = available_imu_profiles();
+  for (const char* expected : {"paper_phidget", "paper_fig2_gyro", "bmi160", "adis16448",
+                               "xsens_mti100", "microstrain_gx4", "tactical"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  for (const std::string& n : names) {
+    const ImuProfile prof = load_imu_profile(n);
+    EXPECT_EQ(prof.name, n);
+    const ImuParams p = imu_params_for_run(prof, 600.0);
+    EXPECT_GT(p.accel.white_density, 0.0) << n;
+    EXPECT_GT(p.gyro.white_density, 0.0) << n;
+    ImuModel m(p, 1);  // validates the parameters
+    ImuSample s;
+    EXPECT_TRUE(m.step(GpsTime{0}, IdealImu{}, p.reference_temperature_c, s)) << n;
+  }
+}
+
+TEST(ImuProfile, UnitsConvertedToSi) {
+  const ImuParams t = load_imu_profile("tactical").params;
+  EXPECT_NEAR(t.gyro.white_density, 0.09 * kPi / 180.0 / 60.0, 1e-15);  // deg/sqrt(h)
+  EXPECT_NEAR(t.gyro.bias_instability, 1.0 * kPi / 180.0 / 3600.0, 1e-15);  // deg/h
+  EXPECT_NEAR(t.accel.white_density, 0.06 / 60.0, 1e-15);                  // m/s/sqrt(h)
+  EXPECT_NEAR(t.accel.bias_instability, 0.05e-3 * 9.80665, 1e-15);         // mg
+  EXPECT_NEAR(t.gyro.full_scale, 1000.0 * kPi / 180.0, 1e-12);
+  const ImuProfile fig2 = load_imu_profile("paper_fig2_gyro");
+  EXPECT_EQ(fig2.model, "paper");
+  EXPECT_NEAR(fig2.paper.gyro_null_offset.x(), 3.0 * kPi / 180.0 / 3600.0, 1e-15);
+  // A paper profile's quantization term uses the run's duration unless the file fixes it.
+  EXPECT_GT(imu_params_for_run(fig2, 60.0).gyro.white_density,
+            imu_params_for_run(fig2, 1200.0).gyro.white_density);
+  // By path as well as by name.
+  const auto file = write_temp("minimal.yaml", kMinimal);
+  const ImuProfile by_path = load_imu_profile(file.string());
+  EXPECT_EQ(by_path.name, "minimal");
+  EXPECT_EQ(by_path.params.internal_rate_hz, 100.0);
+}
+
+TEST(ImuProfile, RateOverride) {
+  const ImuProfile prof = load_imu_profile("bmi160");  // 1600 Hz internal, 200 Hz output
+  const ImuParams p = imu_params_for_run(prof, 10.0, 100.0);
+  EXPECT_EQ(p.output_rate_hz, 100.0);
+  EXPECT_EQ(p.internal_rate_hz, 1600.0);
+  const ImuParams q = imu_params_for_run(prof, 10.0, 300.0);
+  EXPECT_EQ(q.internal_rate_hz, 1800.0);
+}
+
+TEST(ImuProfile, BadInputNamesFileLineAndKey) {
+  auto expect_error = [](const std::string& name, const std::string& content,
+                         const std::string& expected_tail) {
+    const std::string msg = load_error(name, content);
+    EXPECT_EQ(msg, temp_path(name) + ":" + expected_tail) << name;
+  };
+  expect_error("unknown_key.yaml", kMinimal + "bogus_key: 1\n",
+               "5: bogus_key: unknown key for a 'datasheet' profile");
+  expect_error("unknown_unit.yaml", kMinimal + "gyro_bias_instability_furlongs: 1\n",
+               "5: gyro_bias_instability_furlongs: unknown unit; use one of "
+               "gyro_bias_instability_radps, gyro_bias_instability_dps, "
+               "gyro_bias_instability_degph");
+  expect_error("missing.yaml",
+               "model: datasheet\noutput_rate_hz: 100\naccel_white_density_mps2_per_rthz: 1e-3\n",
+               "1: gyro_white_density_radps_per_rthz: missing required key");
+  expect_error("negative_tau.yaml", kMinimal + "accel_bias_instability_tau_s: -5\n",
+               "5: accel_bias_instability_tau_s: must be positive (got -5)");
+  expect_error("negative_sigma.yaml", kMinimal + "gyro_bias_instability_degph: -2\n",
+               "5: gyro_bias_instability_degph: must not be negative (got -2)");
+  expect_error("non_numeric.yaml", kMinimal + "accel_random_walk_mps3_per_rthz: abc\n",
+               "5: accel_random_walk_mps3_per_rthz: 'abc' is not a number");
+  expect_error("nan.yaml", kMinimal + "latency_s: .nan\n", "5: latency_s: '.nan' is not finite");
+  expect_error("twice.yaml", kMinimal + "gyro_white_density_deg_per_rth: 0.1\n",
+               "5: gyro_white_density_deg_per_rth: given twice (in different units)");
+  expect_error("vector.yaml", kMinimal + "gyro_null_offset_degph: [1, 2]\n",
+               "5: gyro_null_offset_degph: expected [x, y, z]");
+  expect_error("model.yaml", "model: magic\noutput_rate_hz: 100\n",
+               "1: model: must be 'datasheet' or 'paper'");
+  expect_error("no_model.yaml", "output_rate_hz: 100\n",
+               "1: model: missing required key (datasheet or paper)");
+  expect_error("rates.yaml", kMinimal + "internal_rate_hz: 250\n",
+               "5: internal_rate_hz: must be a whole multiple of output_rate_hz");
+  expect_error("paper_key.yaml", kMinimal + "quality_factor: 0.2\n",
+               "5: quality_factor: unknown key for a 'datasheet' profile");
+  expect_error("paper_missing.yaml",
+               "model: paper\noutput_rate_hz: 125\nquality_factor: 0.2\n"
+               "gm_correlation_time_s: 10\naccel_white_noise_mps2: 0.12\n",
+               "1: gyro_white_noise_dps: missing required key");
+  expect_error("syntax.yaml", "model: datasheet\noutput_rate_hz: [100\n",
+               "3: YAML syntax error: end of sequence flow not found");
+}
+
+TEST(ImuProfile, UnknownProfileListsAvailable) {
+  try {
+    load_imu_profile("no_such_imu");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("--profile: unknown IMU profile 'no_such_imu' (available: "),
+              std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find("bmi160"), std::string::npos);
+  }
+}
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+CliRun navemu(std::vector<std::string> args) {
+  args.insert(args.begin(), "navemu");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  std::ostringstream out, err;
+  CliRun r;
+  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::vector<double>> read_rows(const std::string& path, std::string& header) {
+  std::ifstream in(path);
+  std::getline(in, header);
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<double> r;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) r.push_back(std::stod(cell));
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+TEST(ImuCli, WritesOneRowPerOutputSample) {
+  const std::string out = temp_path("xsens.csv");
+  const CliRun r = navemu({"imu", "--profile", "xsens_mti100", "--duration", "2", "--out", out});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("200 samples written"), std::string::npos) << r.err;
+  std::string header;
+  const auto rows = read_rows(out, header);
+  EXPECT_EQ(header, "time_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c");
+  ASSERT_EQ(rows.size(), 200u);
+  EXPECT_DOUBLE_EQ(rows[0][0], 0.002);  // the profile's 2 ms latency
+  EXPECT_DOUBLE_EQ(rows[1][0], 0.012);
+  EXPECT_DOUBLE_EQ(rows[199][0], 1.992);
+  for (const auto& row : rows) ASSERT_EQ(row.size(), 8u);
+  // --rate overrides the output rate.
+  const CliRun fast =
+      navemu({"imu", "--profile", "xsens_mti100", "--duration", "2", "--rate", "200", "--out", out});
+  ASSERT_EQ(fast.code, 0) << fast.err;
+  EXPECT_EQ(read_rows(out, header).size(), 400u);
+}
+
+TEST(ImuCli, SameSeedByteIdenticalOtherSeedDifferent) {
+  const std::string a = temp_path("a.csv"), b = temp_path("b.csv"), c = temp_path("c.csv");
+  for (const auto& [file, seed] : {std::pair{a, "5"}, std::pair{b, "5"}, std::pair{c, "6"}}) {
+    const CliRun r = navemu({"imu", "--profile", "paper_phidget", "--duration", "5", "--seed", seed,
+                             "--out", file});
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  EXPECT_EQ(slurp(a), slurp(b));
+  EXPECT_NE(slurp(a), slurp(c));
+}
+
+// A static, level, north-facing IMU with white noise only: mean specific force (0, 0, -g) and
+// mean rate the Earth rate projected on the body axes (W cos(lat), 0, -W sin(lat)).
+TEST(ImuCli, StaticLevelImuSensesGravityAndEarthRate) {
+  const auto profile = write_temp("white_only.yaml",
+                                  "model: datasheet\n"
+                                  "output_rate_hz: 100\n"
+                                  "internal_rate_hz: 400\n"
+                                  "bandwidth_hz: 40\n"
+                                  "accel_white_density_mps2_per_rthz: 1e-3\n"
+                                  "gyro_white_density_radps_per_rthz: 1e-5\n");
+  const std::string out = temp_path("static.csv");
+  const CliRun r = navemu({"imu", "--profile", profile.string(), "--duration", "600", "--at",
+                           "32.3,-90.9,60", "--seed", "3", "--out", out});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string header;
+  const auto rows = read_rows(out, header);
+  ASSERT_EQ(rows.size(), 60000u);
+  std::vector<double> mean(8, 0.0);
+  for (const auto& row : rows)
+    for (std::size_t i = 0; i < 8; ++i) mean[i] += row[i] / static_cast<double>(rows.size());
+  // Standard error of a 600-s mean of white noise: density / sqrt(600 s); bound 5 of them.
+  const double se_f = 5.0 * 1e-3 / std::sqrt(600.0), se_w = 5.0 * 1e-5 / std::sqrt(600.0);
+  const double lat = 32.3 * kPi / 180.0, we = 7.292115e-5;
+  // Normal gravity at 32.3 deg, 60 m (Somigliana with the free-air gradient): 9.7949 m/s^2.
+  EXPECT_NEAR(mean[1], 0.0, se_f + 1e-4);  // + the ~1e-5 north component of normal gravity
+  EXPECT_NEAR(mean[2], 0.0, se_f);
+  EXPECT_NEAR(mean[3], -9.7949, se_f + 2e-4);
+  EXPECT_NEAR(mean[4], we * std::cos(lat), se_w);
+  EXPECT_NEAR(mean[5], 0.0, se_w);
+  EXPECT_NEAR(mean[6], -we * std::sin(lat), se_w);
+  EXPECT_NEAR(mean[7], 25.0, 1e-9);
+}
+
+TEST(ImuCli, BadInputGivesOneLineError) {
+  const std::string out = temp_path("bad.csv");
+  const CliRun unknown = navemu({"imu", "--profile", "nope", "--duration", "1", "--out", out});
+  EXPECT_EQ(unknown.code, 1);
+  EXPECT_NE(unknown.err.find("available: "), std::string::npos) << unknown.err;
+  EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1);
+  const CliRun negative = navemu({"imu", "--profile", "bmi160", "--duration", "-3", "--out", out});
+  EXPECT_EQ(negative.code, 1);
+  EXPECT_EQ(negative.err, "navemu: --duration: must be positive (got -3)\n");
+  const CliRun truth =
+      navemu({"imu", "--profile", "bmi160", "--duration", "1", "--truth", "x.csv", "--out", out});
+  EXPECT_EQ(truth.code, 1);
+  const CliRun at = navemu(
+      {"imu", "--profile", "bmi160", "--duration", "1", "--at", "95,0,0", "--out", out});
+  EXPECT_EQ(at.code, 1);
+  const auto bad = write_temp("bad_profile.yaml", kMinimal + "gyro_bias_instability_tau_s: 0\n");
+  const CliRun file = navemu({"imu", "--profile", bad.string(), "--duration", "1", "--out", out});
+  EXPECT_EQ(file.code, 1);
+  EXPECT_EQ(file.err, "navemu: " + bad.string() +
+                          ":5: gyro_bias_instability_tau_s: must be positive (got 0)\n");
+  const CliRun missing = navemu({"imu", "--profile", "bmi160", "--duration", "1"});
+  EXPECT_EQ(missing.code, 2);
+}
+
+}  // namespace
+}  // namespace navemu
