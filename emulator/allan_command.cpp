@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "emulator/commands.hpp"
+#include "emulator/numeric_csv.hpp"
 #include "models/allan.hpp"
 #include "models/errors.hpp"
 
@@ -62,18 +63,6 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot open the file");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(0, std::ios::beg);
-  std::string text(static_cast<std::size_t>(size > 0 ? size : 0), '\0');
-  if (size > 0) in.read(text.data(), size);
-  if (!in) throw InputError(path, 0, "", "cannot read the file");
-  return text;
-}
-
 struct Table {
   std::vector<std::string> names;          // the requested columns
   std::vector<std::vector<double>> data;   // one vector per requested column
@@ -81,123 +70,28 @@ struct Table {
   std::vector<int> lines;                  // file line of each row (for time errors)
 };
 
-// Reads the requested columns (and time_s when `want_time`) of a CSV file with a header row.
-// Blank lines and lines starting with '#' are skipped. Every error names file, line, column.
+// Reads the requested columns (and time_s when `want_time`) of a CSV file with a header row
+// through the shared numeric reader (file:line:column errors).
 Table read_columns(const std::string& path, const std::vector<std::string>& wanted,
                    bool want_time) {
-  const std::string text = read_whole_file(path);
-  std::string_view rest(text);
-  int line_no = 0;
-  auto next_line = [&](std::string_view& line) {
-    if (rest.empty()) return false;
-    const std::size_t nl = rest.find('\n');
-    line = rest.substr(0, nl);
-    rest = nl == std::string_view::npos ? std::string_view{} : rest.substr(nl + 1);
-    ++line_no;
-    return true;
-  };
-
-  std::string_view line;
-  bool have_header = false;
-  while (next_line(line)) {
-    const std::string_view t = trim(line);
-    if (t.empty() || t.front() == '#') continue;
-    have_header = true;
-    break;
-  }
-  if (!have_header) throw InputError(path, 0, "", "empty file: no header row");
-  const int header_line = line_no;
-  std::vector<std::string> header;
-  for (std::size_t pos = 0;;) {
-    const std::size_t comma = line.find(',', pos);
-    header.emplace_back(trim(line.substr(pos, comma == std::string_view::npos ? comma : comma - pos)));
-    if (comma == std::string_view::npos) break;
-    pos = comma + 1;
-  }
-  auto index_of = [&](std::string_view name) -> std::optional<std::size_t> {
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name) return i;
-    return std::nullopt;
-  };
-
+  const std::string time_name(kTimeColumn);
+  NumericCsvReader csv(path, wanted, want_time ? std::vector<std::string>{time_name}
+                                               : std::vector<std::string>{});
+  if (want_time && !csv.has(time_name))
+    throw InputError(path, csv.line(), time_name,
+                     "no such column: give the sample rate with --rate");
   Table table;
   table.names = wanted;
-  // field index -> slot (0..wanted-1 the data columns, wanted.size() the time column).
-  std::vector<int> slot_of(header.size(), -1);
-  std::vector<std::size_t> field_of;
-  for (std::size_t c = 0; c < wanted.size(); ++c) {
-    const auto i = index_of(wanted[c]);
-    if (!i) {
-      std::string have;
-      for (const std::string& h : header) have += (have.empty() ? "" : ",") + h;
-      throw InputError(path, header_line, wanted[c],
-                       fmt::format("no such column in the header ({})", have));
-    }
-    if (slot_of[*i] >= 0)
-      throw InputError(path, header_line, wanted[c], "column requested twice");
-    slot_of[*i] = static_cast<int>(c);
-    field_of.push_back(*i);
-  }
-  if (want_time) {
-    const auto i = index_of(kTimeColumn);
-    if (!i)
-      throw InputError(path, header_line, std::string(kTimeColumn),
-                       "no such column: give the sample rate with --rate");
-    if (slot_of[*i] < 0) slot_of[*i] = static_cast<int>(wanted.size());
-    field_of.push_back(*i);
-  }
-  std::size_t needed_fields = 0;
-  for (std::size_t f : field_of) needed_fields = std::max(needed_fields, f + 1);
-
-  // Rows: about the file size over the header's length; a reservation, not a limit.
-  const std::size_t estimate = text.size() / std::max<std::size_t>(line.size(), 8) + 16;
   table.data.assign(wanted.size(), {});
-  for (auto& col : table.data) col.reserve(estimate);
-  if (want_time) table.time_s.reserve(estimate);
-  table.lines.reserve(estimate);
-
-  std::vector<double> values(wanted.size() + 1, 0.0);
-  const std::string time_name(kTimeColumn);
-  while (next_line(line)) {
-    const std::string_view t = trim(line);
-    if (t.empty() || t.front() == '#') continue;
-    std::size_t field = 0, pos = 0;
-    while (field < needed_fields) {
-      const std::size_t comma = line.find(',', pos);
-      const int slot = slot_of[field];
-      if (slot >= 0) {
-        const std::size_t s = static_cast<std::size_t>(slot);
-        const std::string& name = s < wanted.size() ? wanted[s] : time_name;
-        const std::string_view cell =
-            trim(line.substr(pos, comma == std::string_view::npos ? comma : comma - pos));
-        double x = 0.0;
-        const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), x);
-        if (cell.empty()) throw InputError(path, line_no, name, "empty value");
-        if (ec != std::errc() || end != cell.data() + cell.size())
-          throw InputError(path, line_no, name, fmt::format("not a number: '{}'", cell));
-        if (!std::isfinite(x))
-          throw InputError(path, line_no, name, fmt::format("not a finite number: '{}'", cell));
-        values[s] = x;
-      }
-      ++field;
-      if (comma == std::string_view::npos) break;
-      pos = comma + 1;
-    }
-    if (field < needed_fields) {
-      for (std::size_t f = field; f < needed_fields; ++f)
-        if (slot_of[f] >= 0) {
-          const std::size_t s = static_cast<std::size_t>(slot_of[f]);
-          throw InputError(path, line_no, s < wanted.size() ? wanted[s] : time_name,
-                           fmt::format("missing value (the row has {} fields)", field));
-        }
-    }
+  std::vector<double> values;
+  while (csv.next(values)) {
     for (std::size_t c = 0; c < wanted.size(); ++c) table.data[c].push_back(values[c]);
-    if (want_time) table.time_s.push_back(values[wanted.size()]);
-    table.lines.push_back(line_no);
+    if (want_time) table.time_s.push_back(values.back());
+    table.lines.push_back(csv.line());
   }
   const std::size_t rows = table.lines.size();
   if (rows < kMinRows)
-    throw InputError(path, line_no, "",
+    throw InputError(path, csv.line(), "",
                      fmt::format("{} data rows: the Allan deviation needs at least {}", rows,
                                  kMinRows));
   return table;

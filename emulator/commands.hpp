@@ -16,6 +16,11 @@
 
 namespace navemu {
 
+// Comma-separated finite numbers, one per name; InputError naming `field` and the expected
+// `form` otherwise.
+std::vector<double> parse_numbers(const std::string& text, const std::string& field,
+                                  const std::vector<std::string>& names, const char* form);
+
 // "LAT,LON,H" in degrees, degrees and metres above the ellipsoid; InputError otherwise.
 Geodetic parse_geodetic(const std::string& text, const std::string& field);
 

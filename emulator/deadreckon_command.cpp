@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "emulator/commands.hpp"
+#include "emulator/numeric_csv.hpp"
 #include "models/errors.hpp"
 #include "models/geodesy.hpp"
 #include "models/imu_kinematics.hpp"
@@ -45,101 +46,30 @@ struct ImuRow {
   Vec3 w_body_radps = Vec3::Zero();
 };
 
-constexpr std::array<std::string_view, 7> kImuColumns = {
+const std::array<std::string, 7> kImuColumns = {
     "time_s", "f_x_mps2", "f_y_mps2", "f_z_mps2", "w_x_radps", "w_y_radps", "w_z_radps"};
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split_commas(std::string_view line) {
-  std::vector<std::string_view> out;
-  for (std::size_t pos; (pos = line.find(',')) != std::string_view::npos;) {
-    out.push_back(trim(line.substr(0, pos)));
-    line.remove_prefix(pos + 1);
-  }
-  out.push_back(trim(line));
-  return out;
-}
-
-bool skippable(std::string_view line) {
-  const std::string_view t = trim(line);
-  return t.empty() || t.front() == '#';
-}
-
-// A streaming reader: the header names the columns (any order, extra columns ignored); every
-// value must be a finite number and time must increase.
+// The IMU rows of a sample file, through the shared numeric CSV reader.
 class ImuCsvReader {
  public:
-  explicit ImuCsvReader(std::string path) : path_(std::move(path)), in_(path_) {
-    if (!in_) throw InputError(path_, 0, "", "cannot open for reading");
-    std::string line;
-    while (std::getline(in_, line)) {
-      ++line_;
-      if (!skippable(line)) break;
-      line.clear();
-    }
-    if (skippable(line)) throw InputError(path_, line_, "", "no header row");
-    const std::vector<std::string_view> names = split_commas(line);
-    for (std::size_t c = 0; c < kImuColumns.size(); ++c) {
-      std::size_t found = names.size();
-      for (std::size_t i = 0; i < names.size(); ++i)
-        if (names[i] == kImuColumns[c]) {
-          found = i;
-          break;
-        }
-      if (found == names.size())
-        throw InputError(path_, line_, std::string(kImuColumns[c]), "missing column");
-      index_[c] = found;
-    }
-  }
+  explicit ImuCsvReader(const std::string& path)
+      : csv_(path, {kImuColumns.begin(), kImuColumns.end()}, {}, "time_s") {}
 
-  const std::string& path() const { return path_; }
-  int line() const { return line_; }
+  const std::string& path() const { return csv_.path(); }
+  int line() const { return csv_.line(); }
 
   // The next sample; false at the end of the file.
   bool next(ImuRow& row) {
-    std::string line;
-    while (std::getline(in_, line)) {
-      ++line_;
-      if (skippable(line)) continue;
-      const std::vector<std::string_view> fields = split_commas(line);
-      std::array<double, 7> v{};
-      for (std::size_t c = 0; c < kImuColumns.size(); ++c) {
-        const std::string column(kImuColumns[c]);
-        if (index_[c] >= fields.size())
-          throw InputError(path_, line_, column, "missing value");
-        const std::string_view text = fields[index_[c]];
-        double x = 0.0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
-        if (text.empty() || ec != std::errc() || end != text.data() + text.size())
-          throw InputError(path_, line_, column, fmt::format("not a number: '{}'", text));
-        if (!std::isfinite(x))
-          throw InputError(path_, line_, column, fmt::format("not a finite number: '{}'", text));
-        v[c] = x;
-      }
-      row.t_s = v[0];
-      row.f_body_mps2 = Vec3(v[1], v[2], v[3]);
-      row.w_body_radps = Vec3(v[4], v[5], v[6]);
-      if (last_t_s_ && !(row.t_s > *last_t_s_))
-        throw InputError(path_, line_, "time_s",
-                         fmt::format("time {} s does not increase (previous {} s)", row.t_s,
-                                     *last_t_s_));
-      last_t_s_ = row.t_s;
-      return true;
-    }
-    return false;
+    if (!csv_.next(values_)) return false;
+    row.t_s = values_[0];
+    row.f_body_mps2 = Vec3(values_[1], values_[2], values_[3]);
+    row.w_body_radps = Vec3(values_[4], values_[5], values_[6]);
+    return true;
   }
 
  private:
-  std::string path_;
-  std::ifstream in_;
-  int line_ = 0;
-  std::array<std::size_t, 7> index_{};
-  std::optional<double> last_t_s_;
+  NumericCsvReader csv_;
+  std::vector<double> values_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -275,19 +205,9 @@ class TruthTrack {
 };
 
 Vec3 parse_rpy_deg(const std::string& text) {
-  const std::vector<std::string_view> parts = split_commas(text);
-  if (parts.size() != 3)
-    throw InputError("--initial-rpy", fmt::format("expected ROLL,PITCH,YAW in degrees, got '{}'", text));
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    const std::string_view p = parts[static_cast<std::size_t>(i)];
-    double x = 0.0;
-    const auto [end, ec] = std::from_chars(p.data(), p.data() + p.size(), x);
-    if (p.empty() || ec != std::errc() || end != p.data() + p.size() || !std::isfinite(x))
-      throw InputError("--initial-rpy", fmt::format("not a number: '{}'", p));
-    v[i] = x;
-  }
-  return v;
+  const std::vector<double> v = parse_numbers(text, "--initial-rpy", {"roll", "pitch", "yaw"},
+                                              "ROLL,PITCH,YAW in degrees");
+  return Vec3(v[0], v[1], v[2]);
 }
 
 void print_row(std::ostream& os, double t_s, const DrReport& r, bool headings,

@@ -26,7 +26,8 @@ double parse_number(std::string_view text, const std::string& field, const char*
 
 }  // namespace
 
-Geodetic parse_geodetic(const std::string& text, const std::string& field) {
+std::vector<double> parse_numbers(const std::string& text, const std::string& field,
+                                  const std::vector<std::string>& names, const char* form) {
   std::vector<std::string_view> parts;
   std::string_view rest = text;
   for (std::size_t pos; (pos = rest.find(',')) != std::string_view::npos;) {
@@ -34,12 +35,19 @@ Geodetic parse_geodetic(const std::string& text, const std::string& field) {
     rest.remove_prefix(pos + 1);
   }
   parts.push_back(rest);
-  if (parts.size() != 3)
-    throw InputError(field, fmt::format("expected LAT,LON,H (degrees, degrees, metres above the "
-                                        "WGS-84 ellipsoid), got '{}'",
-                                        text));
-  Geodetic g{parse_number(parts[0], field, "latitude"), parse_number(parts[1], field, "longitude"),
-             parse_number(parts[2], field, "height")};
+  if (parts.size() != names.size())
+    throw InputError(field, fmt::format("expected {}, got '{}'", form, text));
+  std::vector<double> v;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    v.push_back(parse_number(parts[i], field, names[i].c_str()));
+  return v;
+}
+
+Geodetic parse_geodetic(const std::string& text, const std::string& field) {
+  const std::vector<double> v =
+      parse_numbers(text, field, {"latitude", "longitude", "height"},
+                    "LAT,LON,H (degrees, degrees, metres above the WGS-84 ellipsoid)");
+  const Geodetic g{v[0], v[1], v[2]};
   if (std::abs(g.lat_deg) > 90.0)
     throw InputError(field, fmt::format("latitude {} outside [-90, 90] degrees", g.lat_deg));
   if (g.lon_deg < -180.0 || g.lon_deg > 360.0)

@@ -203,7 +203,7 @@ TEST(AllanCli, BadInputsAreOneLineErrorsWithFileLineColumn) {
     EXPECT_NE(r.err.find("does_not_exist.csv: cannot open"), std::string::npos) << r.err;
   }
   expect_error("nocol.csv", good, {"--columns", "w_x_radps,w_q_radps"},
-               "nocol.csv:1: w_q_radps: no such column");
+               "nocol.csv:1: w_q_radps: missing column");
   expect_error("notime.csv", "a,b\n1,2\n", {"--columns", "a"},
                "notime.csv:1: time_s: no such column");
   expect_error("text.csv", with_line(good, 6, "0.04,0,0,-9.8,0.001,abc,0,25"), {},
