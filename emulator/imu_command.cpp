@@ -4,10 +4,13 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
+#include <optional>
 #include <ostream>
 
 #include "emulator/commands.hpp"
 #include "emulator/imu_profile.hpp"
+#include "emulator/truth_csv.hpp"
 #include "models/errors.hpp"
 #include "models/imu_kinematics.hpp"
 #include "models/imu_model.hpp"
@@ -16,7 +19,7 @@ namespace navemu {
 
 struct ImuOptions {
   std::string profile;
-  double duration_s = 0.0;
+  std::optional<double> duration_s;  // required with --truth static; a truth file's span else
   double rate_hz = 0.0;  // 0: the profile's output rate
   std::string truth = "static";
   std::string at = "32.3,-90.9,60";  // the paper's test site, Vicksburg, MS
@@ -32,17 +35,33 @@ std::shared_ptr<ImuOptions> add_imu_command(CLI::App& app) {
       "Runs the IMU error model of --profile (a name from configs/imu/ or a YAML file) at its\n"
       "internal rate for --duration seconds and writes one CSV row per output sample:\n"
       "  time_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c\n"
-      "time_s counts from the start of the run and includes the profile's latency. Body frame\n"
-      "x forward, y right, z down: a level IMU at rest senses f = (0, 0, -g) and the Earth rate\n"
-      "projected on its axes. --truth static: level, facing north, at rest at --at.\n"
+      "time_s counts from the start of the run (in a truth file's own time base) and includes\n"
+      "the profile's latency. Body frame x forward, y right, z down: a level IMU at rest senses\n"
+      "f = (0, 0, -g) and the Earth rate projected on its axes.\n"
+      "--truth static: level, facing north, at rest at --at.\n"
+      "--truth FILE: a truth CSV (--at ignored), header row then one row per sample, any rate,\n"
+      "time strictly increasing, at least 3 rows; columns, in any order (others ignored):\n"
+      "  time_s,lat_deg,lon_deg,h_m,v_n_mps,v_e_mps,v_d_mps,roll_deg,pitch_deg,yaw_deg\n"
+      "  [f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps] [temperature_c]\n"
+      "(WGS-84 position, NED velocity, ZYX Euler angles of the FRD body; the optional six are\n"
+      "the simulator's own body specific force and angular rate, all six or none). The truth is\n"
+      "interpolated to the internal-rate instants: position and velocity by cubic Hermite,\n"
+      "attitude by quaternion slerp, f, w and temperature linearly. Without f/w columns the\n"
+      "ideal output comes from the kinematics at the instants +-1/internal rate around each\n"
+      "(exact for constant body rate and velocity, e.g. circles at constant speed). The run\n"
+      "covers the file's span (--duration may shorten it).\n"
       "The same --seed gives a byte-identical file.\n"
-      "Example:\n"
-      "  navemu imu --profile bmi160 --duration 600 --out bmi160.csv --seed 7");
+      "Examples:\n"
+      "  navemu imu --profile bmi160 --duration 600 --out bmi160.csv --seed 7\n"
+      "  navemu imu --profile bmi160 --truth configs/truth/circle_paper.csv --out circle.csv");
   imu->add_option("--profile", opt->profile, "IMU profile name (configs/imu/NAME.yaml) or file")
       ->required();
-  imu->add_option("--duration", opt->duration_s, "Length of the run in seconds")->required();
+  imu->add_option("--duration", opt->duration_s,
+                  "Length of the run in seconds (with --truth FILE: at most, and by default, the "
+                  "file's span)");
   imu->add_option("--rate", opt->rate_hz, "Output rate in Hz (default: the profile's)");
-  imu->add_option("--truth", opt->truth, "Truth: static (level, north-facing, at rest)")
+  imu->add_option("--truth", opt->truth,
+                  "Truth: static (level, north-facing, at rest) or a truth CSV file")
       ->capture_default_str();
   imu->add_option("--at", opt->at, "Position LAT,LON,H (deg, deg, m above the WGS-84 ellipsoid)")
       ->capture_default_str();
@@ -51,42 +70,40 @@ std::shared_ptr<ImuOptions> add_imu_command(CLI::App& app) {
   return opt;
 }
 
-int run_imu(const ImuOptions& opt, std::ostream&, std::ostream& err) {
-  if (!std::isfinite(opt.duration_s) || opt.duration_s <= 0.0)
-    throw InputError("--duration", fmt::format("must be positive (got {})", opt.duration_s));
-  if (!std::isfinite(opt.rate_hz) || opt.rate_hz < 0.0)
-    throw InputError("--rate", fmt::format("must be positive (got {})", opt.rate_hz));
-  if (opt.truth != "static")
-    throw InputError("--truth", "only 'static' is supported (truth files are not yet read)");
-  const Geodetic where = parse_geodetic(opt.at, "--at");
-  const ImuProfile profile = load_imu_profile(opt.profile);
-  const ImuParams params = imu_params_for_run(profile, opt.duration_s, opt.rate_hz);
+namespace {
 
-  std::ofstream out(opt.out_file, std::ios::binary);
-  if (!out) throw InputError(opt.out_file, 0, "--out", "cannot open for writing");
+// Runs the model at its internal rate over `steps` instants t0 + n / internal rate and writes the
+// output CSV; `ideal_at(n, t)` gives the ideal output and temperature at instant n (time t).
+struct RunCounts {
+  std::int64_t rows = 0, saturated = 0;
+};
+RunCounts write_samples(
+    const ImuParams& params, std::uint64_t seed, GpsTime t0, std::int64_t steps,
+    const std::function<void(std::int64_t, GpsTime, IdealImu&, double&)>& ideal_at,
+    const std::string& out_file) {
+  std::ofstream out(out_file, std::ios::binary);
+  if (!out) throw InputError(out_file, 0, "--out", "cannot open for writing");
 
-  ImuModel model(params, opt.seed);
-  const IdealImu ideal = ideal_imu_static(where, Quat::Identity());
-  const double temperature_c = params.reference_temperature_c;
-  const auto steps = static_cast<std::int64_t>(std::llround(opt.duration_s * params.internal_rate_hz));
-  const GpsTime t0{0};
-
+  ImuModel model(params, seed);
   fmt::memory_buffer buf;
   fmt::format_to(std::back_inserter(buf),
                  "time_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c\n");
-  std::int64_t rows = 0, saturated = 0;
+  RunCounts counts;
   ImuSample s;
+  IdealImu ideal;
+  double temperature_c = params.reference_temperature_c;
   for (std::int64_t n = 0; n < steps; ++n) {
     // Times from the sample index, rounded to the nanosecond, so that they do not drift.
     const GpsTime t{t0.ns + static_cast<std::int64_t>(std::llround(
                                 static_cast<double>(n) * 1e9 / params.internal_rate_hz))};
+    ideal_at(n, t, ideal, temperature_c);
     if (!model.step(t, ideal, temperature_c, s)) continue;
     fmt::format_to(std::back_inserter(buf), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n",
-                   seconds_between(s.t, t0), s.f_body_mps2.x(), s.f_body_mps2.y(),
+                   seconds_between(s.t, GpsTime{0}), s.f_body_mps2.x(), s.f_body_mps2.y(),
                    s.f_body_mps2.z(), s.w_body_radps.x(), s.w_body_radps.y(), s.w_body_radps.z(),
                    s.temperature_c);
-    ++rows;
-    if (s.saturated) ++saturated;
+    ++counts.rows;
+    if (s.saturated) ++counts.saturated;
     if (buf.size() > (1u << 16)) {
       out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
       buf.clear();
@@ -94,13 +111,117 @@ int run_imu(const ImuOptions& opt, std::ostream&, std::ostream& err) {
   }
   out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
   out.close();
-  if (!out) throw InputError(opt.out_file, 0, "--out", "write failed");
+  if (!out) throw InputError(out_file, 0, "--out", "write failed");
+  return counts;
+}
+
+}  // namespace
+
+int run_imu(const ImuOptions& opt, std::ostream&, std::ostream& err) {
+  if (opt.duration_s && (!std::isfinite(*opt.duration_s) || *opt.duration_s <= 0.0))
+    throw InputError("--duration", fmt::format("must be positive (got {})", *opt.duration_s));
+  if (!std::isfinite(opt.rate_hz) || opt.rate_hz < 0.0)
+    throw InputError("--rate", fmt::format("must be positive (got {})", opt.rate_hz));
+  const bool from_file = opt.truth != "static";
+
+  RunCounts counts;
+  ImuParams params;
+  std::string profile_name;
+  std::string truth_note;
+  if (!from_file) {
+    if (!opt.duration_s) throw InputError("--duration", "required with --truth static");
+    const double duration_s = *opt.duration_s;
+    const Geodetic where = parse_geodetic(opt.at, "--at");
+    const ImuProfile profile = load_imu_profile(opt.profile);
+    profile_name = profile.name;
+    params = imu_params_for_run(profile, duration_s, opt.rate_hz);
+    const IdealImu ideal = ideal_imu_static(where, Quat::Identity());
+    const double temperature_c = params.reference_temperature_c;
+    const auto steps =
+        static_cast<std::int64_t>(std::llround(duration_s * params.internal_rate_hz));
+    counts = write_samples(
+        params, opt.seed, GpsTime{0}, steps,
+        [&](std::int64_t, GpsTime, IdealImu& out, double& temp) {
+          out = ideal;
+          temp = temperature_c;
+        },
+        opt.out_file);
+  } else {
+    // A first pass checks the whole file (so that a bad row fails before any output) and gives
+    // its span; the second streams it through the interpolator.
+    const TruthCsvSummary summary = scan_truth_csv(opt.truth);
+    const double span_s = summary.last_time_s - summary.first_time_s;
+    if (opt.duration_s && *opt.duration_s > span_s * (1.0 + 1e-12))
+      throw InputError("--duration",
+                       fmt::format("{} s is longer than the truth file's span ({} s, {} to {} s)",
+                                   *opt.duration_s, span_s, summary.first_time_s,
+                                   summary.last_time_s));
+    const double duration_s = opt.duration_s.value_or(span_s);
+    const ImuProfile profile = load_imu_profile(opt.profile);
+    profile_name = profile.name;
+    params = imu_params_for_run(profile, duration_s, opt.rate_hz);
+    const double rate = params.internal_rate_hz;
+    // Instants t0 + n / rate, all inside the span.
+    const auto inside = static_cast<std::int64_t>(std::floor(span_s * rate + 1e-9));
+    const std::int64_t steps =
+        opt.duration_s
+            ? std::min(static_cast<std::int64_t>(std::llround(duration_s * rate)), inside)
+            : inside;
+    if (steps < 1)
+      throw InputError(opt.truth, 0, "time_s",
+                       fmt::format("the span ({} s) holds no instant at {} Hz", span_s, rate));
+
+    const GpsTime t0 = GpsTime::from_seconds(summary.first_time_s);
+    auto instant = [&](std::int64_t n) {
+      return GpsTime{t0.ns + static_cast<std::int64_t>(
+                                 std::llround(static_cast<double>(n) * 1e9 / rate))};
+    };
+    TruthTrack track(opt.truth);
+    auto truth_at = [&](std::int64_t n) {
+      const GpsTime t = instant(n);
+      ImuTruth truth = track.at(summary.first_time_s + seconds_between(t, t0));
+      truth.t = t;
+      return truth;
+    };
+    // Rolling window of the truth at instants n-1, n, n+1: the kinematic derivation
+    // (ideal_imu_from_kinematics) differences the neighbours at +-1/rate, one-sided at the
+    // file's first row and where n+1 would fall past its last.
+    const double end_s = span_s + 1e-9;
+    ImuTruth now = truth_at(0);
+    ImuTruth before = now;
+    std::optional<ImuTruth> after;
+    auto next_after = [&](std::int64_t n) -> std::optional<ImuTruth> {
+      if (seconds_between(instant(n + 1), t0) > end_s) return std::nullopt;
+      return truth_at(n + 1);
+    };
+    if (!summary.has_rates) after = next_after(0);
+    counts = write_samples(
+        params, opt.seed, t0, steps,
+        [&](std::int64_t n, GpsTime, IdealImu& out, double& temp) {
+          if (n > 0) {
+            before = std::move(now);
+            if (summary.has_rates) {
+              now = truth_at(n);
+            } else {
+              now = after ? std::move(*after) : truth_at(n);
+              after = next_after(n);
+            }
+          }
+          out = summary.has_rates
+                    ? IdealImu{*now.f_body_mps2, *now.w_ib_body_radps}
+                    : ideal_imu_from_kinematics(before, now, after ? *after : now);
+          temp = now.temperature_c.value_or(params.reference_temperature_c);
+        },
+        opt.out_file);
+    truth_note = fmt::format(", truth {} ({} s of {} s)", opt.truth,
+                             static_cast<double>(steps) / rate, span_s);
+  }
 
   err << fmt::format("navemu imu: {} samples written to {} (profile {}, {} Hz output, {} Hz "
-                     "internal, seed {}{})\n",
-                     rows, opt.out_file, profile.name, params.output_rate_hz,
-                     params.internal_rate_hz, opt.seed,
-                     saturated > 0 ? fmt::format(", {} saturated", saturated) : "");
+                     "internal, seed {}{}{})\n",
+                     counts.rows, opt.out_file, profile_name, params.output_rate_hz,
+                     params.internal_rate_hz, opt.seed, truth_note,
+                     counts.saturated > 0 ? fmt::format(", {} saturated", counts.saturated) : "");
   return 0;
 }
 

@@ -51,6 +51,8 @@ NumericCsvReader::NumericCsvReader(std::string path, std::vector<std::string> co
   auto field_index = [&](const std::string& name) -> std::optional<std::size_t> {
     const auto it = std::find(fields.begin(), fields.end(), name);
     if (it == fields.end()) return std::nullopt;
+    if (std::find(it + 1, fields.end(), name) != fields.end())
+      throw InputError(path_, line_, name, "column named twice in the header");
     return static_cast<std::size_t>(it - fields.begin());
   };
   for (const std::string& name : columns) {
@@ -104,7 +106,10 @@ bool NumericCsvReader::next(std::vector<double>& values) {
       const std::string_view text = cells[field_of_[c]];
       if (text.empty()) throw InputError(path_, line_, names_[c], "empty value");
       double x = 0.0;
-      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+      const char* first = text.data() + (text.front() == '+' ? 1 : 0);  // from_chars takes no '+'
+      const auto [end, ec] = std::from_chars(first, text.data() + text.size(), x);
+      if (ec == std::errc::result_out_of_range)
+        throw InputError(path_, line_, names_[c], fmt::format("not a finite number: '{}'", text));
       if (ec != std::errc() || end != text.data() + text.size())
         throw InputError(path_, line_, names_[c], fmt::format("not a number: '{}'", text));
       if (!std::isfinite(x))

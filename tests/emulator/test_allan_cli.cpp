@@ -15,28 +15,15 @@
 #include <vector>
 
 #include "emulator/cli.hpp"
+#include "tests/emulator/cli_runner.hpp"
 #include "models/random.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun navemu(std::vector<std::string> args) {
-  args.insert(args.begin(), "navemu");
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  std::ostringstream out, err;
-  CliRun r;
-  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
-}
+using test::CliRun;
+using test::navemu;
 
 std::string temp_path(const std::string& name) {
   std::string file = "allan_cli_";

@@ -2,6 +2,7 @@
 // one-line errors bad input must give.
 
 #include "emulator/cli.hpp"
+#include "tests/emulator/cli_runner.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,22 +18,8 @@
 namespace navemu {
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun navemu(std::vector<std::string> args) {
-  args.insert(args.begin(), "navemu");
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  std::ostringstream out, err;
-  CliRun r;
-  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
-}
+using test::CliRun;
+using test::navemu;
 
 int count_lines(const std::string& s) {
   return static_cast<int>(std::count(s.begin(), s.end(), '\n'));

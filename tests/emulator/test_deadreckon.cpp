@@ -13,29 +13,16 @@
 #include <vector>
 
 #include "emulator/cli.hpp"
+#include "tests/emulator/cli_runner.hpp"
 #include "models/imu_kinematics.hpp"
 
 namespace navemu {
 namespace {
 
+using test::CliRun;
+using test::navemu;
+
 const Geodetic kSite{32.3, -90.9, 60.0};
-
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun navemu(std::vector<std::string> args) {
-  args.insert(args.begin(), "navemu");
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  std::ostringstream out, err;
-  CliRun r;
-  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
-}
 
 std::string temp_path(const std::string& name) {
   return (std::filesystem::path(::testing::TempDir()) / name).string();

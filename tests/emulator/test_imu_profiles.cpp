@@ -12,10 +12,14 @@
 #include <vector>
 
 #include "emulator/cli.hpp"
+#include "tests/emulator/cli_runner.hpp"
 #include "models/errors.hpp"
 
 namespace navemu {
 namespace {
+
+using test::CliRun;
+using test::navemu;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -147,23 +151,6 @@ TEST(ImuProfile, UnknownProfileListsAvailable) {
   }
 }
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun navemu(std::vector<std::string> args) {
-  args.insert(args.begin(), "navemu");
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  std::ostringstream out, err;
-  CliRun r;
-  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
-}
-
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -244,6 +231,126 @@ TEST(ImuCli, StaticLevelImuSensesGravityAndEarthRate) {
   EXPECT_NEAR(mean[5], 0.0, se_w);
   EXPECT_NEAR(mean[6], -we * std::sin(lat), se_w);
   EXPECT_NEAR(mean[7], 25.0, 1e-9);
+}
+
+// A profile with every error term zero: the output is the ideal IMU.
+const std::string kIdeal =
+    "model: datasheet\n"
+    "output_rate_hz: 100\n"
+    "internal_rate_hz: 200\n"
+    "accel_white_density_mps2_per_rthz: 0\n"
+    "gyro_white_density_radps_per_rthz: 0\n";
+
+const std::string kCircle = std::string(NAVEMU_SOURCE_DIR) + "/configs/truth/circle_paper.csv";
+
+// The paper's circle (configs/truth/circle_paper.csv: 9.144 m radius, 2 m/s, clockwise seen
+// from above, level, at 32.3 N) through an ideal IMU, over exactly its 8 loops: in FRD the
+// centripetal specific force is +v^2/r on y (less the Coriolis term 2 W sin(lat) v of the
+// Earth's rotation) and the yaw rate +v/r on z (plus the Earth rate's down component
+// -W sin(lat)); the horizontal Earth rate and transport-rate terms average out over whole loops
+// except the pitch rate -v/R of moving over the curved Earth.
+TEST(ImuCli, TruthCircleSensesCentripetalForceAndTurnRate) {
+  const auto profile = write_temp("ideal.yaml", kIdeal);
+  const double r = 9.144, v = 2.0, lat = 32.3 * kPi / 180.0, we = 7.2921151467e-5;
+  const double loops_s = 8.0 * 2.0 * kPi * r / v;
+  const std::string out = temp_path("circle.csv");
+  const CliRun run = navemu({"imu", "--profile", profile.string(), "--truth", kCircle,
+                             "--duration", std::to_string(loops_s), "--out", out});
+  ASSERT_EQ(run.code, 0) << run.err;
+  std::string header;
+  const auto rows = read_rows(out, header);
+  // Internal instants n = 0 .. round(200 loops_s) - 1, every second one output.
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>((std::llround(loops_s * 200.0) + 1) / 2));
+  std::vector<double> mean(8, 0.0);
+  for (const auto& row : rows)
+    for (std::size_t i = 0; i < 8; ++i) mean[i] += row[i] / static_cast<double>(rows.size());
+  EXPECT_NEAR(mean[2], v * v / r, 1e-3);
+  EXPECT_NEAR(mean[2], v * v / r - 2.0 * we * std::sin(lat) * v, 1e-5);
+  EXPECT_NEAR(mean[1], 0.0, 1e-5);
+  EXPECT_NEAR(mean[3], -9.7949, 2e-4);
+  EXPECT_NEAR(mean[6], v / r - we * std::sin(lat), 1e-6);
+  EXPECT_NEAR(mean[5], -v / 6.372e6, 1e-8);  // -v / R: pitching over the curved Earth
+  EXPECT_NEAR(mean[4], 0.0, 1e-7);
+  EXPECT_NEAR(mean[7], 25.0, 1e-9);
+  // Every sample, not only the mean: a constant-speed circle is sensed as constant.
+  for (const auto& row : rows) {
+    ASSERT_NEAR(row[2], mean[2], 2e-4);
+    ASSERT_NEAR(row[6], mean[6], 1e-6);
+  }
+}
+
+TEST(ImuCli, TruthFileSameSeedByteIdentical) {
+  const std::string a = temp_path("ta.csv"), b = temp_path("tb.csv"), c = temp_path("tc.csv");
+  for (const auto& [file, seed] : {std::pair{a, "5"}, std::pair{b, "5"}, std::pair{c, "6"}}) {
+    const CliRun r = navemu({"imu", "--profile", "bmi160", "--truth", kCircle, "--duration", "20",
+                             "--seed", seed, "--out", file});
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  EXPECT_EQ(slurp(a), slurp(b));
+  EXPECT_NE(slurp(a), slurp(c));
+  std::string header;
+  EXPECT_EQ(read_rows(a, header).size(), 4000u);  // 20 s at bmi160's 200 Hz
+}
+
+TEST(ImuCli, TruthFileSpanAndDuration) {
+  const auto profile = write_temp("ideal_span.yaml", kIdeal);
+  const std::string out = temp_path("span.csv");
+  // Without --duration: the file's span, 229.9 s.
+  const CliRun all =
+      navemu({"imu", "--profile", profile.string(), "--truth", kCircle, "--out", out});
+  ASSERT_EQ(all.code, 0) << all.err;
+  std::string header;
+  const auto rows = read_rows(out, header);
+  ASSERT_EQ(rows.size(), 22990u);
+  EXPECT_DOUBLE_EQ(rows.front()[0], 0.0);
+  EXPECT_DOUBLE_EQ(rows.back()[0], 229.89);
+  // Longer than the span: an error.
+  const CliRun longer = navemu({"imu", "--profile", profile.string(), "--truth", kCircle,
+                                "--duration", "300", "--out", out});
+  EXPECT_EQ(longer.code, 1);
+  EXPECT_EQ(longer.err,
+            "navemu: --duration: 300 s is longer than the truth file's span (229.9 s, 0 to "
+            "229.9 s)\n");
+  // The static truth still needs --duration.
+  const CliRun none = navemu({"imu", "--profile", profile.string(), "--out", out});
+  EXPECT_EQ(none.code, 1);
+  EXPECT_EQ(none.err, "navemu: --duration: required with --truth static\n");
+  // A bad truth file: its error, before any output.
+  const auto bad = write_temp("bad_truth.csv",
+                              "time_s,lat_deg,lon_deg,h_m,v_n_mps,v_e_mps,v_d_mps,roll_deg,"
+                              "pitch_deg,yaw_deg\n0,32,-90,0,0,0,0,0,0,0\n1,32,-90,0,0,0,0,0,0,0\n"
+                              "2,32,-90,0,0,0,0,0,x,0\n");
+  const CliRun badrun =
+      navemu({"imu", "--profile", profile.string(), "--truth", bad.string(), "--out", out});
+  EXPECT_EQ(badrun.code, 1);
+  EXPECT_EQ(badrun.err,
+            "navemu: " + bad.string() + ":4: pitch_deg: not a number: 'x'\n");
+}
+
+// With f/w columns the simulator's own values are the ideal output (linear in between), and
+// temperature_c drives the sample's temperature.
+TEST(ImuCli, TruthFileRatesAndTemperaturePassThrough) {
+  const auto profile = write_temp("ideal_rates.yaml", kIdeal);
+  const auto truth = write_temp(
+      "rates_truth.csv",
+      "time_s,lat_deg,lon_deg,h_m,v_n_mps,v_e_mps,v_d_mps,roll_deg,pitch_deg,yaw_deg,"
+      "f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c\n"
+      "100,32,-90,0,0,0,0,0,0,0,1,2,-9,0.1,0.2,0.3,20\n"
+      "101,32,-90,0,0,0,0,0,0,0,3,2,-9,0.1,0.2,0.5,30\n"
+      "102,32,-90,0,0,0,0,0,0,0,3,2,-9,0.1,0.2,0.5,30\n");
+  const std::string out = temp_path("rates_out.csv");
+  const CliRun r =
+      navemu({"imu", "--profile", profile.string(), "--truth", truth.string(), "--out", out});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string header;
+  const auto rows = read_rows(out, header);
+  ASSERT_EQ(rows.size(), 200u);
+  EXPECT_DOUBLE_EQ(rows[0][0], 100.0);  // the file's time base
+  EXPECT_NEAR(rows[50][0], 100.5, 1e-9);
+  EXPECT_NEAR(rows[50][1], 2.0, 1e-9);
+  EXPECT_NEAR(rows[50][6], 0.4, 1e-9);
+  EXPECT_NEAR(rows[50][7], 25.0, 1e-9);
+  EXPECT_NEAR(rows[150][1], 3.0, 1e-9);
 }
 
 TEST(ImuCli, BadInputGivesOneLineError) {
