@@ -185,6 +185,19 @@ TEST_P(ImuRealCurves, GeneratedCurveWithinFactorOneAndAHalfOfTheMeasuredOne) {
     }
     std::printf("%s %s: %d points from 0.1 to 1000 s, worst generated/measured %.3f at %.1f s\n",
                 part.profile, kind.c_str(), compared, worst, worst_tau);
+    // Reported, not asserted: each axis against its own measured curve (the profiles carry one
+    // parameter set per triad, fitted to the axis average; real axes differ by up to ~4x).
+    for (std::size_t a = 0; a < 3; ++a) {
+      double axis_worst = 1.0;
+      for (std::size_t i = 0; i < tau.size(); ++i) {
+        if (tau[i] < 0.1 || tau[i] > 1000.0) continue;
+        const auto v = adev_at(gen[a], tau[i]);
+        if (!v) continue;
+        const double ratio = *v / (meas[a].at(i) * to_si);
+        if (std::abs(std::log(ratio)) > std::abs(std::log(axis_worst))) axis_worst = ratio;
+      }
+      std::printf("  axis %c alone: worst generated/measured %.3f\n", "xyz"[a], axis_worst);
+    }
     EXPECT_GT(compared, 20);
     EXPECT_LT(std::abs(std::log(worst)), std::log(1.5)) << part.profile << " " << kind;
   }
