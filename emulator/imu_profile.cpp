@@ -105,11 +105,11 @@ void add_scalar(std::vector<Field>& f, std::string base, const std::vector<Unit>
 }
 
 void add_vector(std::vector<Field>& f, std::string base, const std::vector<Unit>& units,
-                Vec3* target) {
+                Vec3* target, Sign sign = Sign::kAny) {
   Field x;
   x.base = std::move(base);
   x.units = &units;
-  x.sign = Sign::kAny;
+  x.sign = sign;
   x.vector = true;
   x.set_vector = [target](const Vec3& v) { *target = v; };
   f.push_back(std::move(x));
@@ -155,6 +155,12 @@ void sensor_fields(std::vector<Field>& f, const std::string& prefix, ImuSensorPa
   add_scalar(f, p + "scale_temp_coeff", kPpmPerCUnits, &s.scale_temp_coeff_ppm_per_c, Sign::kAny);
   add_scalar(f, p + "full_scale", unit, &s.full_scale);
   add_scalar(f, p + "resolution", unit, &s.resolution);
+  // Per-axis multipliers of the noise terms: [x, y, z], no unit, each > 0.
+  static const std::vector<Unit> factor = {{"", 1.0}};
+  add_vector(f, p + "white_density_axis_scale", factor, &s.white_axis_scale, Sign::kPositive);
+  add_vector(f, p + "bias_instability_axis_scale", factor, &s.bias_axis_scale, Sign::kPositive);
+  add_vector(f, p + "random_walk_axis_scale", factor, &s.random_walk_axis_scale,
+             Sign::kPositive);
 }
 
 // The paper's parameterisation (section 2.2 and 3).
@@ -279,8 +285,11 @@ ImuProfile load_imu_profile_file(const std::filesystem::path& file) {
       if (!value.IsSequence() || value.size() != 3)
         fail(file, value, key, "expected [x, y, z]");
       Vec3 v;
-      for (std::size_t i = 0; i < 3; ++i) v[static_cast<Eigen::Index>(i)] =
-          number(file, value[i], key) * unit->to_si;
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double x = number(file, value[i], key);
+        check_sign(file, value[i], key, match->sign, x);
+        v[static_cast<Eigen::Index>(i)] = x * unit->to_si;
+      }
       match->set_vector(v);
     } else {
       const double v = number(file, value, key);

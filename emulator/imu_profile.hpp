@@ -19,7 +19,10 @@
 //   nonlinearity_ppm | _percent (of full scale), misalignment_sigma_rad | _mrad | _deg,
 //   bias_temp_coeff: accel mps2_per_c | mg_per_c, gyro radps_per_c | dps_per_c | degph_per_c;
 //   scale_temp_coeff_ppm_per_c, full_scale_U, resolution_U,
-//   gyro_g_sensitivity_radps_per_mps2 | _dps_per_g | _degph_per_g; reference_temperature_c.
+//   gyro_g_sensitivity_radps_per_mps2 | _dps_per_g | _degph_per_g; reference_temperature_c;
+//   per-axis multipliers (no unit; [x, y, z] of positive numbers, default [1, 1, 1]) of the
+//   noise terms: white_density_axis_scale, bias_instability_axis_scale,
+//   random_walk_axis_scale (axis i gets e.g. white density white_density * scale[i]).
 // model: paper (Durst & Goodin section 2.2 and 3; see imu_params_from_paper):
 //   quality_factor, gm_correlation_time_s, accel_white_noise_mps2, gyro_white_noise_dps |
 //   _radps (all required); temperature_k, accel_omega0_radps | _hz, accel_proof_mass_kg,

@@ -36,6 +36,12 @@ void check_sensor(const ImuSensorParams& s, const std::string& name) {
   require(s.null_offset.allFinite(), name + ".null_offset must be finite");
   require(std::isfinite(s.bias_instability_tau_s) && s.bias_instability_tau_s > 0.0,
           name + ".bias_instability_tau_s must be > 0");
+  auto positive_vec = [&](const Vec3& v, const char* field) {
+    require(v.allFinite() && v.minCoeff() > 0.0, name + "." + field + " must be finite and > 0");
+  };
+  positive_vec(s.white_axis_scale, "white_axis_scale");
+  positive_vec(s.bias_axis_scale, "bias_axis_scale");
+  positive_vec(s.random_walk_axis_scale, "random_walk_axis_scale");
 }
 
 void check_params(const ImuParams& p) {
@@ -233,13 +239,18 @@ struct ImuModel::State {
           rw{stream(seed, sensor, "rw", 0), stream(seed, sensor, "rw", 1),
              stream(seed, sensor, "rw", 2)} {
       const double dt = 1.0 / p.internal_rate_hz;
-      white_sigma = internal_white_sigma(p, sp.white_density);
       // Bias instability: Gauss-Markov of 1-sigma kGmSigmaPerBiasInstability * B (header), exact
-      // discretisation as models/random.hpp GaussMarkov, with phi precomputed.
-      const double gm_sigma = kGmSigmaPerBiasInstability * sp.bias_instability;
+      // discretisation as models/random.hpp GaussMarkov, with phi precomputed. The three noise
+      // terms per axis, with the per-axis multipliers (exactly the triad's values at 1).
+      const double gm_sigma_triad = kGmSigmaPerBiasInstability * sp.bias_instability;
       gm_phi = std::exp(-dt / sp.bias_instability_tau_s);
-      gm_q = gm_sigma * std::sqrt(1.0 - gm_phi * gm_phi);
-      rw_step = sp.random_walk * std::sqrt(dt);
+      Vec3 gm_sigma;
+      for (int i = 0; i < 3; ++i) {
+        white_sigma[i] = internal_white_sigma(p, sp.white_density * sp.white_axis_scale[i]);
+        gm_sigma[i] = gm_sigma_triad * sp.bias_axis_scale[i];
+        gm_q[i] = gm_sigma[i] * std::sqrt(1.0 - gm_phi * gm_phi);
+        rw_step[i] = sp.random_walk * sp.random_walk_axis_scale[i] * std::sqrt(dt);
+      }
       // Quadratic nonlinearity: error k2 x^2 reaching nonlinearity_ppm of full scale at full
       // scale (needs a full scale to refer to).
       k2 = sp.full_scale > 0.0 ? sp.nonlinearity_ppm * 1e-6 / sp.full_scale : 0.0;
@@ -259,7 +270,7 @@ struct ImuModel::State {
         scale[i] = 1.0 + sp.scale_factor_sigma_ppm * 1e-6 * scale_rng.normal();
         for (int j = 0; j < 3; ++j)
           if (j != i) M(i, j) = sp.misalignment_sigma_rad * mis.normal();
-        gm_x[i] = gm_sigma * gm[static_cast<std::size_t>(i)].normal();  // stationary start
+        gm_x[i] = gm_sigma[i] * gm[static_cast<std::size_t>(i)].normal();  // stationary start
       }
       has_misalignment = sp.misalignment_sigma_rad > 0.0;
     }
@@ -287,10 +298,10 @@ struct ImuModel::State {
       for (int i = 0; i < 3; ++i) {
         const auto ui = static_cast<std::size_t>(i);
         const double x = v[i];
-        gm_x[i] = gm_phi * gm_x[i] + gm_q * n_gm[ui][k];
-        rw_x[i] += rw_step * n_rw[ui][k];
+        gm_x[i] = gm_phi * gm_x[i] + gm_q[i] * n_gm[ui][k];
+        rw_x[i] += rw_step[i] * n_rw[ui][k];
         y[i] = (scale[i] + scale_temp * dT + k2 * x) * x + bias_const[i] + gm_x[i] + rw_x[i] +
-               bias_temp * dT + white_sigma * n_white[ui][k] + g_sens * f[i];
+               bias_temp * dT + white_sigma[i] * n_white[ui][k] + g_sens * f[i];
       }
     }
 
@@ -318,7 +329,8 @@ struct ImuModel::State {
     Vec3 bias_const = Vec3::Zero();
     Vec3 gm_x = Vec3::Zero();
     Vec3 rw_x = Vec3::Zero();
-    double white_sigma = 0.0, gm_phi = 1.0, gm_q = 0.0, rw_step = 0.0, k2 = 0.0;
+    Vec3 white_sigma = Vec3::Zero(), gm_q = Vec3::Zero(), rw_step = Vec3::Zero();
+    double gm_phi = 1.0, k2 = 0.0;
     double scale_temp = 0.0, bias_temp = 0.0, g_sens = 0.0, full_scale = 0.0, resolution = 0.0;
   };
 

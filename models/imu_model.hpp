@@ -41,6 +41,13 @@ struct ImuSensorParams {
   double scale_temp_coeff_ppm_per_c = 0.0;
   double full_scale = 0.0;               // saturation, unit; 0: none
   double resolution = 0.0;               // LSB, unit; 0: none
+  // Per-axis multipliers of the three noise terms (the triad's parts differ per axis): axis i
+  // has white density white_density * white_axis_scale[i], Gauss-Markov 1-sigma
+  // kGmSigmaPerBiasInstability * bias_instability * bias_axis_scale[i] and random walk
+  // random_walk * random_walk_axis_scale[i]. All ones: the triad's values on every axis.
+  Vec3 white_axis_scale = Vec3::Ones();
+  Vec3 bias_axis_scale = Vec3::Ones();
+  Vec3 random_walk_axis_scale = Vec3::Ones();
 };
 
 // A first-order Gauss-Markov process of stationary 1-sigma s and correlation time T has the

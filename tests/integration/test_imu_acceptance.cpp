@@ -59,6 +59,18 @@ std::optional<double> adev_at(const std::vector<AllanPoint>& c, double tau) {
   return std::nullopt;
 }
 
+// The noise terms output channel c (accel x, y, z, gyro x, y, z) is configured with: the
+// triad's values times the channel's per-axis multipliers (multipliers left at 1).
+ImuSensorParams axis_params(const ImuParams& p, std::size_t c) {
+  ImuSensorParams sp = c < 3 ? p.accel : p.gyro;
+  const auto a = static_cast<Eigen::Index>(c % 3);
+  sp.white_density *= sp.white_axis_scale[a];
+  sp.bias_instability *= sp.bias_axis_scale[a];
+  sp.random_walk *= sp.random_walk_axis_scale[a];
+  sp.white_axis_scale = sp.bias_axis_scale = sp.random_walk_axis_scale = Vec3::Ones();
+  return sp;
+}
+
 class ImuProfileAllan : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ImuProfileAllan, ThreeHourStaticRunShowsTheConfiguredNoiseTerms) {
@@ -68,7 +80,7 @@ TEST_P(ImuProfileAllan, ThreeHourStaticRunShowsTheConfiguredNoiseTerms) {
   const StaticRun r = static_run(p, duration_s, 7);
   const bool paper = profile.model == "paper";
   for (std::size_t c = 0; c < 6; ++c) {
-    const ImuSensorParams& sp = c < 3 ? p.accel : p.gyro;
+    const ImuSensorParams& sp = axis_params(p, c);
     const auto curve = overlapping_allan_deviation(r.ch[c], 1.0 / r.output_rate_hz, 10);
     const AllanFit fit = fit_allan(curve);
     const double at1 = *adev_at(curve, 1.0);
@@ -110,7 +122,7 @@ TEST_P(ImuProfileAllan, RandomWalkSlopeWhereConfigured) {
   p.bandwidth_hz = 0.0;
   const StaticRun r = static_run(p, 24.0 * 3600.0, 5);
   for (std::size_t c = 0; c < 6; ++c) {
-    const ImuSensorParams& sp = c < 3 ? p.accel : p.gyro;
+    const ImuSensorParams sp = axis_params(p, c);
     if (sp.random_walk <= 0) continue;
     const double tau = 1000.0;
     const double expected = analytic_adev(sp, tau);
@@ -128,7 +140,9 @@ INSTANTIATE_TEST_SUITE_P(Profiles, ImuProfileAllan,
                          [](const auto& param_info) { return param_info.param; });
 
 // Real parts: the generated curve (average of the three axes) against the measured one
-// (average of the three axes of imu_utils' curves) for tau from 0.1 s to 1000 s.
+// (average of the three axes of imu_utils' curves) for tau from 0.1 s to 1000 s, and each axis
+// against its own measured curve (the profiles' per-axis multipliers, fitted by
+// tools/fit_imu_axis_scales.py).
 struct RealPart {
   const char* profile;
   const char* data_name;  // imu_utils file prefix
@@ -185,18 +199,29 @@ TEST_P(ImuRealCurves, GeneratedCurveWithinFactorOneAndAHalfOfTheMeasuredOne) {
     }
     std::printf("%s %s: %d points from 0.1 to 1000 s, worst generated/measured %.3f at %.1f s\n",
                 part.profile, kind.c_str(), compared, worst, worst_tau);
-    // Reported, not asserted: each axis against its own measured curve (the profiles carry one
-    // parameter set per triad, fitted to the axis average; real axes differ by up to ~4x).
+    // Each axis against its own measured curve (real axes differ by up to ~4x; the profiles'
+    // per-axis multipliers carry that). Reported, not asserted: 19 of the 24 axis curves are
+    // within the factor 1.5; BMI160 accel x rises with a slope of ~0.8 beyond 50 s, which white
+    // noise, a Gauss-Markov bias and a random walk (slope <= 1/2) cannot follow, and the others
+    // outside sit at 300-1000 s, where a 3 h run has ~10 clusters.
     for (std::size_t a = 0; a < 3; ++a) {
       double axis_worst = 1.0;
+      double axis_worst_tau = 0.0;
+      int axis_compared = 0;
       for (std::size_t i = 0; i < tau.size(); ++i) {
         if (tau[i] < 0.1 || tau[i] > 1000.0) continue;
         const auto v = adev_at(gen[a], tau[i]);
         if (!v) continue;
+        ++axis_compared;
         const double ratio = *v / (meas[a].at(i) * to_si);
-        if (std::abs(std::log(ratio)) > std::abs(std::log(axis_worst))) axis_worst = ratio;
+        if (std::abs(std::log(ratio)) > std::abs(std::log(axis_worst))) {
+          axis_worst = ratio;
+          axis_worst_tau = tau[i];
+        }
       }
-      std::printf("  axis %c alone: worst generated/measured %.3f\n", "xyz"[a], axis_worst);
+      std::printf("  axis %c alone: worst generated/measured %.3f at %.1f s\n", "xyz"[a],
+                  axis_worst, axis_worst_tau);
+      EXPECT_GT(axis_compared, 20) << part.profile << " " << kind << " axis " << "xyz"[a];
     }
     EXPECT_GT(compared, 20);
     EXPECT_LT(std::abs(std::log(worst)), std::log(1.5)) << part.profile << " " << kind;
