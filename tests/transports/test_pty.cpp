@@ -1,0 +1,329 @@
+// The pty port: raw mode, permissions, symlink handling, reopening clients, stale output.
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "transports/byte_port.hpp"
+
+namespace navemu::transport {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+// A recognisable chunk of exactly `size` bytes: "$SEQ,000042,ABC...\r\n".
+std::string make_chunk(int seq, std::size_t size) {
+  std::string s = fmt::format("$SEQ,{:06d},", seq);
+  while (s.size() + 2 < size) s += static_cast<char>('A' + s.size() % 26);
+  return s + "\r\n";
+}
+
+// Splits a stream into chunks made by make_chunk(); false when anything is torn or foreign.
+bool parse_chunks(const std::string& stream, std::vector<int>& seqs) {
+  std::size_t pos = 0;
+  while (pos < stream.size()) {
+    const std::size_t end = stream.find("\r\n", pos);
+    if (end == std::string::npos) return false;
+    const std::string piece = stream.substr(pos, end + 2 - pos);
+    if (piece.size() < 13 || piece.compare(0, 5, "$SEQ,") != 0) return false;
+    const int seq = std::atoi(piece.substr(5, 6).c_str());
+    if (piece != make_chunk(seq, piece.size())) return false;
+    seqs.push_back(seq);
+    pos = end + 2;
+  }
+  return true;
+}
+
+// Reads a client fd until done(data) or the time limit; never blocks longer than 5 ms a round.
+std::string read_until(int fd, const std::function<bool(const std::string&)>& done,
+                       milliseconds limit = milliseconds(2000)) {
+  std::string data;
+  const auto deadline = Clock::now() + limit;
+  char buf[8192];
+  while (!done(data) && Clock::now() < deadline) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 5) <= 0) continue;
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n > 0) data.append(buf, static_cast<std::size_t>(n));
+  }
+  return data;
+}
+
+// Reads whatever arrives until nothing has come for `quiet`.
+std::string read_quiet(int fd, milliseconds quiet = milliseconds(40)) {
+  std::string data;
+  const auto deadline = Clock::now() + milliseconds(2000);
+  auto last = Clock::now();
+  char buf[8192];
+  while (Clock::now() - last < quiet && Clock::now() < deadline) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 5) <= 0) continue;
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n > 0) {
+      data.append(buf, static_cast<std::size_t>(n));
+      last = Clock::now();
+    }
+  }
+  return data;
+}
+
+// Reads from the port until `want` bytes came or the time limit passes.
+std::string port_read_until(BytePort& port, std::size_t want,
+                            milliseconds limit = milliseconds(2000)) {
+  std::string data;
+  const auto deadline = Clock::now() + limit;
+  std::uint8_t buf[4096];
+  while (data.size() < want && Clock::now() < deadline) {
+    const std::size_t n = port.read(buf);
+    if (n > 0)
+      data.append(reinterpret_cast<const char*>(buf), n);
+    else
+      std::this_thread::sleep_for(milliseconds(1));
+  }
+  return data;
+}
+
+int open_client(const std::string& path) {
+  return ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+}
+
+// A fresh directory under /tmp, removed at the end of the test.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    std::string t = (std::filesystem::temp_directory_path() / "navemu-pty-XXXXXX").string();
+    if (::mkdtemp(t.data()) == nullptr) throw std::runtime_error("mkdtemp");
+    path = t;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+TEST(Pty, RawRoundTripKeepsCrAndDoesNotEcho) {
+  auto port = open_pty({});
+  const std::string slave = pty_slave_path(*port);
+  ASSERT_EQ(slave.rfind("/dev/pts/", 0), 0u) << slave;
+  EXPECT_EQ(port->describe(), "pty " + slave);
+  const int c = open_client(slave);
+  ASSERT_GE(c, 0);
+
+  const std::string sentence = "$GPGGA,1,2,3*00\r\n";
+  ASSERT_TRUE(port->write(sentence));
+  const std::string got =
+      read_until(c, [&](const std::string& d) { return d.size() >= sentence.size(); });
+  EXPECT_EQ(got, sentence);  // CR stays CR (no ICRNL), nothing added (no OPOST)
+
+  // Raw mode: our own output does not echo back as client input.
+  std::this_thread::sleep_for(milliseconds(20));
+  std::uint8_t buf[256];
+  EXPECT_EQ(port->read(buf), 0u);
+
+  // Commands written by the client come out of read() unchanged.
+  const std::string cmd = "\xb5\x62\x06\x00\x00\x00\x06\x18\r\n";
+  ASSERT_EQ(::write(c, cmd.data(), cmd.size()), static_cast<ssize_t>(cmd.size()));
+  EXPECT_EQ(port_read_until(*port, cmd.size()), cmd);
+  EXPECT_EQ(port->counters().bytes_read, cmd.size());
+  EXPECT_EQ(port->counters().chunks_written, 1u);
+  EXPECT_EQ(port->counters().errors, 0u);
+  ::close(c);
+}
+
+TEST(Pty, SlaveIsWorldReadableAndWritable) {
+  auto port = open_pty({});
+  struct stat st {};
+  ASSERT_EQ(::stat(pty_slave_path(*port).c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0666u);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
+}
+
+TEST(Pty, SymlinkIsCreatedReplacedAndRemoved) {
+  TempDir dir;
+  const std::string link = (dir.path / "gnss").string();
+  auto first = open_pty({link});
+  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*first));
+  EXPECT_EQ(first->describe(), "pty " + link + " -> " + pty_slave_path(*first));
+
+  // A second port takes the existing symlink over.
+  auto second = open_pty({link});
+  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*second));
+  // Closing the first leaves the link alone: it is no longer the first port's.
+  first.reset();
+  ASSERT_TRUE(std::filesystem::is_symlink(link));
+  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*second));
+  // The link reaches the slave: data written to the port is readable through it.
+  const int c = open_client(link);
+  ASSERT_GE(c, 0);
+  ASSERT_TRUE(second->write(std::string_view("$X*00\r\n")));
+  EXPECT_EQ(read_until(c, [](const std::string& d) { return d.size() >= 7; }), "$X*00\r\n");
+  ::close(c);
+  second.reset();
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link)));
+}
+
+TEST(Pty, RefusesToReplaceARegularFileOrUseAMissingDirectory) {
+  TempDir dir;
+  const std::string file = (dir.path / "not-a-link").string();
+  std::ofstream(file) << "keep me";
+  try {
+    open_pty({file});
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a symlink"), std::string::npos) << e.what();
+  }
+  std::ifstream in(file);
+  std::string content;
+  std::getline(in, content);
+  EXPECT_EQ(content, "keep me");
+
+  const std::string missing = (dir.path / "no-such-dir" / "gnss").string();
+  try {
+    open_pty({missing});
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Pty, ClientClosesAndReopensMidStream) {
+  auto port = open_pty({});
+  const std::string slave = pty_slave_path(*port);
+  int c = open_client(slave);
+  ASSERT_GE(c, 0);
+  int seq = 0;
+  for (; seq < 5; ++seq) ASSERT_TRUE(port->write(make_chunk(seq, 120)));
+  std::string first = read_until(c, [](const std::string& d) { return d.size() >= 5 * 120; });
+  std::vector<int> seqs;
+  ASSERT_TRUE(parse_chunks(first, seqs));
+  EXPECT_EQ(seqs, (std::vector<int>{0, 1, 2, 3, 4}));
+  ::close(c);
+
+  // Written while nobody has the slave open: kept (the port holds the slave) and delivered.
+  for (; seq < 10; ++seq) ASSERT_TRUE(port->write(make_chunk(seq, 120)));
+  c = open_client(slave);
+  ASSERT_GE(c, 0);
+  for (; seq < 15; ++seq) ASSERT_TRUE(port->write(make_chunk(seq, 120)));
+  const std::string second =
+      read_until(c, [](const std::string& d) { return d.size() >= 10 * 120; });
+  seqs.clear();
+  ASSERT_TRUE(parse_chunks(second, seqs));
+  EXPECT_EQ(seqs, (std::vector<int>{5, 6, 7, 8, 9, 10, 11, 12, 13, 14}));
+  port->service();
+  EXPECT_EQ(port->counters().clients_connected, 2u);
+  EXPECT_EQ(port->counters().chunks_dropped, 0u);
+  EXPECT_EQ(port->counters().stale_bytes_flushed, 0u);
+  ::close(c);
+}
+
+TEST(Pty, NobodyReadingNeverBlocksAndStaleOutputIsBounded) {
+  const std::size_t max_backlog = 4096;
+  auto port = open_pty({"", max_backlog});
+  const auto t0 = Clock::now();
+  int seq = 0;
+  for (; seq < 1000; ++seq) port->write(make_chunk(seq, 600));
+  const auto elapsed = Clock::now() - t0;
+  // 1000 writes that never wait: milliseconds; a blocked write would hang the test instead.
+  EXPECT_LT(elapsed, milliseconds(500));
+  const PortCounters& k = port->counters();
+  EXPECT_EQ(k.chunks_written + k.chunks_dropped, 1000u);
+  EXPECT_GT(k.stale_bytes_flushed, 0u);  // (a lower bound: see pty.cpp)
+  EXPECT_GT(k.chunks_written, 900u);     // stale output made room for new chunks
+  EXPECT_EQ(k.errors, 0u);
+
+  // Between epochs: housekeeping. Then a client turns up and finds at most max_backlog bytes
+  // of old output, all of it whole chunks.
+  std::this_thread::sleep_for(milliseconds(10));
+  port->service();
+  const int c = open_client(pty_slave_path(*port));
+  ASSERT_GE(c, 0);
+  const std::string old = read_quiet(c);
+  EXPECT_LE(old.size(), max_backlog);
+  std::vector<int> seqs;
+  EXPECT_TRUE(parse_chunks(old, seqs)) << old.size();
+  for (int s : seqs) EXPECT_GE(s, 990);  // only the newest of the old chunks survived
+
+  // New chunks arrive intact, in order, as the client reads them.
+  for (int i = 0; i < 20; ++i, ++seq) {
+    ASSERT_TRUE(port->write(make_chunk(seq, 600)));
+    const std::string got = read_until(c, [](const std::string& d) { return d.size() >= 600; });
+    ASSERT_EQ(got, make_chunk(seq, 600)) << "chunk " << seq;
+  }
+  ::close(c);
+}
+
+TEST(Pty, ChunkBiggerThanThePtyIsCompletedFromTheTail) {
+  auto port = open_pty({"", 1 << 20});
+  const int c = open_client(pty_slave_path(*port));
+  ASSERT_GE(c, 0);
+  const std::string big = make_chunk(1, 40000);  // more than the ~17 KB a pty holds
+  const std::string small = make_chunk(2, 100);
+  std::atomic<std::size_t> progress{0};
+  std::string received;
+  std::thread reader([&] {
+    received = read_until(
+        c,
+        [&](const std::string& d) {
+          progress = d.size();
+          return d.size() >= big.size() + small.size();
+        },
+        milliseconds(3000));
+  });
+  EXPECT_TRUE(port->write(big));  // (no ASSERT while the reader thread runs)
+  const auto deadline = Clock::now() + milliseconds(2000);
+  while (port->counters().bytes_written < big.size() && Clock::now() < deadline) {
+    std::this_thread::sleep_for(milliseconds(1));
+    port->service();  // sends the tail as the reader makes room
+  }
+  EXPECT_EQ(port->counters().bytes_written, big.size());
+  // Once the big one has been read, the next chunk follows it.
+  while (progress < big.size() && Clock::now() < deadline)
+    std::this_thread::sleep_for(milliseconds(1));
+  EXPECT_TRUE(port->write(small));
+  reader.join();
+  EXPECT_TRUE(received == big + small) << "received " << received.size() << " bytes";
+  EXPECT_EQ(port->counters().chunks_written, 2u);
+  EXPECT_EQ(port->counters().stale_bytes_flushed, 0u);
+  ::close(c);
+}
+
+TEST(Pty, TailThatCannotDrainGoesStaleWithItsChunk) {
+  auto port = open_pty({"", 4096});
+  const std::string big = make_chunk(1, 40000);
+  ASSERT_TRUE(port->write(big));  // partly taken, tail kept
+  const std::uint64_t taken = port->counters().bytes_written;
+  EXPECT_LT(taken, big.size());
+  // Nobody reads: the next chunk finds the tail stuck; the whole backlog is discarded (the
+  // head of the big chunk included) and the new chunk goes out on its own.
+  ASSERT_TRUE(port->write(make_chunk(2, 100)));
+  EXPECT_GE(port->counters().stale_bytes_flushed, big.size() - taken);  // the tail, at least
+  EXPECT_EQ(port->counters().chunks_written, 2u);
+  const int c = open_client(pty_slave_path(*port));
+  ASSERT_GE(c, 0);
+  EXPECT_EQ(read_quiet(c), make_chunk(2, 100));
+  ::close(c);
+}
+
+TEST(Pty, SlavePathIsEmptyForOtherPorts) {
+  auto udp_port = open_udp_sender({"127.0.0.1", 9});
+  EXPECT_EQ(pty_slave_path(*udp_port), "");
+}
+
+}  // namespace
+}  // namespace navemu::transport
