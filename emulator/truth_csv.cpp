@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "models/errors.hpp"
+#include "models/truth_interpolation.hpp"
 
 namespace navemu {
 
@@ -17,7 +18,6 @@ constexpr const char* kRequired[10] = {"time_s",  "lat_deg",  "lon_deg",  "h_m",
 constexpr const char* kForce[3] = {"f_x_mps2", "f_y_mps2", "f_z_mps2"};
 constexpr const char* kRate[3] = {"w_x_radps", "w_y_radps", "w_z_radps"};
 constexpr const char* kTemperature = "temperature_c";
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 }  // namespace
 
@@ -108,20 +108,13 @@ bool TruthTrack::load_next() {
   }
   Knot k;
   k.t_s = row.time_s;
-  const double lat = row.position.lat_deg * kDegToRad;
-  double lon = row.position.lon_deg * kDegToRad;
-  // Unwrapped longitude: within half a turn of the previous row's.
-  if (!knots_.empty()) lon -= kTwoPi * std::round((lon - knots_.back().p.y()) / kTwoPi);
-  k.p = Vec3(lat, lon, row.position.h_m);
-  const double h = row.position.h_m;
-  k.dp = Vec3(row.v_ned_mps.x() / (meridian_radius_m(row.position.lat_deg) + h),
-              row.v_ned_mps.y() / ((transverse_radius_m(row.position.lat_deg) + h) * std::cos(lat)),
-              -row.v_ned_mps.z());
-  k.v_ned_mps = row.v_ned_mps;
-  k.q_ned_from_body = quat_from_euler_rpy(row.rpy_rad);
-  k.f_body_mps2 = row.f_body_mps2.value_or(Vec3::Zero());
-  k.w_ib_body_radps = row.w_ib_body_radps.value_or(Vec3::Zero());
-  k.temperature_c = row.temperature_c.value_or(0.0);
+  k.truth.t = GpsTime::from_seconds(row.time_s);
+  k.truth.position = row.position;
+  k.truth.v_ned_mps = row.v_ned_mps;
+  k.truth.q_ned_from_body = quat_from_euler_rpy(row.rpy_rad);
+  k.truth.f_body_mps2 = row.f_body_mps2;
+  k.truth.w_ib_body_radps = row.w_ib_body_radps;
+  k.truth.temperature_c = row.temperature_c;
   knots_.push_back(k);
   return true;
 }
@@ -144,7 +137,7 @@ Vec3 TruthTrack::velocity_slope(std::size_t i) const {
   const double d0 = ((x - k1.t_s) + (x - k2.t_s)) / (h1 * (h1 + h2));
   const double d1 = ((x - k0.t_s) + (x - k2.t_s)) / (-h1 * h2);
   const double d2 = ((x - k0.t_s) + (x - k1.t_s)) / ((h1 + h2) * h2);
-  return d0 * k0.v_ned_mps + d1 * k1.v_ned_mps + d2 * k2.v_ned_mps;
+  return d0 * k0.truth.v_ned_mps + d1 * k1.truth.v_ned_mps + d2 * k2.truth.v_ned_mps;
 }
 
 ImuTruth TruthTrack::at(double t_s) {
@@ -163,32 +156,11 @@ ImuTruth TruthTrack::at(double t_s) {
   while (k + 2 < knots_.size() && knots_[k + 1].t_s <= t_s) ++k;
   while (knots_.size() < k + 3 && load_next()) {
   }
-  const Knot& a = knots_[k];
-  const Knot& b = knots_[k + 1];
-  const double dt = b.t_s - a.t_s;
-  const double s = std::clamp((t_s - a.t_s) / dt, 0.0, 1.0);
-
-  // Cubic Hermite basis on [0, 1].
-  const double s2 = s * s, s3 = s2 * s;
-  const double h00 = 2.0 * s3 - 3.0 * s2 + 1.0, h10 = s3 - 2.0 * s2 + s;
-  const double h01 = -2.0 * s3 + 3.0 * s2, h11 = s3 - s2;
-  const Vec3 va = velocity_slope(k);
-  const Vec3 vb = velocity_slope(k + 1);
-
-  const Vec3 p = h00 * a.p + h10 * dt * a.dp + h01 * b.p + h11 * dt * b.dp;
-  double lon_deg = p.y() * kRadToDeg;
-  lon_deg -= 360.0 * std::floor((lon_deg + 180.0) / 360.0);  // [-180, 180)
-
-  ImuTruth out;
-  out.t = GpsTime::from_seconds(t_s);
-  out.position = Geodetic{p.x() * kRadToDeg, lon_deg, p.z()};
-  out.v_ned_mps = h00 * a.v_ned_mps + h10 * dt * va + h01 * b.v_ned_mps + h11 * dt * vb;
-  out.q_ned_from_body = a.q_ned_from_body.slerp(s, b.q_ned_from_body).normalized();
-  if (has_rates()) {
-    out.f_body_mps2 = Vec3((1.0 - s) * a.f_body_mps2 + s * b.f_body_mps2);
-    out.w_ib_body_radps = Vec3((1.0 - s) * a.w_ib_body_radps + s * b.w_ib_body_radps);
-  }
-  if (has_temperature()) out.temperature_c = (1.0 - s) * a.temperature_c + s * b.temperature_c;
+  // Position Hermite on the rows' velocities, velocity Hermite on the finite-difference slopes,
+  // slerp attitude, linear f, w and temperature (models/truth_interpolation.hpp).
+  ImuTruth out = interpolate_truth(knots_[k].truth, knots_[k + 1].truth,
+                                   GpsTime::from_seconds(t_s), velocity_slope(k),
+                                   velocity_slope(k + 1));
 
   // Keep the interval's predecessor (the slope at k) and drop the rows before it.
   while (k >= 2) {

@@ -15,7 +15,8 @@
 // Other columns are ignored; no name may appear twice.
 // Errors: navemu::InputError "<file>:<line>: column <n> (<name>): <problem>", n counted from 1.
 //
-// Interpolation (TruthTrack), between the two rows around an instant:
+// Interpolation (TruthTrack, through models/truth_interpolation.hpp), between the two rows
+// around an instant:
 //   position  cubic Hermite on latitude, longitude (unwrapped) and height, with the rows'
 //             velocities as derivatives: dlat/dt = v_n / (R_N + h), dlon/dt = v_e / ((R_E + h)
 //             cos lat), dh/dt = -v_d (R_N, R_E the WGS-84 radii of curvature);
@@ -100,13 +101,8 @@ class TruthTrack {
 
  private:
   struct Knot {
-    double t_s;
-    Vec3 p;      // latitude (rad), longitude (rad, unwrapped), height (m)
-    Vec3 dp;     // their time derivatives from the velocity
-    Vec3 v_ned_mps;
-    Quat q_ned_from_body;
-    Vec3 f_body_mps2, w_ib_body_radps;
-    double temperature_c;
+    double t_s;      // the row's time as read (ImuTruth::t is it rounded to the nanosecond)
+    ImuTruth truth;  // f/w and temperature set when the file has them
   };
   bool load_next();
   Vec3 velocity_slope(std::size_t i) const;

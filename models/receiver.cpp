@@ -1,0 +1,78 @@
+#include "models/receiver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace navemu {
+
+
+double ReceiverParams::default_uere_m(ReceiverMode mode) {
+  switch (mode) {
+    case ReceiverMode::kStandalone: return 3.0;     // ionosphere model error dominates
+    case ReceiverMode::kDualFrequency: return 1.5;  // iono-free: orbit/clock and amplified noise
+    case ReceiverMode::kDgps: return 0.7;
+    case ReceiverMode::kRtkFixed: return 0.02;
+  }
+  return 3.0;
+}
+
+Receiver::Receiver(const NavData& nav, const ReceiverParams& p) : p_(p), gen_(nav, p.measurement) {}
+
+ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
+  ReceiverFix out;
+  out.t = t;
+  // The generator's processes need increasing times; a repeated epoch reports no fix.
+  if (truth == nullptr || (last_t_ && t <= *last_t_)) return out;
+  last_t_ = t;
+
+  const Vec3 p_ecef = ecef_from_geodetic(truth->position);
+  const Vec3 v_ecef = R_ned_from_ecef(truth->position).transpose() * truth->v_ned_mps;
+  EpochMeasurements e = gen_.generate(t, p_ecef, v_ecef);
+
+  // Channels: the highest satellites when more are in view than the receiver can track.
+  if (static_cast<int>(e.sats.size()) > p_.max_channels) {
+    std::vector<SatMeasurement> by_el = e.sats;
+    std::nth_element(by_el.begin(), by_el.begin() + p_.max_channels - 1, by_el.end(),
+                     [](const SatMeasurement& a, const SatMeasurement& b) {
+                       return a.dir.el_rad > b.dir.el_rad;
+                     });
+    by_el.resize(static_cast<std::size_t>(p_.max_channels));
+    std::sort(by_el.begin(), by_el.end(),
+              [](const SatMeasurement& a, const SatMeasurement& b) { return a.prn < b.prn; });
+    e.sats = std::move(by_el);
+  }
+
+  SolverOptions opt = gen_.solver_options();
+  opt.initial_p_ecef_m = last_fix_ecef_m_;
+  const Solution sol = solve(gen_.solver_input(e), e.t_receiver, opt);
+
+  double sum_sq = 0.0;
+  for (const SatMeasurement& m : e.sats) {
+    ReceiverSatellite s;
+    s.prn = m.prn;
+    s.az_deg = m.dir.az_rad * kRadToDeg;
+    s.el_deg = m.dir.el_rad * kRadToDeg;
+    s.cn0_dbhz = m.signals[0] ? m.signals[0]->cn0_dbhz : 0.0;
+    for (const SatResidual& r : sol.sats)
+      if (r.prn == m.prn && r.used && sol.fix != FixType::kNone) {
+        s.used = true;
+        sum_sq += r.residual_m * r.residual_m;
+      }
+    out.satellites.push_back(s);
+  }
+  if (sol.fix == FixType::kNone) return out;
+
+  out.fix = sol.fix;
+  out.p_ecef_m = sol.p_ecef_m;
+  out.position = geodetic_from_ecef(sol.p_ecef_m);
+  if (sol.v_ecef_mps) out.v_ned_mps = R_ned_from_ecef(out.position) * *sol.v_ecef_mps;
+  out.dops = sol.dops;
+  out.num_used = sol.num_used;
+  out.sigma_h_m = sol.dops.hdop * p_.uere_m;
+  out.sigma_v_m = sol.dops.vdop * p_.uere_m;
+  out.range_rms_m = sol.num_used > 0 ? std::sqrt(sum_sq / sol.num_used) : 0.0;
+  last_fix_ecef_m_ = sol.p_ecef_m;
+  return out;
+}
+
+}  // namespace navemu

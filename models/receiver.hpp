@@ -1,0 +1,60 @@
+#pragma once
+// The emulated GNSS receiver: the measurement generator (models/measurement.hpp) and the
+// position engine (models/solver.hpp) at the receiver's epochs, with the bookkeeping a
+// receiver reports: fix type, satellites in view and used, DOPs and accuracy estimates.
+// Time is passed in; nothing here reads a clock or does I/O.
+
+#include <optional>
+#include <vector>
+
+#include "models/imu_kinematics.hpp"
+#include "models/measurement.hpp"
+#include "models/solver.hpp"
+
+namespace navemu {
+
+struct ReceiverParams {
+  MeasurementConfig measurement;
+  int max_channels = 12;  // the highest satellites tracked at most
+  // User equivalent range error for the accuracy estimates (sigma_h = HDOP * UERE, ...): what
+  // the receiver believes of its own ranges, by mode (ReceiverParams::default_uere_m).
+  double uere_m = 3.0;
+  static double default_uere_m(ReceiverMode mode);
+};
+
+struct ReceiverSatellite {
+  int prn = 0;
+  double az_deg = 0.0, el_deg = 0.0, cn0_dbhz = 0.0;
+  bool used = false;
+};
+
+struct ReceiverFix {
+  GpsTime t;  // the measurement epoch, GPS time
+  FixType fix = FixType::kNone;
+  Geodetic position;
+  Vec3 p_ecef_m = Vec3::Zero();
+  std::optional<Vec3> v_ned_mps;
+  Dops dops;
+  int num_used = 0;
+  std::vector<ReceiverSatellite> satellites;  // tracked, by PRN
+  double sigma_h_m = 0.0, sigma_v_m = 0.0;    // 1-sigma estimates, HDOP/VDOP * UERE
+  double range_rms_m = 0.0;                   // RMS of the used pseudorange residuals
+};
+
+class Receiver {
+ public:
+  // `nav` must outlive the receiver.
+  Receiver(const NavData& nav, const ReceiverParams& p);
+  // The fix at epoch t for a receiver at `truth` (position and velocity); without truth (its
+  // stream was lost) the receiver reports no fix and keeps no satellites.
+  ReceiverFix update(GpsTime t, const ImuTruth* truth);
+  const ReceiverParams& params() const { return p_; }
+
+ private:
+  ReceiverParams p_;
+  MeasurementGenerator gen_;
+  std::optional<GpsTime> last_t_;
+  Vec3 last_fix_ecef_m_ = Vec3::Zero();
+};
+
+}  // namespace navemu
