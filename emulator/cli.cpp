@@ -23,6 +23,8 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   app.require_subcommand(1);
   app.footer("Run 'navemu SUBCOMMAND --help' for the options and output of each subcommand.");
 
+  const auto run = add_run_command(app);
+  const auto simulate = add_simulate_command(app);
   SkyOptions sky;
   add_sky_command(app, sky);
   SppOptions spp;
@@ -42,6 +44,8 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   }
 
   try {
+    if (app.got_subcommand("run")) return run_run(*run, out, err);
+    if (app.got_subcommand("simulate")) return run_run(*simulate, out, err);
     if (app.got_subcommand("sky")) return run_sky(sky, out, err);
     if (app.got_subcommand("spp")) return run_spp(spp, out, err);
     if (app.got_subcommand("obs")) return run_obs(obs, out, err);

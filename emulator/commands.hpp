@@ -24,7 +24,11 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& fi
 // "LAT,LON,H" in degrees, degrees and metres above the ellipsoid; InputError otherwise.
 Geodetic parse_geodetic(const std::string& text, const std::string& field);
 
-// A --time/--start value: ISO-8601 UTC, GPS WEEK:TOW, or "now" (the system clock).
+// The system clock as GPS time, to the nanosecond.
+GpsTime gps_now();
+
+// A --time/--start value: ISO-8601 UTC, GPS WEEK:TOW, or "now" (the system clock, whole
+// seconds).
 GpsTime time_option(const std::string& text, const std::string& field);
 
 // The navigation data to use: the RINEX file when given, otherwise the built-in nominal
@@ -78,6 +82,7 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err);
 // options struct is owned by its file's add_* function, which may add fields.
 struct ImuOptions;
 struct AllanOptions;
+struct RunOptions;
 struct DeadreckonOptions;
 std::shared_ptr<ImuOptions> add_imu_command(CLI::App& app);
 int run_imu(const ImuOptions& opt, std::ostream& out, std::ostream& err);
@@ -85,5 +90,9 @@ std::shared_ptr<AllanOptions> add_allan_command(CLI::App& app);
 int run_allan(const AllanOptions& opt, std::ostream& out, std::ostream& err);
 std::shared_ptr<DeadreckonOptions> add_deadreckon_command(CLI::App& app);
 int run_deadreckon(const DeadreckonOptions& opt, std::ostream& out, std::ostream& err);
+// navemu run (real time) and navemu simulate (offline), emulator/run_command.cpp.
+std::shared_ptr<RunOptions> add_run_command(CLI::App& app);
+std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app);
+int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err);
 
 }  // namespace navemu

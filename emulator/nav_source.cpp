@@ -57,15 +57,21 @@ Geodetic parse_geodetic(const std::string& text, const std::string& field) {
   return g;
 }
 
+GpsTime gps_now() {
+  // The only wall-clock read of the commands: the system clock (UTC) turned into GPS time.
+  const auto unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count();
+  constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z
+  const std::int64_t unix_s = unix_ns / kNsPerS;
+  const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
+  return GpsTime{gps_from_utc(utc).ns + (unix_ns - unix_s * kNsPerS)};
+}
+
 GpsTime time_option(const std::string& text, const std::string& field) {
   if (text != "now") return parse_time(text, field);
-  // The only wall-clock read of these commands: "now" in UTC, turned into GPS time.
-  const auto unix_s = std::chrono::duration_cast<std::chrono::seconds>(
-                          std::chrono::system_clock::now().time_since_epoch())
-                          .count();
-  constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z
-  const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
-  return gps_from_utc(utc);
+  const GpsTime now = gps_now();
+  return GpsTime{now.ns - now.ns % kNsPerS};  // whole seconds
 }
 
 NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t) {

@@ -1,0 +1,539 @@
+#include "emulator/engine.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+#include <poll.h>
+#include <sched.h>
+#include <sys/mman.h>
+#include <time.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <ostream>
+#include <set>
+#include <vector>
+
+#include "emulator/commands.hpp"
+#include "emulator/imu_profile.hpp"
+#include "emulator/nmea_output.hpp"
+#include "emulator/truth_source.hpp"
+#include "models/constellation.hpp"
+#include "models/errors.hpp"
+#include "models/imu_model.hpp"
+#include "models/receiver.hpp"
+#include "models/rinex.hpp"
+#include "transports/byte_port.hpp"
+
+namespace navemu {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_stop_signal(int) { g_stop.store(true); }
+
+constexpr std::int64_t kComputeLead_ns = 2'000'000;  // GNSS epoch computed 2 ms before output
+
+std::int64_t monotonic_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+}
+
+// Smallest multiple of `period` at or after t.
+std::int64_t first_index_at_or_after(GpsTime t, std::int64_t period_ns) {
+  return t.ns / period_ns + (t.ns % period_ns != 0 ? 1 : 0);
+}
+
+// The loop's notion of time. Real time: GPS time runs with CLOCK_MONOTONIC from the start;
+// lockstep: GPS time is where the truth stream is; offline: time jumps from event to event.
+class Clock {
+ public:
+  enum class Kind { kRealTime, kLockstep, kOffline };
+  Clock(Kind kind, GpsTime start, TruthSource* truth) : kind_(kind), gps0_(start), truth_(truth) {
+    mono0_ = monotonic_ns();
+  }
+  // Waits until GPS time t; false when a stop was requested.
+  bool wait_until(GpsTime t) {
+    switch (kind_) {
+      case Kind::kOffline: return !g_stop.load();
+      case Kind::kRealTime: {
+        const std::int64_t deadline = mono_of(t);
+        const timespec ts{static_cast<time_t>(deadline / kNsPerS),
+                          static_cast<long>(deadline % kNsPerS)};
+        while (!g_stop.load()) {
+          const int rc = clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
+          if (rc == 0) return true;
+          if (rc != EINTR) return !g_stop.load();
+        }
+        return false;
+      }
+      case Kind::kLockstep: {
+        while (!g_stop.load()) {
+          truth_->poll();
+          const std::optional<GpsTime> newest = truth_->newest();
+          if (newest && *newest >= t) return true;
+          timespec ts{0, 2'000'000};  // the next datagram; bounded so signals are seen
+          nanosleep(&ts, nullptr);
+        }
+        return false;
+      }
+    }
+    return false;
+  }
+  bool realtime() const { return kind_ == Kind::kRealTime; }
+  std::int64_t mono_of(GpsTime t) const { return mono0_ + (t.ns - gps0_.ns); }
+
+ private:
+  Kind kind_;
+  GpsTime gps0_;
+  std::int64_t mono0_ = 0;
+  TruthSource* truth_;
+};
+
+// Output lateness statistics of one status interval, without allocating in the loop.
+class LatenessStats {
+ public:
+  LatenessStats() {
+    v_.reserve(8192);
+    sorted_.reserve(8192);
+  }
+  void add(double ms) {
+    if (v_.size() < v_.capacity()) v_.push_back(ms);
+  }
+  std::string summary_and_reset() {
+    if (v_.empty()) return "-";
+    sorted_.assign(v_.begin(), v_.end());
+    std::sort(sorted_.begin(), sorted_.end());
+    const auto pct = [&](double p) {
+      return sorted_[std::min(sorted_.size() - 1,
+                              static_cast<std::size_t>(p * static_cast<double>(sorted_.size())))];
+    };
+    std::string s = fmt::format("{:.2f}/{:.2f}/{:.2f} ms", pct(0.5), pct(0.99), sorted_.back());
+    v_.clear();
+    return s;
+  }
+
+ private:
+  std::vector<double> v_, sorted_;
+};
+
+const char* receiver_mode_name(ReceiverMode m) {
+  switch (m) {
+    case ReceiverMode::kStandalone: return "standalone";
+    case ReceiverMode::kDualFrequency: return "dual-frequency";
+    case ReceiverMode::kDgps: return "DGPS";
+    case ReceiverMode::kRtkFixed: return "RTK";
+  }
+  return "?";
+}
+
+std::string fix_name(FixType f) {
+  switch (f) {
+    case FixType::kNone: return "no fix";
+    case FixType::kDeadReckoning: return "DR";
+    case FixType::k2D: return "2D";
+    case FixType::k3D: return "3D";
+  }
+  return "?";
+}
+
+// North/east/up error of a fix relative to the truth, metres.
+Vec3 enu_error(const ReceiverFix& fix, const ImuTruth& truth) {
+  return enu_from_ecef(fix.p_ecef_m, truth.position);
+}
+
+std::unique_ptr<transport::BytePort> open_output(const OutputSpec& o, const GnssProfile& profile) {
+  if (o.type == "pty") return transport::open_pty({o.link, o.max_backlog_bytes});
+  if (o.type == "serial") return transport::open_serial({o.device, o.baud ? o.baud : profile.baud});
+  if (o.type == "tcp") return transport::open_tcp_server({o.address, o.port, 8});
+  if (o.type == "udp") return transport::open_udp_sender({o.address, o.port});
+  return transport::open_log_file(o.path);
+}
+
+void try_realtime_hardening(const RunConfig& cfg, std::ostream& log) {
+  if (cfg.lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
+    fmt::print(log, "navemu: realtime.lock_memory: mlockall failed ({}); continuing unlocked\n",
+               std::strerror(errno));
+  if (cfg.sched_fifo) {
+    sched_param sp{};
+    sp.sched_priority = 50;
+    if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0)
+      fmt::print(log,
+                 "navemu: realtime.sched_fifo: SCHED_FIFO refused ({}; needs CAP_SYS_NICE or an "
+                 "rtprio limit); continuing with normal scheduling\n",
+                 std::strerror(errno));
+  }
+}
+
+// A CSV file of the offline run, written through one buffer.
+class CsvFile {
+ public:
+  CsvFile(const std::filesystem::path& path, std::string_view header) : path_(path), out_(path) {
+    if (!out_) throw InputError(path.string(), 0, "--out", "cannot open for writing");
+    buf_.append(header);
+  }
+  ~CsvFile() { flush(); }
+  fmt::memory_buffer& buf() { return buf_; }
+  void maybe_flush() {
+    if (buf_.size() > (1u << 16)) flush();
+  }
+  void flush() {
+    out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+    buf_.clear();
+    out_.flush();
+  }
+  void close() {
+    flush();
+    out_.close();
+    if (!out_) throw InputError(path_.string(), 0, "--out", "write failed (disk full?)");
+  }
+
+ private:
+  std::filesystem::path path_;
+  std::ofstream out_;
+  fmt::memory_buffer buf_;
+};
+
+}  // namespace
+
+void install_stop_handlers() {
+  g_stop.store(false);
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: clock_nanosleep returns EINTR and the loop sees the flag
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+}
+
+bool stop_requested() { return g_stop.load(); }
+
+EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOptions& opt,
+                         std::ostream& log) {
+  EngineSummary sum;
+  const bool offline = !opt.realtime;
+  const GpsTime end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};
+
+  // Host time stamps of truth datagrams map onto the scenario's clock: the scenario's start
+  // corresponds to the host's "now" at start.
+  const GpsTime host_now = gps_now();
+  const GpsTime host_offset{start.ns - host_now.ns};
+  std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
+  if (offline && cfg.truth.kind == TruthSourceKind::kUdp)
+    throw InputError(cfg.file.string(), 0, "truth.source",
+                     "simulate needs a generator or a CSV truth, not udp");
+
+  if (offline) std::filesystem::create_directories(opt.out_dir);
+
+  // --- GNSS receiver and its outputs.
+  NavData nav;
+  std::unique_ptr<Receiver> receiver;
+  std::unique_ptr<NmeaOutput> nmea_out;
+  std::vector<std::unique_ptr<transport::BytePort>> ports;
+  const GnssProfile& prof = cfg.gnss;
+  const std::int64_t gnss_period_ns = std::llround(1e9 / prof.rate_hz);
+  const std::int64_t gnss_latency_ns = std::llround(prof.output_latency_s * 1e9);
+  if (cfg.gnss_enabled) {
+    nav = cfg.nav_file.empty() ? nominal_constellation(start) : read_rinex_nav(cfg.nav_file);
+    ReceiverParams rp;
+    rp.measurement.mode = cfg.gnss_mode;
+    apply_receiver_class(rp.measurement, prof.receiver_class);
+    rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
+    rp.measurement.seed = cfg.seed;
+    rp.max_channels = prof.max_channels;
+    rp.uere_m = ReceiverParams::default_uere_m(cfg.gnss_mode);
+    receiver = std::make_unique<Receiver>(nav, rp);
+    nmea_out = std::make_unique<NmeaOutput>(prof, cfg.gnss_mode);
+    if (offline) {
+      ports.push_back(transport::open_log_file((opt.out_dir / "nmea.log").string()));
+    } else {
+      for (const OutputSpec& o : cfg.gnss_outputs) ports.push_back(open_output(o, prof));
+    }
+  }
+
+  // --- IMU.
+  std::unique_ptr<ImuModel> imu;
+  ImuParams imu_params;
+  std::int64_t imu_internal_ns = 0, imu_out_ns = 0;
+  if (cfg.imu_enabled) {
+    const ImuProfile p = load_imu_profile(cfg.imu_profile);
+    imu_params = imu_params_for_run(p, opt.duration_s.value_or(3600.0), 0.0);
+    imu_internal_ns = std::llround(1e9 / imu_params.internal_rate_hz);
+    imu_out_ns = std::llround(1e9 / imu_params.output_rate_hz);
+    if (imu_out_ns % imu_internal_ns != 0)
+      throw InputError(p.file.string(), 0, "internal_rate_hz",
+                       "must be a whole multiple of output_rate_hz");
+    imu = std::make_unique<ImuModel>(imu_params, cfg.seed);
+  }
+
+  // --- Offline files and the live IMU log.
+  std::unique_ptr<CsvFile> truth_csv, gnss_csv, imu_csv;
+  std::unique_ptr<transport::BytePort> imu_log;
+  static constexpr std::string_view kImuHeader =
+      "time_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c,"
+      "truth_valid\n";
+  if (offline) {
+    truth_csv = std::make_unique<CsvFile>(
+        opt.out_dir / "truth.csv",
+        "time_s,lat_deg,lon_deg,h_m,v_n_mps,v_e_mps,v_d_mps,roll_deg,pitch_deg,yaw_deg\n");
+    if (receiver)
+      gnss_csv = std::make_unique<CsvFile>(
+          opt.out_dir / "gnss.csv",
+          "time_s,gps_week,gps_tow_s,truth_lat_deg,truth_lon_deg,truth_h_m,fix,num_tracked,"
+          "num_used,lat_deg,lon_deg,h_m,v_n_mps,v_e_mps,v_d_mps,err_e_m,err_n_m,err_u_m,"
+          "err_h_m,pdop,hdop,vdop\n");
+    if (imu) imu_csv = std::make_unique<CsvFile>(opt.out_dir / "imu.csv", kImuHeader);
+  } else if (imu && !cfg.imu_log.empty()) {
+    imu_log = transport::open_log_file(cfg.imu_log);
+    imu_log->write(kImuHeader);
+  }
+
+  // --- Start-up messages: where everything is.
+  fmt::print(log, "navemu: scenario start {} ({}), seed {}, {}\n", format_iso_utc(start),
+             format_week_tow(start), cfg.seed, offline ? "offline" : cfg.time_mode == TimeMode::kLockstep ? "lockstep" : "real time");
+  fmt::print(log, "navemu: truth: {}\n", truth->describe());
+  if (receiver) {
+    std::set<int> prns;
+    for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
+    fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {} ({} satellites)\n",
+               prof.name, prof.rate_hz, receiver_mode_name(cfg.gnss_mode),
+               cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, prns.size());
+    for (const auto& p : ports) fmt::print(log, "navemu: GNSS NMEA on {}\n", p->describe());
+    if (!offline && ports.empty()) fmt::print(log, "navemu: GNSS has no output (gnss.outputs)\n");
+  }
+  if (imu)
+    fmt::print(log, "navemu: IMU {} ({} Hz){}\n", cfg.imu_profile, imu_params.output_rate_hz,
+               imu_log ? " samples logged to " + cfg.imu_log
+                       : offline ? "" : " (samples computed; set imu.log to record them)");
+  log.flush();
+  if (!offline) try_realtime_hardening(cfg, log);
+
+  const Clock::Kind kind = offline ? Clock::Kind::kOffline
+                           : cfg.time_mode == TimeMode::kLockstep ? Clock::Kind::kLockstep
+                                                                  : Clock::Kind::kRealTime;
+  Clock clock(kind, start, truth.get());
+  const std::int64_t wall0 = monotonic_ns();
+
+  // --- Event state. Indices count whole periods since the GPS epoch.
+  std::int64_t gnss_k = first_index_at_or_after(start, gnss_period_ns);
+  std::int64_t imu_j = imu ? first_index_at_or_after(start, imu_out_ns) : 0;
+  std::int64_t imu_n = imu ? imu_j * (imu_out_ns / imu_internal_ns) : 0;  // next internal step
+  const std::int64_t status_ns =
+      cfg.status_interval_s > 0.0 ? std::llround(cfg.status_interval_s * 1e9) : 0;
+  GpsTime next_status = status_ns ? start.plus_s(cfg.status_interval_s) : GpsTime{INT64_MAX};
+
+  std::string chunk;
+  chunk.reserve(4096);
+  LatenessStats lateness;
+  ReceiverFix last_fix;
+  std::optional<ImuTruth> last_fix_truth;
+  std::int64_t interval_epochs = 0;
+  std::optional<ImuTruth> imu_before, imu_now, imu_after;
+  std::int64_t window_n = -2;  // the internal step imu_now belongs to
+  fmt::memory_buffer imu_line;
+  IdealImu last_ideal = ideal_imu_static(cfg.truth.position, Quat::Identity());
+  ImuSample sample;
+  const auto t_rel = [&](GpsTime t) { return seconds_between(t, start); };
+
+  const auto gnss_epoch = [&](std::int64_t k) { return GpsTime{k * gnss_period_ns}; };
+  const auto gnss_compute_time = [&](std::int64_t k) {
+    return GpsTime{k * gnss_period_ns + gnss_latency_ns -
+                   std::min(kComputeLead_ns, gnss_period_ns / 2)};
+  };
+  const auto imu_event = [&](std::int64_t j) {
+    return GpsTime{j * imu_out_ns + std::llround(imu_params.latency_s * 1e9)};
+  };
+
+  for (;;) {
+    // The run covers the epochs measured in [start, end).
+    const bool gnss_due = receiver && gnss_epoch(gnss_k) < end;
+    const bool imu_due = imu && GpsTime{imu_j * imu_out_ns} < end;
+    if (!gnss_due && !imu_due) break;
+    GpsTime next{INT64_MAX};
+    if (gnss_due) next = std::min(next, gnss_compute_time(gnss_k));
+    if (imu_due) next = std::min(next, imu_event(imu_j));
+    next = std::min(next, next_status);
+    if (!clock.wait_until(next)) break;
+    truth->poll();
+
+    // An epoch whose output deadline passed more than a period ago is skipped, not sent late.
+    if (clock.realtime()) {
+      const std::int64_t now_mono = monotonic_ns();
+      while (receiver && now_mono > clock.mono_of(gnss_epoch(gnss_k)) + gnss_latency_ns + gnss_period_ns) {
+        ++gnss_k;
+        ++sum.gnss_skipped;
+      }
+      while (imu && now_mono > clock.mono_of(imu_event(imu_j)) + imu_out_ns) {
+        ++imu_j;
+        ++sum.imu_skipped;
+      }
+    }
+
+    // --- GNSS epoch: compute ahead, write at the deadline.
+    if (gnss_due && gnss_compute_time(gnss_k) <= next) {
+      const GpsTime te = gnss_epoch(gnss_k);
+      const std::optional<ImuTruth> tr = truth->at(te);
+      const ReceiverFix fix = receiver->update(te, tr ? &*tr : nullptr);
+      chunk.clear();
+      nmea_out->encode(fix, gnss_k, chunk);
+      const GpsTime deadline{te.ns + gnss_latency_ns};
+      if (clock.realtime() && !clock.wait_until(deadline)) break;
+      for (auto& p : ports) {
+        p->service();
+        if (!p->write(chunk)) ++sum.output_chunks_dropped;
+      }
+      if (clock.realtime()) {
+        const double late_ms = static_cast<double>(monotonic_ns() - clock.mono_of(deadline)) * 1e-6;
+        lateness.add(late_ms);
+        if (late_ms > 0.5 * static_cast<double>(gnss_period_ns) * 1e-6) ++sum.gnss_late;
+      }
+      ++sum.gnss_epochs;
+      ++interval_epochs;
+      if (fix.fix != FixType::kNone) ++sum.gnss_fixes;
+      last_fix = fix;
+      last_fix_truth = tr;
+      if (offline) {
+        const WeekTow wt = to_week_tow(te);
+        if (tr) {
+          const Vec3 rpy = euler_rpy_from_quat(tr->q_ned_from_body) * kRadToDeg;
+          fmt::format_to(std::back_inserter(truth_csv->buf()),
+                         "{:.3f},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n",
+                         t_rel(te), tr->position.lat_deg, tr->position.lon_deg, tr->position.h_m,
+                         tr->v_ned_mps.x(), tr->v_ned_mps.y(), tr->v_ned_mps.z(), rpy.x(), rpy.y(),
+                         rpy.z());
+          truth_csv->maybe_flush();
+        }
+        auto& b = gnss_csv->buf();
+        fmt::format_to(std::back_inserter(b), "{:.3f},{},{:.3f},", t_rel(te), wt.week, wt.tow_s);
+        if (tr)
+          fmt::format_to(std::back_inserter(b), "{:.9f},{:.9f},{:.4f},", tr->position.lat_deg,
+                         tr->position.lon_deg, tr->position.h_m);
+        else
+          fmt::format_to(std::back_inserter(b), ",,,");
+        fmt::format_to(std::back_inserter(b), "{},{},{},", static_cast<int>(fix.fix),
+                       fix.satellites.size(), fix.num_used);
+        if (fix.fix != FixType::kNone && tr) {
+          const Vec3 v = fix.v_ned_mps.value_or(Vec3::Zero());
+          const Vec3 e = enu_error(fix, *tr);
+          fmt::format_to(std::back_inserter(b),
+                         "{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
+                         "{:.3f},{:.3f},{:.3f}\n",
+                         fix.position.lat_deg, fix.position.lon_deg, fix.position.h_m, v.x(), v.y(),
+                         v.z(), e.x(), e.y(), e.z(), std::hypot(e.x(), e.y()), fix.dops.pdop,
+                         fix.dops.hdop, fix.dops.vdop);
+        } else {
+          fmt::format_to(std::back_inserter(b), ",,,,,,,,,,,,\n");
+        }
+        gnss_csv->maybe_flush();
+      }
+      ++gnss_k;
+    }
+
+    // --- IMU output sample: the internal steps up to its measurement time, then out.
+    if (imu_due && imu_event(imu_j) <= next) {
+      const GpsTime t_meas{imu_j * imu_out_ns};
+      // After skipped samples, resume at this sample's own internal steps.
+      imu_n = std::max(imu_n, t_meas.ns / imu_internal_ns - (imu_out_ns / imu_internal_ns - 1));
+      bool valid = true;
+      bool emitted = false;
+      for (; imu_n * imu_internal_ns <= t_meas.ns; ++imu_n) {
+        const GpsTime t{imu_n * imu_internal_ns};
+        // A rolling window of the truth at the instants around t (the kinematic derivation
+        // differences its neighbours, models/imu_kinematics.hpp).
+        if (window_n == imu_n - 1) {
+          imu_before = std::move(imu_now);
+          imu_now = std::move(imu_after);
+        } else {
+          imu_before = truth->at(GpsTime{t.ns - imu_internal_ns});
+          imu_now = truth->at(t);
+        }
+        imu_after = truth->at(GpsTime{t.ns + imu_internal_ns});
+        window_n = imu_n;
+        double temperature_c = imu_params.reference_temperature_c;
+        if (imu_now && imu_now->f_body_mps2 && imu_now->w_ib_body_radps) {
+          last_ideal = IdealImu{*imu_now->f_body_mps2, *imu_now->w_ib_body_radps};
+        } else if (imu_now && imu_before && imu_after) {
+          last_ideal = ideal_imu_from_kinematics(*imu_before, *imu_now, *imu_after);
+        } else {
+          valid = false;  // no truth: the last ideal output is held and the sample flagged
+        }
+        if (imu_now && imu_now->temperature_c) temperature_c = *imu_now->temperature_c;
+        if (imu->step(t, last_ideal, temperature_c, sample)) emitted = true;
+      }
+      if (emitted) {
+        ++sum.imu_samples;
+        if (!valid) ++sum.imu_flagged;
+        fmt::memory_buffer* b = nullptr;
+        if (imu_csv) b = &imu_csv->buf();
+        if (imu_log) {
+          imu_line.clear();
+          b = &imu_line;
+        }
+        if (b) {
+          fmt::format_to(std::back_inserter(*b), "{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.4g},{}\n",
+                         t_rel(sample.t), sample.f_body_mps2.x(), sample.f_body_mps2.y(),
+                         sample.f_body_mps2.z(), sample.w_body_radps.x(), sample.w_body_radps.y(),
+                         sample.w_body_radps.z(), sample.temperature_c, valid ? 1 : 0);
+          if (imu_csv) imu_csv->maybe_flush();
+          if (imu_log) imu_log->write(std::string_view(imu_line.data(), imu_line.size()));
+        }
+      }
+      ++imu_j;
+    }
+
+    // --- Status line.
+    if (next_status <= next) {
+      const TruthCounters* tc = truth->counters();
+      std::string fix_text = "no epoch";
+      if (receiver && interval_epochs > 0) {
+        fix_text = fmt::format("{} {}/{} sv", fix_name(last_fix.fix), last_fix.num_used,
+                               last_fix.satellites.size());
+        if (last_fix.fix != FixType::kNone) {
+          fix_text += fmt::format(" PDOP {:.1f}", last_fix.dops.pdop);
+          if (last_fix_truth) {
+            const Vec3 e = enu_error(last_fix, *last_fix_truth);
+            fix_text += fmt::format(" err {:.1f} m h {:.1f} m v", std::hypot(e.x(), e.y()),
+                                    std::abs(e.z()));
+          }
+        }
+      }
+      std::uint64_t dropped = 0;
+      for (const auto& p : ports) dropped += p->counters().chunks_dropped;
+      if (!offline) {
+        const CalendarTime c = utc_from_gps(next_status);
+        fmt::print(log,
+                   "navemu: {:02}:{:02}:{:02.0f} UTC gnss {} ep ({}) imu {} smp{} | jitter {} | "
+                   "late {} skipped {} dropped {} | truth {}{}\n",
+                   c.hour, c.minute, std::floor(c.second), sum.gnss_epochs, fix_text,
+                   sum.imu_samples, sum.imu_flagged ? fmt::format(" ({} flagged)", sum.imu_flagged) : "",
+                   lateness.summary_and_reset(), sum.gnss_late, sum.gnss_skipped + sum.imu_skipped,
+                   dropped, last_fix_truth || !receiver ? "ok" : "LOST",
+                   tc ? fmt::format(" (accepted {}, rejected {})", tc->accepted, tc->rejected()) : "");
+        log.flush();
+      }
+      interval_epochs = 0;
+      next_status = GpsTime{next_status.ns + status_ns};
+    }
+  }
+
+  // --- Wrap up.
+  if (truth_csv) truth_csv->close();
+  if (gnss_csv) gnss_csv->close();
+  if (imu_csv) imu_csv->close();
+  if (const TruthCounters* tc = truth->counters()) {
+    sum.truth_accepted = tc->accepted;
+    sum.truth_rejected = tc->rejected();
+  }
+  sum.wall_s = static_cast<double>(monotonic_ns() - wall0) * 1e-9;
+  sum.scenario_s = receiver ? static_cast<double>(sum.gnss_epochs) / prof.rate_hz
+                            : static_cast<double>(sum.imu_samples) / std::max(imu_params.output_rate_hz, 1.0);
+  return sum;
+}
+
+}  // namespace navemu

@@ -1,0 +1,51 @@
+#pragma once
+// The emulator's loop: truth in, the GNSS receiver and the IMU at their own rates against GPS
+// time, their output on ports and in logs.
+//
+// Epochs lie on whole multiples of each sensor's period in GPS time (5 Hz: .0 .2 .4 ...;
+// 125 Hz: every 8 ms). In real time the loop sleeps to absolute deadlines on CLOCK_MONOTONIC
+// (clock_nanosleep TIMER_ABSTIME): deadline = the epoch + the sensor's output latency, mapped
+// from GPS time by one fixed offset taken at start, so nothing drifts. The GNSS epoch is
+// computed kComputeLead before its deadline and written at it. An epoch whose deadline passed
+// more than one period ago is skipped and counted, never sent late in a burst. Offline
+// (`navemu simulate`) the same events run in the same order without sleeping.
+//
+// Time modes: realtime (GPS time = scenario start + monotonic time elapsed) and lockstep (GPS
+// time = the newest truth datagram's time: an epoch is processed once the truth stream has
+// passed it; without truth, time stands still).
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "emulator/run_config.hpp"
+#include "models/time.hpp"
+
+namespace navemu {
+
+struct EngineOptions {
+  bool realtime = true;              // false: offline, as fast as possible (simulate)
+  std::optional<double> duration_s;  // none: until SIGINT/SIGTERM
+  std::filesystem::path out_dir;     // offline: nmea.log, truth.csv, gnss.csv, imu.csv
+};
+
+struct EngineSummary {
+  std::int64_t gnss_epochs = 0, gnss_fixes = 0, gnss_skipped = 0, gnss_late = 0;
+  std::int64_t imu_samples = 0, imu_flagged = 0, imu_skipped = 0;
+  std::uint64_t output_chunks_dropped = 0;
+  std::uint64_t truth_accepted = 0, truth_rejected = 0;
+  double wall_s = 0.0, scenario_s = 0.0;
+};
+
+// SIGINT and SIGTERM end the loop at its next wake-up (outputs flushed, links removed).
+void install_stop_handlers();
+bool stop_requested();
+
+// Runs the configuration from GPS time `start`; start-up messages and status lines go to
+// `log`. Opening errors (ports, files, profiles) throw before the loop starts.
+EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOptions& opt,
+                         std::ostream& log);
+
+}  // namespace navemu

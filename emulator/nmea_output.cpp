@@ -1,0 +1,122 @@
+#include "emulator/nmea_output.hpp"
+
+#include <cmath>
+
+#include "models/geodesy.hpp"
+
+namespace navemu {
+
+namespace {
+}
+
+NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode)
+    : profile_(profile),
+      format_(profile.style == "garmin" ? nmea::Format::garmin() : nmea::Format::ublox()) {
+  // GGA quality and the mode indicator by receiver mode (NMEA 0183 4.10, GGA and RMC).
+  switch (mode) {
+    case ReceiverMode::kStandalone:
+    case ReceiverMode::kDualFrequency: quality_ = 1; mode_ = 'A'; break;
+    case ReceiverMode::kDgps: quality_ = 2; mode_ = 'D'; break;
+    case ReceiverMode::kRtkFixed: quality_ = 4; mode_ = 'R'; break;
+  }
+  if (profile.time_decimals) format_.time_decimals = *profile.time_decimals;
+  gsv_.reserve(64);
+  used_.reserve(64);
+}
+
+void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::string& out) {
+  const CalendarTime c = utc_from_gps(fix.t);
+  const nmea::UtcTime utc{c.year, c.month, c.day, c.hour, c.minute, c.second};
+  const bool valid = fix.fix != FixType::kNone;
+  std::optional<nmea::LatLon> pos;
+  std::optional<double> alt_msl_m, separation_m, speed_mps, course_deg;
+  if (valid) {
+    pos = nmea::LatLon{fix.position.lat_deg, fix.position.lon_deg};
+    // Height above the geoid and the geoid's separation, so that a client adding them gets
+    // the ellipsoidal height back (0 separation when no geoid model is installed).
+    separation_m = geoid_separation_m(fix.position.lat_deg, fix.position.lon_deg);
+    alt_msl_m = fix.position.h_m - *separation_m;
+    if (fix.v_ned_mps) {
+      const Vec3& v = *fix.v_ned_mps;
+      speed_mps = std::hypot(v.x(), v.y());
+      double course = std::atan2(v.y(), v.x()) * kRadToDeg;
+      if (course < 0.0) course += 360.0;
+      course_deg = course;
+    }
+  }
+  const char mode = valid ? mode_ : 'N';
+  const std::string_view talker = profile_.talker;
+
+  for (const auto& [name, divisor] : profile_.sentences) {
+    if (epoch_index % divisor != 0) continue;
+    if (name == "RMC") {
+      nmea::encode(nmea::RmcFields{talker, utc, valid, pos, speed_mps, course_deg, {}, mode,
+                                   'V'},  // u-blox sends V (no navigational status) always
+                   format_, out);
+    } else if (name == "GGA") {
+      nmea::GgaFields f;
+      f.talker = talker;
+      f.utc = utc;
+      f.position = pos;
+      f.quality = valid ? quality_ : 0;
+      f.num_sats = fix.num_used;
+      if (valid) f.hdop = fix.dops.hdop;
+      f.alt_msl_m = alt_msl_m;
+      f.geoid_separation_m = separation_m;
+      nmea::encode(f, format_, out);
+    } else if (name == "GSA") {
+      used_.clear();
+      for (const ReceiverSatellite& s : fix.satellites)
+        if (s.used) used_.push_back(s.prn);
+      nmea::GsaFields f;
+      f.talker = talker;
+      f.fix = fix.fix == FixType::k3D ? 3 : fix.fix == FixType::k2D ? 2 : 1;
+      f.prns = used_;
+      if (valid) {
+        f.pdop = fix.dops.pdop;
+        f.hdop = fix.dops.hdop;
+        f.vdop = fix.dops.vdop;
+      }
+      nmea::encode(f, format_, out);
+    } else if (name == "GSV") {
+      gsv_.clear();
+      for (const ReceiverSatellite& s : fix.satellites)
+        gsv_.push_back({s.prn, static_cast<int>(std::lround(std::max(s.el_deg, 0.0))),
+                        static_cast<int>(std::lround(s.az_deg)) % 360,
+                        static_cast<int>(std::lround(s.cn0_dbhz))});
+      nmea::encode(nmea::GsvFields{talker, gsv_}, format_, out);
+    } else if (name == "VTG") {
+      nmea::encode(nmea::VtgFields{talker, course_deg, {}, speed_mps, mode}, format_, out);
+    } else if (name == "GLL") {
+      nmea::encode(nmea::GllFields{talker, pos, utc, valid, mode}, format_, out);
+    } else if (name == "GST") {
+      nmea::GstFields f;
+      f.talker = talker;
+      f.utc = utc;
+      if (valid) {
+        // Without the full covariance the horizontal error is taken as circular.
+        f.range_rms_m = fix.range_rms_m;
+        f.major_m = fix.sigma_h_m / std::sqrt(2.0);
+        f.minor_m = fix.sigma_h_m / std::sqrt(2.0);
+        f.orientation_deg = 0.0;
+        f.lat_sigma_m = fix.sigma_h_m / std::sqrt(2.0);
+        f.lon_sigma_m = fix.sigma_h_m / std::sqrt(2.0);
+        f.alt_sigma_m = fix.sigma_v_m;
+      }
+      nmea::encode(f, format_, out);
+    } else if (name == "ZDA") {
+      nmea::encode(nmea::ZdaFields{talker, utc, 0, 0}, format_, out);
+    } else if (name == "PGRME") {
+      // Garmin's estimated position errors, taken as 2-sigma (95 %) figures.
+      nmea::PgrmeFields f;
+      if (valid) {
+        f.hpe_m = 2.0 * fix.sigma_h_m;
+        f.vpe_m = 2.0 * fix.sigma_v_m;
+        f.epe_m = 2.0 * std::hypot(fix.sigma_h_m, fix.sigma_v_m);
+      }
+      nmea::encode(f, format_, out);
+    }
+  }
+}
+
+}  // namespace navemu

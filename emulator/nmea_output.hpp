@@ -1,0 +1,30 @@
+#pragma once
+// One receiver epoch as the NMEA sentences of a GNSS profile (configs/gnss/): the receiver's
+// fix (models/receiver.hpp) turned into the encoders' fields (protocols/nmea.hpp).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "emulator/run_config.hpp"
+#include "models/receiver.hpp"
+#include "protocols/nmea.hpp"
+
+namespace navemu {
+
+class NmeaOutput {
+ public:
+  NmeaOutput(const GnssProfile& profile, ReceiverMode mode);
+  // Appends the sentences due at this epoch (those whose divisor divides epoch_index) to `out`.
+  void encode(const ReceiverFix& fix, std::int64_t epoch_index, std::string& out);
+
+ private:
+  GnssProfile profile_;
+  nmea::Format format_;
+  int quality_ = 1;  // GGA quality of a fix in this mode
+  char mode_ = 'A';  // NMEA 2.3 mode indicator of a fix in this mode
+  std::vector<nmea::GsvSatellite> gsv_;
+  std::vector<int> used_;
+};
+
+}  // namespace navemu

@@ -1,0 +1,241 @@
+#include "emulator/run_config.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "emulator/imu_profile.hpp"
+#include "emulator/yaml_reader.hpp"
+#include "models/errors.hpp"
+
+namespace navemu {
+
+namespace {
+
+// A name from a fixed list, or an error listing the choices.
+template <typename T>
+std::optional<T> choice(YamlMap& m, const std::string& key, const std::map<std::string, T>& choices) {
+  const std::optional<std::string> v = m.text(key);
+  if (!v) return std::nullopt;
+  const auto it = choices.find(*v);
+  if (it == choices.end()) {
+    std::string names;
+    for (const auto& c : choices) names += (names.empty() ? "" : ", ") + c.first;
+    m.fail(key, fmt::format("'{}' is not one of {}", *v, names));
+  }
+  return it->second;
+}
+
+// A path relative to the configuration file's folder.
+std::string resolve(const std::filesystem::path& config, const std::string& p) {
+  if (p.empty() || p == "-" || std::filesystem::path(p).is_absolute()) return p;
+  return (config.parent_path() / p).lexically_normal().string();
+}
+
+Geodetic position(YamlMap m, const Geodetic& fallback) {
+  Geodetic g = fallback;
+  if (auto v = m.number("lat_deg")) g.lat_deg = *v;
+  if (auto v = m.number("lon_deg")) g.lon_deg = *v;
+  if (auto v = m.number("h_m")) g.h_m = *v;
+  if (std::abs(g.lat_deg) > 90.0) m.fail("lat_deg", fmt::format("{} outside [-90, 90]", g.lat_deg));
+  if (g.lon_deg < -180.0 || g.lon_deg > 360.0)
+    m.fail("lon_deg", fmt::format("{} outside [-180, 360]", g.lon_deg));
+  if (g.h_m < -1000.0 || g.h_m > 100000.0)
+    m.fail("h_m", fmt::format("{} outside [-1000, 100000] m", g.h_m));
+  m.reject_unknown_keys();
+  return g;
+}
+
+OutputSpec output(YamlMap m) {
+  OutputSpec o;
+  o.type = m.text("type").value_or("");
+  static const std::vector<std::string> kTypes = {"pty", "serial", "tcp", "udp", "file"};
+  if (std::find(kTypes.begin(), kTypes.end(), o.type) == kTypes.end())
+    m.fail("type", fmt::format("'{}' is not one of pty, serial, tcp, udp, file", o.type));
+  if (o.type == "pty") {
+    o.link = resolve(m.file(), m.text("link").value_or(""));
+    if (auto v = m.integer("max_backlog_bytes", 0, 1 << 20)) o.max_backlog_bytes = static_cast<std::size_t>(*v);
+  } else if (o.type == "serial") {
+    o.device = m.text("device").value_or("");
+    if (o.device.empty()) m.fail("device", "required for a serial output (e.g. /dev/ttyUSB0)");
+    o.baud = static_cast<int>(m.integer("baud", 300, 4'000'000).value_or(0));
+  } else if (o.type == "tcp" || o.type == "udp") {
+    o.address = m.text("address").value_or("127.0.0.1");
+    o.port = static_cast<int>(m.integer("port", 0, 65535).value_or(0));
+    if (o.type == "udp" && o.port == 0) m.fail("port", "required for a udp output");
+  } else {
+    o.path = resolve(m.file(), m.text("path").value_or(""));
+    if (o.path.empty()) m.fail("path", "required for a file output");
+  }
+  m.reject_unknown_keys();
+  return o;
+}
+
+TruthSpec truth(YamlMap m) {
+  TruthSpec t;
+  t.kind = choice<TruthSourceKind>(m, "source",
+                                   {{"stationary", TruthSourceKind::kStationary},
+                                    {"circle", TruthSourceKind::kCircle},
+                                    {"line", TruthSourceKind::kLine},
+                                    {"waypoints", TruthSourceKind::kWaypoints},
+                                    {"csv", TruthSourceKind::kCsv},
+                                    {"udp", TruthSourceKind::kUdp}})
+               .value_or(t.kind);
+  t.position = position(m.map("position"), t.position);
+  t.yaw_deg = m.number("yaw_deg").value_or(0.0);
+  t.timeout_s = m.positive("timeout_s").value_or(t.timeout_s);
+
+  YamlMap c = m.map("circle");
+  t.circle.center = t.position;
+  if (auto v = c.positive("radius_m")) t.circle.radius_m = *v;
+  if (auto v = c.positive("speed_mps")) t.circle.speed_mps = *v;
+  if (auto v = c.integer("loops", 0, 1'000'000)) t.circle.loops = static_cast<int>(*v);
+  if (auto v = c.boolean("clockwise")) t.circle.clockwise = *v;
+  if (auto v = c.positive("accel_mps2")) t.circle.accel_mps2 = *v;
+  c.reject_unknown_keys();
+
+  YamlMap l = m.map("line");
+  t.line.start = t.position;
+  if (auto v = l.number("heading_deg")) t.line.heading_deg = *v;
+  if (auto v = l.positive("length_m")) t.line.length_m = *v;
+  if (auto v = l.positive("speed_mps")) t.line.speed_mps = *v;
+  if (auto v = l.integer("passes", 0, 1'000'000)) t.line.passes = static_cast<int>(*v);
+  if (auto v = l.positive("accel_mps2")) t.line.accel_mps2 = *v;
+  if (auto v = l.positive("turn_rate_dps")) t.line.turn_rate_dps = *v;
+  l.reject_unknown_keys();
+
+  YamlMap w = m.map("waypoints");
+  if (auto v = w.positive("speed_mps")) t.waypoints.speed_mps = *v;
+  if (auto v = w.positive("accel_mps2")) t.waypoints.accel_mps2 = *v;
+  if (auto v = w.positive("turn_rate_dps")) t.waypoints.turn_rate_dps = *v;
+  for (YamlMap& p : w.map_list("points")) t.waypoints.waypoints.push_back(position(p, t.position));
+  if (t.kind == TruthSourceKind::kWaypoints && t.waypoints.waypoints.size() < 2)
+    w.fail("points", "at least two waypoints are needed");
+  w.reject_unknown_keys();
+
+  YamlMap csv = m.map("csv");
+  t.csv_path = resolve(m.file(), csv.text("path").value_or(""));
+  if (t.kind == TruthSourceKind::kCsv && t.csv_path.empty())
+    csv.fail("path", "required for source csv (a truth CSV file, or - for standard input)");
+  csv.reject_unknown_keys();
+
+  YamlMap udp = m.map("udp");
+  t.udp_address = udp.text("address").value_or(t.udp_address);
+  t.udp_port = static_cast<int>(udp.integer("port", 0, 65535).value_or(t.udp_port));
+  udp.reject_unknown_keys();
+  m.reject_unknown_keys();
+  return t;
+}
+
+}  // namespace
+
+const std::vector<std::string>& known_nmea_sentences() {
+  static const std::vector<std::string> k = {"RMC", "GGA", "GSA", "GSV", "VTG",
+                                             "GLL", "GST", "ZDA", "PGRME"};
+  return k;
+}
+
+std::vector<std::string> available_gnss_profiles() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(config_dir() / "gnss", ec))
+    if (e.is_regular_file() && e.path().extension() == ".yaml")
+      names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+GnssProfile load_gnss_profile(const std::string& name_or_path) {
+  std::filesystem::path file = name_or_path;
+  if (file.extension() != ".yaml") file = config_dir() / "gnss" / (name_or_path + ".yaml");
+  if (!std::filesystem::is_regular_file(file)) {
+    std::string names;
+    for (const std::string& n : available_gnss_profiles()) names += (names.empty() ? "" : ", ") + n;
+    throw InputError(file.string(), 0, "",
+                     fmt::format("no such GNSS profile (available: {})", names));
+  }
+  YamlMap m = load_yaml_file(file);
+  GnssProfile p;
+  p.file = file;
+  p.name = file.stem().string();
+  p.description = m.text("description").value_or("");
+  (void)m.text("name");
+  p.rate_hz = m.positive("rate_hz").value_or(p.rate_hz);
+  if (p.rate_hz > 50.0) m.fail("rate_hz", fmt::format("{} Hz above 50 Hz", p.rate_hz));
+  const double period_ns = 1e9 / p.rate_hz;
+  if (std::abs(period_ns - std::round(period_ns)) > 1e-6)
+    m.fail("rate_hz", "the epoch period must be a whole number of nanoseconds");
+  p.output_latency_s = m.positive("output_latency_s", true).value_or(0.0);
+  if (p.output_latency_s >= 1.0 / p.rate_hz)
+    m.fail("output_latency_s", "must be shorter than one epoch");
+  p.baud = static_cast<int>(m.integer("baud", 300, 4'000'000).value_or(p.baud));
+  p.talker = m.text("talker").value_or(p.talker);
+  if (p.talker.size() != 2) m.fail("talker", "two letters, e.g. GP or GN");
+  p.style = m.text("style").value_or(p.style);
+  if (p.style != "ublox" && p.style != "garmin") m.fail("style", "ublox or garmin");
+  if (auto v = m.integer("time_decimals", 0, 3)) p.time_decimals = static_cast<int>(*v);
+  if (!p.time_decimals && p.rate_hz > 1.0 && p.style == "garmin")
+    m.fail("time_decimals", "needed above 1 Hz: the Garmin style sends whole seconds");
+  p.receiver_class = choice<ReceiverClass>(m, "receiver_class",
+                                           {{"consumer", ReceiverClass::kConsumer},
+                                            {"geodetic", ReceiverClass::kGeodetic}})
+                         .value_or(p.receiver_class);
+  p.elevation_mask_deg = m.positive("elevation_mask_deg", true).value_or(p.elevation_mask_deg);
+  p.max_channels = static_cast<int>(m.integer("max_channels", 4, 64).value_or(p.max_channels));
+
+  YamlMap s = m.map("sentences");
+  if (!m.has("sentences")) m.fail("sentences", "required: sentence names with divisors, e.g. {RMC: 1, GSV: 5}");
+  for (const std::string& name : known_nmea_sentences())
+    if (auto d = s.integer(name, 0, 1000); d && *d > 0) p.sentences.emplace_back(name, static_cast<int>(*d));
+  s.reject_unknown_keys();
+  m.reject_unknown_keys();
+  return p;
+}
+
+std::filesystem::path default_run_config() { return config_dir() / "default.yaml"; }
+
+RunConfig load_run_config(const std::filesystem::path& file) {
+  YamlMap root = load_yaml_file(file);
+  RunConfig c;
+  c.file = file;
+
+  YamlMap sc = root.map("scenario");
+  c.start = sc.text("start").value_or(c.start);
+  c.time_mode = choice<TimeMode>(sc, "time", {{"realtime", TimeMode::kRealTime},
+                                              {"lockstep", TimeMode::kLockstep}})
+                    .value_or(c.time_mode);
+  c.seed = static_cast<std::uint64_t>(sc.integer("seed", 0, INT64_MAX).value_or(1));
+  c.nav_file = resolve(file, sc.text("nav").value_or(""));
+  c.status_interval_s = sc.positive("status_interval_s", true).value_or(c.status_interval_s);
+  sc.reject_unknown_keys();
+
+  c.truth = truth(root.map("truth"));
+  if (c.time_mode == TimeMode::kLockstep && c.truth.kind != TruthSourceKind::kUdp)
+    sc.fail("time", "lockstep takes GPS time from a streamed truth: it needs truth.source udp");
+
+  YamlMap g = root.map("gnss");
+  c.gnss_enabled = g.boolean("enabled").value_or(true);
+  c.gnss = load_gnss_profile(g.text("profile").value_or("garmin-18x-5hz"));
+  c.gnss_mode = choice<ReceiverMode>(g, "mode", {{"standalone", ReceiverMode::kStandalone},
+                                                 {"dual", ReceiverMode::kDualFrequency},
+                                                 {"dgps", ReceiverMode::kDgps},
+                                                 {"rtk", ReceiverMode::kRtkFixed}})
+                    .value_or(c.gnss_mode);
+  for (YamlMap& o : g.map_list("outputs")) c.gnss_outputs.push_back(output(o));
+  g.reject_unknown_keys();
+
+  YamlMap imu = root.map("imu");
+  c.imu_enabled = imu.boolean("enabled").value_or(true);
+  c.imu_profile = imu.text("profile").value_or(c.imu_profile);
+  c.imu_log = resolve(file, imu.text("log").value_or(""));
+  imu.reject_unknown_keys();
+
+  YamlMap rt = root.map("realtime");
+  c.sched_fifo = rt.boolean("sched_fifo").value_or(false);
+  c.lock_memory = rt.boolean("lock_memory").value_or(false);
+  rt.reject_unknown_keys();
+  root.reject_unknown_keys();
+  return c;
+}
+
+}  // namespace navemu

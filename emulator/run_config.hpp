@@ -1,0 +1,98 @@
+#pragma once
+// The configuration of `navemu run` and `navemu simulate` (configs/default.yaml documents every
+// key) and the GNSS receiver profiles of configs/gnss/. Loaded and validated once, converted to
+// plain structs; every problem is an InputError "<file>:<line>: <section.key>: <problem>".
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/geodesy.hpp"
+#include "models/measurement.hpp"
+#include "models/trajectory.hpp"
+
+namespace navemu {
+
+// A GNSS receiver's wire behaviour: what it sends, how often, in which style.
+struct GnssProfile {
+  std::string name;  // the file's stem
+  std::filesystem::path file;
+  std::string description;
+  double rate_hz = 1.0;          // navigation epochs per second
+  double output_latency_s = 0.0;  // from the measurement epoch to the first byte out
+  int baud = 9600;               // of a serial output
+  std::string talker = "GP";
+  std::string style = "ublox";   // NMEA field widths: ublox or garmin
+  std::optional<int> time_decimals;  // decimals of the UTC seconds; unset: the style's
+  // Sentences in output order, each with its divisor (sent every n-th epoch).
+  std::vector<std::pair<std::string, int>> sentences;
+  ReceiverClass receiver_class = ReceiverClass::kConsumer;
+  double elevation_mask_deg = 5.0;
+  int max_channels = 12;  // satellites tracked at most (the highest)
+};
+
+// The sentence names a profile may list.
+const std::vector<std::string>& known_nmea_sentences();
+
+std::vector<std::string> available_gnss_profiles();  // names in configs/gnss, sorted
+GnssProfile load_gnss_profile(const std::string& name_or_path);
+
+// Where a byte stream goes.
+struct OutputSpec {
+  std::string type;  // pty | serial | tcp | udp | file
+  std::string link;  // pty: symlink path (optional)
+  std::string device;  // serial
+  int baud = 0;        // serial; 0: the profile's
+  std::string address = "127.0.0.1";  // tcp bind / udp destination
+  int port = 0;
+  std::string path;  // file
+  std::size_t max_backlog_bytes = 4096;  // pty
+};
+
+enum class TimeMode { kRealTime, kLockstep };
+enum class TruthSourceKind { kStationary, kCircle, kLine, kWaypoints, kCsv, kUdp };
+
+struct TruthSpec {
+  TruthSourceKind kind = TruthSourceKind::kCircle;
+  Geodetic position{32.3, -90.9, 60.0};  // stationary point, circle centre, line start
+  double yaw_deg = 0.0;
+  CircleTrajectory circle;
+  LineTrajectory line;
+  WaypointTrajectory waypoints;
+  std::string csv_path;  // "-" : standard input
+  std::string udp_address = "127.0.0.1";
+  int udp_port = 5555;
+  double timeout_s = 1.0;
+};
+
+struct RunConfig {
+  std::filesystem::path file;
+  std::string start = "now";
+  TimeMode time_mode = TimeMode::kRealTime;
+  std::uint64_t seed = 1;
+  std::string nav_file;  // empty: built-in constellation
+  double status_interval_s = 1.0;  // 0: no status line
+
+  TruthSpec truth;
+
+  bool gnss_enabled = true;
+  GnssProfile gnss;
+  ReceiverMode gnss_mode = ReceiverMode::kStandalone;
+  std::vector<OutputSpec> gnss_outputs;
+
+  bool imu_enabled = true;
+  std::string imu_profile = "paper_phidget";
+  std::string imu_log;  // CSV of the samples during `run`; empty: none
+
+  bool sched_fifo = false;   // SCHED_FIFO for the loop (needs CAP_SYS_NICE; falls back)
+  bool lock_memory = false;  // mlockall (falls back with a message)
+};
+
+// The file's configuration; relative paths inside it are relative to the file's folder.
+RunConfig load_run_config(const std::filesystem::path& file);
+std::filesystem::path default_run_config();  // configs/default.yaml
+
+}  // namespace navemu

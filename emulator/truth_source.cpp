@@ -1,0 +1,184 @@
+#include "emulator/truth_source.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+
+#include "emulator/truth_csv.hpp"
+#include "models/errors.hpp"
+#include "models/trajectory.hpp"
+#include "transports/byte_port.hpp"
+
+namespace navemu {
+
+namespace {
+
+constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z in Unix time
+
+class GeneratorSource final : public TruthSource {
+ public:
+  GeneratorSource(std::unique_ptr<Trajectory> t, std::string what)
+      : traj_(std::move(t)), what_(std::move(what)) {}
+  std::optional<ImuTruth> at(GpsTime t) override { return traj_->at(t); }
+  std::string describe() const override { return what_; }
+
+ private:
+  std::unique_ptr<Trajectory> traj_;
+  std::string what_;
+};
+
+// A truth CSV (or standard input) replayed from the scenario start: row time_s maps to
+// start + (time_s - first row's time_s). Rows are read ahead into a buffer as queries need.
+class CsvSource final : public TruthSource {
+ public:
+  CsvSource(const std::string& path, GpsTime start)
+      : reader_(path == "-" ? "/dev/stdin" : path), start_(start), buffer_(0.0, 10.0) {}
+
+  std::optional<ImuTruth> at(GpsTime t) override {
+    TruthRow row;
+    while (!end_ && (!buffer_.newest_time() || *buffer_.newest_time() < t)) {
+      if (!reader_.next(row)) {
+        end_ = true;
+        break;
+      }
+      if (!first_s_) first_s_ = row.time_s;
+      ImuTruth s;
+      s.t = start_.plus_s(row.time_s - *first_s_);
+      s.position = row.position;
+      s.v_ned_mps = row.v_ned_mps;
+      s.q_ned_from_body = quat_from_euler_rpy(row.rpy_rad);
+      s.f_body_mps2 = row.f_body_mps2;
+      s.w_ib_body_radps = row.w_ib_body_radps;
+      s.temperature_c = row.temperature_c;
+      buffer_.push(s);
+    }
+    return buffer_.at(t);
+  }
+  std::optional<GpsTime> newest() const override { return buffer_.newest_time(); }
+  const TruthCounters* counters() const override { return &buffer_.counters(); }
+  std::string describe() const override { return "truth CSV " + reader_.path(); }
+
+ private:
+  TruthCsvReader reader_;
+  GpsTime start_;
+  TruthBuffer buffer_;
+  std::optional<double> first_s_;
+  bool end_ = false;
+};
+
+class UdpSource final : public TruthSource {
+ public:
+  UdpSource(const TruthSpec& spec, GpsTime host_offset)
+      : rx_(spec.udp_address, spec.udp_port), host_offset_(host_offset), buffer_(spec.timeout_s) {}
+
+  void poll() override {
+    truth_datagram::Message m;
+    for (int n = 0; n < 1000; ++n) {  // bounded: a flood cannot hold the loop
+      const std::size_t len = rx_.receive(buf_);
+      if (len == 0) break;
+      if (truth_datagram::decode(std::span<const std::uint8_t>(buf_.data(), len), m) !=
+          truth_datagram::DecodeResult::kOk) {
+        ++buffer_.counters().bad_framing;
+        continue;
+      }
+      const std::optional<ImuTruth> s = truth_from_message(m, host_offset_);
+      if (!s) {
+        ++buffer_.counters().not_finite;
+        continue;
+      }
+      buffer_.push(*s);
+    }
+  }
+  std::optional<ImuTruth> at(GpsTime t) override { return buffer_.at(t); }
+  std::optional<GpsTime> newest() const override { return buffer_.newest_time(); }
+  const TruthCounters* counters() const override { return &buffer_.counters(); }
+  std::string describe() const override {
+    return fmt::format("truth datagrams on udp port {}", rx_.port());
+  }
+  int port() const { return rx_.port(); }
+
+ private:
+  transport::UdpReceiver rx_;
+  GpsTime host_offset_;
+  TruthBuffer buffer_;
+  std::array<std::uint8_t, 8192> buf_{};
+};
+
+}  // namespace
+
+std::optional<ImuTruth> truth_from_message(const truth_datagram::Message& m, GpsTime host_offset) {
+  using namespace truth_datagram;
+  const auto finite = [](const auto& a) {
+    for (double x : a)
+      if (!std::isfinite(x)) return false;
+    return true;
+  };
+  if (!finite(m.position) || !finite(m.velocity_mps) || !finite(m.attitude) ||
+      (m.has_rates && (!finite(m.f_body_mps2) || !finite(m.w_body_radps))) ||
+      (m.has_temperature && !std::isfinite(m.temperature_c)))
+    return std::nullopt;
+  ImuTruth s;
+  if (m.time_base == TimeBase::kGps) {
+    s.t = GpsTime{m.time_ns};
+  } else {
+    // Host UTC (Unix time, no leap seconds) to GPS time: add the GPS-UTC offset of that date.
+    const std::int64_t unix_s = m.time_ns / kNsPerS;
+    const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
+    s.t = GpsTime{gps_from_utc(utc).ns + (m.time_ns - unix_s * kNsPerS) + host_offset.ns};
+  }
+  const Vec3 p(m.position[0], m.position[1], m.position[2]);
+  s.position = m.position_frame == PositionFrame::kEcef ? geodetic_from_ecef(p)
+                                                        : Geodetic{p.x(), p.y(), p.z()};
+  const Vec3 v(m.velocity_mps[0], m.velocity_mps[1], m.velocity_mps[2]);
+  s.v_ned_mps = m.velocity_frame == VelocityFrame::kEcef ? Vec3(R_ned_from_ecef(s.position) * v) : v;
+  if (m.attitude_form == AttitudeForm::kQuaternion)
+    s.q_ned_from_body = Quat(m.attitude[0], m.attitude[1], m.attitude[2], m.attitude[3]);
+  else
+    s.q_ned_from_body = quat_from_euler_rpy(
+        Vec3(m.attitude[0], m.attitude[1], m.attitude[2]) * kDegToRad);
+  if (m.has_rates) {
+    s.f_body_mps2 = Vec3(m.f_body_mps2[0], m.f_body_mps2[1], m.f_body_mps2[2]);
+    s.w_ib_body_radps = Vec3(m.w_body_radps[0], m.w_body_radps[1], m.w_body_radps[2]);
+  }
+  if (m.has_temperature) s.temperature_c = m.temperature_c;
+  return s;
+}
+
+std::unique_ptr<TruthSource> make_truth_source(const TruthSpec& spec, GpsTime start,
+                                               GpsTime host_offset) {
+  switch (spec.kind) {
+    case TruthSourceKind::kStationary:
+      return std::make_unique<GeneratorSource>(
+          make_trajectory(StationaryTrajectory{spec.position, spec.yaw_deg}, start),
+          fmt::format("stationary at {:.6f},{:.6f},{:.1f}", spec.position.lat_deg,
+                      spec.position.lon_deg, spec.position.h_m));
+    case TruthSourceKind::kCircle:
+      return std::make_unique<GeneratorSource>(
+          make_trajectory(spec.circle, start),
+          fmt::format("circle r {} m at {} m/s, {} loops", spec.circle.radius_m,
+                      spec.circle.speed_mps, spec.circle.loops));
+    case TruthSourceKind::kLine:
+      return std::make_unique<GeneratorSource>(
+          make_trajectory(spec.line, start),
+          fmt::format("line {} m at {} m/s, {} passes", spec.line.length_m, spec.line.speed_mps,
+                      spec.line.passes));
+    case TruthSourceKind::kWaypoints:
+      return std::make_unique<GeneratorSource>(
+          make_trajectory(spec.waypoints, start),
+          fmt::format("{} waypoints at {} m/s", spec.waypoints.waypoints.size(),
+                      spec.waypoints.speed_mps));
+    case TruthSourceKind::kCsv:
+      return std::make_unique<CsvSource>(spec.csv_path, start);
+    case TruthSourceKind::kUdp:
+      return std::make_unique<UdpSource>(spec, host_offset);
+  }
+  throw std::logic_error("unknown truth source");
+}
+
+int truth_udp_port(const TruthSource& source) {
+  const auto* udp = dynamic_cast<const UdpSource*>(&source);
+  return udp ? udp->port() : 0;
+}
+
+}  // namespace navemu

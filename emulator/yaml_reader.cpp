@@ -1,0 +1,158 @@
+#include "emulator/yaml_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "models/errors.hpp"
+
+namespace navemu {
+
+YamlMap::YamlMap(std::filesystem::path file, const YAML::Node& node, std::string where)
+    : file_(std::move(file)), node_(node), where_(std::move(where)) {
+  if (node_ && !node_.IsNull() && !node_.IsMap()) fail("", "expected a mapping of keys to values");
+}
+
+void YamlMap::fail(const std::string& key, const std::string& problem) const {
+  YAML::Mark mark = node_ ? node_.Mark() : YAML::Mark::null_mark();
+  if (!key.empty() && node_ && node_.IsMap()) {
+    // The key's own line, when the key is there.
+    for (const auto& kv : node_)
+      if (kv.first.Scalar() == key) mark = kv.first.Mark();
+  }
+  std::string field = where_;
+  if (!key.empty()) field = field.empty() ? key : field + "." + key;
+  throw InputError(file_.string(), mark.is_null() ? 0 : mark.line + 1, field, problem);
+}
+
+bool YamlMap::has(const std::string& key) const {
+  return node_ && node_.IsMap() && node_[key] && !node_[key].IsNull();
+}
+
+std::optional<YAML::Node> YamlMap::value(const std::string& key) {
+  read_.insert(key);
+  if (!has(key)) return std::nullopt;
+  const YAML::Node& n = node_;
+  return n[key];
+}
+
+std::optional<std::string> YamlMap::text(const std::string& key) {
+  const std::optional<YAML::Node> o = value(key);
+  if (!o) return std::nullopt;
+  const YAML::Node& v = *o;
+  if (!v.IsScalar()) fail(key, "expected a text value");
+  return v.Scalar();
+}
+
+std::optional<double> YamlMap::number(const std::string& key) {
+  const std::optional<YAML::Node> o = value(key);
+  if (!o) return std::nullopt;
+  const YAML::Node& v = *o;
+  double x = 0.0;
+  try {
+    if (!v.IsScalar()) throw YAML::Exception(v.Mark(), "");
+    x = v.as<double>();
+  } catch (const YAML::Exception&) {
+    fail(key, fmt::format("'{}' is not a number", v.IsScalar() ? v.Scalar() : "(not a scalar)"));
+  }
+  if (!std::isfinite(x)) fail(key, fmt::format("'{}' is not finite", v.Scalar()));
+  return x;
+}
+
+std::optional<double> YamlMap::positive(const std::string& key, bool allow_zero) {
+  const std::optional<double> x = number(key);
+  if (x && (*x < 0.0 || (*x == 0.0 && !allow_zero)))
+    fail(key, fmt::format("must be {} (got {})", allow_zero ? "zero or more" : "positive", *x));
+  return x;
+}
+
+std::optional<std::int64_t> YamlMap::integer(const std::string& key, std::int64_t min,
+                                             std::int64_t max) {
+  const std::optional<YAML::Node> o = value(key);
+  if (!o) return std::nullopt;
+  const YAML::Node& v = *o;
+  std::int64_t x = 0;
+  try {
+    if (!v.IsScalar()) throw YAML::Exception(v.Mark(), "");
+    x = v.as<std::int64_t>();
+  } catch (const YAML::Exception&) {
+    fail(key, fmt::format("'{}' is not an integer", v.IsScalar() ? v.Scalar() : "(not a scalar)"));
+  }
+  if (x < min || x > max) fail(key, fmt::format("{} outside [{}, {}]", x, min, max));
+  return x;
+}
+
+std::optional<bool> YamlMap::boolean(const std::string& key) {
+  const std::optional<YAML::Node> o = value(key);
+  if (!o) return std::nullopt;
+  const YAML::Node& v = *o;
+  try {
+    if (!v.IsScalar()) throw YAML::Exception(v.Mark(), "");
+    return v.as<bool>();
+  } catch (const YAML::Exception&) {
+    fail(key, fmt::format("'{}' is not true or false", v.IsScalar() ? v.Scalar() : "(not a scalar)"));
+  }
+}
+
+std::optional<std::vector<std::string>> YamlMap::text_list(const std::string& key) {
+  const std::optional<YAML::Node> o = value(key);
+  if (!o) return std::nullopt;
+  const YAML::Node& v = *o;
+  if (!v.IsSequence()) fail(key, "expected a list, e.g. [RMC, GGA]");
+  std::vector<std::string> out;
+  for (const auto& item : v) {
+    if (!item.IsScalar()) fail(key, "expected a list of text values");
+    out.push_back(item.Scalar());
+  }
+  return out;
+}
+
+YamlMap YamlMap::map(const std::string& key) {
+  const std::optional<YAML::Node> v = value(key);
+  std::string where = where_.empty() ? key : where_ + "." + key;
+  if (v && !v->IsMap()) fail(key, "expected a mapping of keys to values");
+  return YamlMap(file_, v ? *v : YAML::Node(), std::move(where));
+}
+
+std::vector<YamlMap> YamlMap::map_list(const std::string& key) {
+  const std::optional<YAML::Node> o = value(key);
+  std::vector<YamlMap> out;
+  if (!o) return out;
+  const YAML::Node& v = *o;
+  if (!v.IsSequence()) fail(key, "expected a list of mappings");
+  std::size_t i = 0;
+  for (const auto& item : v) {
+    const std::string where = fmt::format("{}{}[{}]", where_.empty() ? "" : where_ + ".", key, i++);
+    if (!item.IsMap()) YamlMap(file_, item, where).fail("", "expected a mapping");
+    out.emplace_back(file_, item, where);
+  }
+  return out;
+}
+
+void YamlMap::reject_unknown_keys() const {
+  if (!node_ || !node_.IsMap()) return;
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.Scalar();
+    if (read_.count(key) == 0) {
+      std::string known;
+      for (const std::string& k : read_) known += (known.empty() ? "" : ", ") + k;
+      fail(key, fmt::format("unknown key (known here: {})", known));
+    }
+  }
+}
+
+YamlMap load_yaml_file(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(file.string(), 0, "", "no such configuration file");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file.string());
+  } catch (const YAML::ParserException& e) {
+    throw InputError(file.string(), e.mark.line + 1, "", "YAML syntax error: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file.string(), 0, "", e.what());
+  }
+  return YamlMap(file, root, "");
+}
+
+}  // namespace navemu

@@ -1,0 +1,99 @@
+// Run configurations and GNSS profiles: the shipped files load, and bad files fail with the
+// file, line and key.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "emulator/run_config.hpp"
+#include "models/errors.hpp"
+
+namespace navemu {
+namespace {
+
+std::filesystem::path write_temp(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "navemu_run_config_test";
+  std::filesystem::create_directories(dir);
+  const auto p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::string load_error(const std::string& yaml) {
+  try {
+    load_run_config(write_temp("bad.yaml", yaml));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(RunConfig, DefaultConfigIsThePapersCircleWithTheGarminReceiverOnAPty) {
+  const RunConfig c = load_run_config(default_run_config());
+  EXPECT_EQ(c.truth.kind, TruthSourceKind::kCircle);
+  EXPECT_NEAR(c.truth.circle.radius_m, 9.144, 1e-9);  // 30 ft
+  EXPECT_NEAR(c.truth.circle.center.lat_deg, 32.3, 1e-9);
+  EXPECT_EQ(c.gnss.name, "garmin-18x-5hz");
+  EXPECT_DOUBLE_EQ(c.gnss.rate_hz, 5.0);
+  ASSERT_EQ(c.gnss_outputs.size(), 1u);
+  EXPECT_EQ(c.gnss_outputs[0].type, "pty");
+  EXPECT_EQ(c.gnss_outputs[0].link, "/tmp/navemu-gnss");
+  EXPECT_EQ(c.imu_profile, "paper_phidget");
+  EXPECT_EQ(c.time_mode, TimeMode::kRealTime);
+}
+
+TEST(RunConfig, EveryShippedGnssProfileLoads) {
+  const auto names = available_gnss_profiles();
+  ASSERT_GE(names.size(), 2u);
+  for (const std::string& n : names) {
+    const GnssProfile p = load_gnss_profile(n);
+    EXPECT_FALSE(p.sentences.empty()) << n;
+    EXPECT_GT(p.rate_hz, 0.0) << n;
+  }
+  const GnssProfile g = load_gnss_profile("garmin-18x-5hz");
+  ASSERT_EQ(g.sentences.size(), 5u);
+  EXPECT_EQ(g.sentences[0].first, "RMC");
+  EXPECT_EQ(g.sentences[3], (std::pair<std::string, int>{"GSV", 5}));
+  EXPECT_EQ(g.style, "garmin");
+}
+
+TEST(RunConfig, UnknownKeyIsReportedWithItsLine) {
+  const std::string e = load_error("scenario:\n  seed: 3\n  sede: 4\n");
+  EXPECT_NE(e.find("bad.yaml:3: scenario.sede: unknown key"), std::string::npos) << e;
+}
+
+TEST(RunConfig, BadValuesNameTheKey) {
+  EXPECT_NE(load_error("truth:\n  source: teleport\n").find("truth.source: 'teleport' is not one of"),
+            std::string::npos);
+  EXPECT_NE(load_error("truth:\n  circle: {radius_m: -3}\n").find(":2: truth.circle.radius_m: must be positive"),
+            std::string::npos)
+      << load_error("truth:\n  circle: {radius_m: -3}\n");
+  EXPECT_NE(load_error("truth:\n  position: {lat_deg: 95}\n").find("truth.position.lat_deg"),
+            std::string::npos);
+  EXPECT_NE(load_error("scenario:\n  seed: abc\n").find("scenario.seed: 'abc' is not an integer"),
+            std::string::npos);
+  EXPECT_NE(load_error("gnss:\n  profile: nosuch\n").find("no such GNSS profile (available: "),
+            std::string::npos);
+  EXPECT_NE(load_error("gnss:\n  outputs:\n    - {type: serial}\n").find("gnss.outputs[0].device: required"),
+            std::string::npos)
+      << load_error("gnss:\n  outputs:\n    - {type: serial}\n");
+  EXPECT_NE(load_error("scenario:\n  time: lockstep\n").find("needs truth.source udp"),
+            std::string::npos);
+  EXPECT_NE(load_error("truth:\n  source: waypoints\n").find("at least two waypoints"),
+            std::string::npos);
+  EXPECT_NE(load_error("scenario: [1, 2\n").find("YAML syntax error"), std::string::npos);
+}
+
+TEST(RunConfig, RelativePathsAreRelativeToTheFile) {
+  const auto p = write_temp("rel.yaml", "truth:\n  source: csv\n  csv: {path: track.csv}\n");
+  const RunConfig c = load_run_config(p);
+  EXPECT_EQ(c.truth.csv_path, (p.parent_path() / "track.csv").string());
+}
+
+TEST(RunConfig, MissingFileIsAnInputError) {
+  EXPECT_THROW(load_run_config("/nonexistent/navemu.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace navemu
