@@ -218,16 +218,30 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
                          std::ostream& log) {
   EngineSummary sum;
   const bool offline = !opt.realtime;
-  const GpsTime end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};
 
   // Host time stamps of truth datagrams map onto the scenario's clock: the scenario's start
   // corresponds to the host's "now" at start.
   const GpsTime host_now = gps_now();
   const GpsTime host_offset{start.ns - host_now.ns};
-  std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
   if (offline && cfg.truth.kind == TruthSourceKind::kUdp)
     throw InputError(cfg.file.string(), 0, "truth.source",
                      "simulate needs a generator or a CSV truth, not udp");
+  std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
+  const bool lockstep = !offline && cfg.time_mode == TimeMode::kLockstep;
+  if (lockstep) {
+    // The scenario starts where the truth stream does.
+    fmt::print(log, "navemu: lockstep: waiting for the first truth datagram on udp port {}\n",
+               truth_udp_port(*truth));
+    log.flush();
+    while (!truth->newest()) {
+      if (g_stop.load()) return sum;
+      truth->poll();
+      timespec ts{0, 2'000'000};
+      nanosleep(&ts, nullptr);
+    }
+    start = *truth->newest();
+  }
+  const GpsTime end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};
 
   if (offline) std::filesystem::create_directories(opt.out_dir);
 
@@ -296,7 +310,8 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
 
   // --- Start-up messages: where everything is.
   fmt::print(log, "navemu: scenario start {} ({}), seed {}, {}\n", format_iso_utc(start),
-             format_week_tow(start), cfg.seed, offline ? "offline" : cfg.time_mode == TimeMode::kLockstep ? "lockstep" : "real time");
+             format_week_tow(start), cfg.seed,
+             offline ? "offline" : lockstep ? "lockstep" : "real time");
   fmt::print(log, "navemu: truth: {}\n", truth->describe());
   if (receiver) {
     std::set<int> prns;
@@ -314,9 +329,9 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   log.flush();
   if (!offline) try_realtime_hardening(cfg, log);
 
-  const Clock::Kind kind = offline ? Clock::Kind::kOffline
-                           : cfg.time_mode == TimeMode::kLockstep ? Clock::Kind::kLockstep
-                                                                  : Clock::Kind::kRealTime;
+  const Clock::Kind kind = offline    ? Clock::Kind::kOffline
+                           : lockstep ? Clock::Kind::kLockstep
+                                      : Clock::Kind::kRealTime;
   Clock clock(kind, start, truth.get());
   const std::int64_t wall0 = monotonic_ns();
 
