@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 
+#include "emulator/yaml_reader.hpp"
 #include "models/errors.hpp"
 
 #ifndef NAVEMU_CONFIG_DIR
@@ -220,16 +221,7 @@ std::vector<std::string> available_imu_profiles() {
 }
 
 ImuProfile load_imu_profile_file(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file))
-    throw InputError(file.string(), 0, "", "no such IMU profile file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::ParserException& e) {
-    throw InputError(file.string(), e.mark.line + 1, "", "YAML syntax error: " + e.msg);
-  } catch (const YAML::Exception& e) {
-    throw InputError(file.string(), 0, "", e.what());
-  }
+  const YAML::Node root = parse_yaml_file(file, "IMU profile");
   if (!root.IsMap()) fail(file, root, "", "expected a mapping of keys to values");
 
   ImuProfile prof;

@@ -141,18 +141,20 @@ void YamlMap::reject_unknown_keys() const {
   }
 }
 
-YamlMap load_yaml_file(const std::filesystem::path& file) {
+YAML::Node parse_yaml_file(const std::filesystem::path& file, const char* what) {
   if (!std::filesystem::is_regular_file(file))
-    throw InputError(file.string(), 0, "", "no such configuration file");
-  YAML::Node root;
+    throw InputError(file.string(), 0, "", fmt::format("no such {} file", what));
   try {
-    root = YAML::LoadFile(file.string());
+    return YAML::LoadFile(file.string());
   } catch (const YAML::ParserException& e) {
     throw InputError(file.string(), e.mark.line + 1, "", "YAML syntax error: " + e.msg);
   } catch (const YAML::Exception& e) {
     throw InputError(file.string(), 0, "", e.what());
   }
-  return YamlMap(file, root, "");
+}
+
+YamlMap load_yaml_file(const std::filesystem::path& file) {
+  return YamlMap(file, parse_yaml_file(file, "configuration"), "");
 }
 
 }  // namespace navemu

@@ -48,7 +48,10 @@ class YamlMap {
   std::set<std::string> read_;
 };
 
-// Parses a whole file into its top-level mapping; InputError on a missing file or bad YAML.
+// Parses a whole file; InputError "<file>: no such <what> file" or "<file>:<line>: YAML syntax
+// error: ...".
+YAML::Node parse_yaml_file(const std::filesystem::path& file, const char* what);
+// The file's top-level mapping.
 YamlMap load_yaml_file(const std::filesystem::path& file);
 
 }  // namespace navemu

@@ -21,6 +21,7 @@ Receiver::Receiver(const NavData& nav, const ReceiverParams& p) : p_(p), gen_(na
 ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
   ReceiverFix out;
   out.t = t;
+  meas_.sats.clear();
   // The generator's processes need increasing times; a repeated epoch reports no fix.
   if (truth == nullptr || (last_t_ && t <= *last_t_)) return out;
   last_t_ = t;
@@ -42,6 +43,7 @@ ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
     e.sats = std::move(by_el);
   }
 
+  meas_ = e;
   SolverOptions opt = gen_.solver_options();
   opt.initial_p_ecef_m = last_fix_ecef_m_;
   const Solution sol = solve(gen_.solver_input(e), e.t_receiver, opt);

@@ -49,12 +49,15 @@ class Receiver {
   // stream was lost) the receiver reports no fix and keeps no satellites.
   ReceiverFix update(GpsTime t, const ImuTruth* truth);
   const ReceiverParams& params() const { return p_; }
+  // The raw measurements of the last update (tracked satellites), for raw-data output.
+  const EpochMeasurements& measurements() const { return meas_; }
 
  private:
   ReceiverParams p_;
   MeasurementGenerator gen_;
   std::optional<GpsTime> last_t_;
   Vec3 last_fix_ecef_m_ = Vec3::Zero();
+  EpochMeasurements meas_;
 };
 
 }  // namespace navemu
