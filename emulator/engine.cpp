@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -20,7 +21,7 @@
 
 #include "emulator/commands.hpp"
 #include "emulator/imu_profile.hpp"
-#include "emulator/nmea_output.hpp"
+#include "emulator/gnss_device.hpp"
 #include "emulator/truth_source.hpp"
 #include "models/constellation.hpp"
 #include "models/errors.hpp"
@@ -248,10 +249,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // --- GNSS receiver and its outputs.
   NavData nav;
   std::unique_ptr<Receiver> receiver;
-  std::unique_ptr<NmeaOutput> nmea_out;
+  std::unique_ptr<GnssDevice> device;
   std::vector<std::unique_ptr<transport::BytePort>> ports;
   const GnssProfile& prof = cfg.gnss;
-  const std::int64_t gnss_period_ns = std::llround(1e9 / prof.rate_hz);
+  std::int64_t gnss_period_ns = std::llround(1e9 / prof.rate_hz);
   const std::int64_t gnss_latency_ns = std::llround(prof.output_latency_s * 1e9);
   if (cfg.gnss_enabled) {
     nav = cfg.nav_file.empty() ? nominal_constellation(start) : read_rinex_nav(cfg.nav_file);
@@ -263,9 +264,11 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     rp.max_channels = prof.max_channels;
     rp.uere_m = ReceiverParams::default_uere_m(cfg.gnss_mode);
     receiver = std::make_unique<Receiver>(nav, rp);
-    nmea_out = std::make_unique<NmeaOutput>(prof, cfg.gnss_mode);
+    device = make_gnss_device(prof, cfg.gnss_mode, nav);
+    gnss_period_ns = device->period_ns();
     if (offline) {
-      ports.push_back(transport::open_log_file((opt.out_dir / "nmea.log").string()));
+      // The receiver's byte stream as on the wire: NMEA, or UBX mixed with NMEA.
+      ports.push_back(transport::open_log_file((opt.out_dir / (prof.ubx ? "ubx.bin" : "nmea.log")).string()));
     } else {
       for (const OutputSpec& o : cfg.gnss_outputs) ports.push_back(open_output(o, prof));
     }
@@ -319,7 +322,8 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {} ({} satellites)\n",
                prof.name, prof.rate_hz, receiver_mode_name(cfg.gnss_mode),
                cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, prns.size());
-    for (const auto& p : ports) fmt::print(log, "navemu: GNSS NMEA on {}\n", p->describe());
+    for (const auto& p : ports)
+      fmt::print(log, "navemu: GNSS {} on {}\n", prof.ubx ? "UBX/NMEA" : "NMEA", p->describe());
     if (!offline && ports.empty()) fmt::print(log, "navemu: GNSS has no output (gnss.outputs)\n");
   }
   if (imu)
@@ -343,8 +347,13 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       cfg.status_interval_s > 0.0 ? std::llround(cfg.status_interval_s * 1e9) : 0;
   GpsTime next_status = status_ns ? start.plus_s(cfg.status_interval_s) : GpsTime{INT64_MAX};
 
-  std::string chunk;
-  chunk.reserve(4096);
+  std::string chunk, replies;
+  chunk.reserve(65536);
+  replies.reserve(4096);
+  std::array<std::uint8_t, 4096> input{};
+  // Clients' commands are read this often between epochs (u-blox replies within 100 ms).
+  const std::int64_t service_ns = 10'000'000;
+  GpsTime next_service{start.ns + service_ns};
   LatenessStats lateness;
   ReceiverFix last_fix;
   std::optional<ImuTruth> last_fix_truth;
@@ -374,8 +383,23 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     if (gnss_due) next = std::min(next, gnss_compute_time(gnss_k));
     if (imu_due) next = std::min(next, imu_event(imu_j));
     next = std::min(next, next_status);
+    if (device && !offline) next = std::min(next, next_service);
     if (!clock.wait_until(next)) break;
     truth->poll();
+    // Commands from the clients: answered on the port they came from, at once.
+    if (device && !offline) {
+      for (auto& p : ports) {
+        for (int n = 0; n < 16; ++n) {  // bounded: a flooding client cannot hold the loop
+          const std::size_t len = p->read(input);
+          if (len == 0) break;
+          replies.clear();
+          device->receive(std::span<const std::uint8_t>(input.data(), len), replies);
+          if (!replies.empty()) p->write(replies);
+        }
+      }
+      if (const std::optional<int> baud = device->take_baud_change())
+        for (auto& p : ports) transport::set_serial_baud(*p, *baud);
+    }
 
     // An epoch whose output deadline passed more than a period ago is skipped, not sent late.
     if (clock.realtime()) {
@@ -396,7 +420,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       const std::optional<ImuTruth> tr = truth->at(te);
       const ReceiverFix fix = receiver->update(te, tr ? &*tr : nullptr);
       chunk.clear();
-      nmea_out->encode(fix, gnss_k, chunk);
+      device->encode_epoch(fix, receiver->measurements(), gnss_k, chunk);
       const GpsTime deadline{te.ns + gnss_latency_ns};
       if (clock.realtime() && !clock.wait_until(deadline)) break;
       for (auto& p : ports) {
@@ -448,6 +472,12 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         gnss_csv->maybe_flush();
       }
       ++gnss_k;
+      // A client changed the navigation rate (u-blox CFG-RATE): the next epoch lies on the new
+      // grid, after this one.
+      if (device->period_ns() != gnss_period_ns) {
+        gnss_period_ns = device->period_ns();
+        gnss_k = te.ns / gnss_period_ns + 1;
+      }
     }
 
     // --- IMU output sample: the internal steps up to its measurement time, then out.
@@ -501,6 +531,8 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       }
       ++imu_j;
     }
+
+    if (next_service <= next) next_service = GpsTime{next.ns + service_ns};
 
     // --- Status line.
     if (next_status <= next) {

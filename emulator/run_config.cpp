@@ -135,6 +135,14 @@ const std::vector<std::string>& known_nmea_sentences() {
   return k;
 }
 
+const std::vector<std::string>& known_ubx_outputs() {
+  static const std::vector<std::string> k = {
+      "NAV-PVT",   "NAV-POSLLH", "NAV-POSECEF", "NAV-VELNED", "NAV-VELECEF",
+      "NAV-STATUS", "NAV-SOL",   "NAV-SVINFO",  "NAV-DOP",    "NAV-SAT",
+      "NAV-TIMEGPS", "NAV-TIMEUTC", "NAV-CLOCK", "NAV-EOE",   "RXM-RAWX", "RXM-SFRBX"};
+  return k;
+}
+
 std::vector<std::string> available_gnss_profiles() {
   std::vector<std::string> names;
   std::error_code ec;
@@ -188,6 +196,28 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
   for (const std::string& name : known_nmea_sentences())
     if (auto d = s.integer(name, 0, 1000); d && *d > 0) p.sentences.emplace_back(name, static_cast<int>(*d));
   s.reject_unknown_keys();
+
+  if (m.has("ubx")) {
+    YamlMap u = m.map("ubx");
+    UbxSettings x;
+    x.protver = u.text("protver").value_or("");
+    if (x.protver.size() != 5 || x.protver[2] != '.')
+      u.fail("protver", "the protocol version as MON-VER gives it, e.g. \"18.00\"");
+    x.sw_version = u.text("sw_version").value_or("");
+    x.hw_version = u.text("hw_version").value_or("");
+    x.extensions = u.text_list("extensions").value_or(std::vector<std::string>{});
+    if (x.sw_version.size() > 29) u.fail("sw_version", "at most 29 characters (MON-VER field)");
+    if (x.hw_version.size() > 9) u.fail("hw_version", "at most 9 characters (MON-VER field)");
+    for (const std::string& e : x.extensions)
+      if (e.size() > 29) u.fail("extensions", fmt::format("'{}' longer than 29 characters", e));
+    YamlMap msgs = u.map("messages");
+    for (const std::string& name : known_ubx_outputs())
+      if (auto d = msgs.integer(name, 0, 255); d && *d > 0) x.messages.emplace_back(name, static_cast<int>(*d));
+    msgs.reject_unknown_keys();
+    x.nmea_out = u.boolean("nmea_out").value_or(true);
+    u.reject_unknown_keys();
+    p.ubx = x;
+  }
   m.reject_unknown_keys();
   return p;
 }

@@ -16,6 +16,16 @@
 
 namespace navemu {
 
+// A u-blox receiver's identity and defaults (configs/gnss/ublox-*.yaml, key `ubx`).
+struct UbxSettings {
+  std::string protver;  // "18.00": MON-VER's PROTVER=, and whether CFG-VALSET/VALGET exist (>= 27)
+  std::string sw_version, hw_version;
+  std::vector<std::string> extensions;
+  // UBX messages output by default ("NAV-PVT") with their rate (every n-th solution).
+  std::vector<std::pair<std::string, int>> messages;
+  bool nmea_out = true;  // NMEA in the port's output protocol mask at start
+};
+
 // A GNSS receiver's wire behaviour: what it sends, how often, in which style.
 struct GnssProfile {
   std::string name;  // the file's stem
@@ -32,10 +42,12 @@ struct GnssProfile {
   ReceiverClass receiver_class = ReceiverClass::kConsumer;
   double elevation_mask_deg = 5.0;
   int max_channels = 12;  // satellites tracked at most (the highest)
+  std::optional<UbxSettings> ubx;  // a u-blox receiver: UBX output and configuration
 };
 
-// The sentence names a profile may list.
+// The sentence names a profile may list, and the UBX messages a u-blox profile may output.
 const std::vector<std::string>& known_nmea_sentences();
+const std::vector<std::string>& known_ubx_outputs();
 
 std::vector<std::string> available_gnss_profiles();  // names in configs/gnss, sorted
 GnssProfile load_gnss_profile(const std::string& name_or_path);

@@ -1,0 +1,75 @@
+#pragma once
+// A u-blox receiver's device behaviour (u-blox 8 / M8 Receiver Description UBX-13003221 and
+// the F9 interface descriptions): the configuration state a client changes with CFG messages
+// (port protocols and baud, message rates, measurement rate, navigation settings, restarts),
+// answers to polls, ACK-ACK for accepted configuration and ACK-NAK for what it does not know,
+// and each epoch's output: the enabled UBX messages (NAV-*, RXM-RAWX, RXM-SFRBX) built from
+// the receiver model, and NMEA when the port's output mask includes it.
+
+#include <array>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "emulator/gnss_device.hpp"
+#include "protocols/ubx.hpp"
+#include "protocols/ubx_messages.hpp"
+
+namespace navemu {
+
+struct UbxDeviceCounters {
+  std::uint64_t frames = 0, acks = 0, naks = 0, polls = 0;
+  std::uint64_t checksum_errors = 0, too_long = 0, junk_bytes = 0;
+};
+
+class UbxDevice final : public GnssDevice {
+ public:
+  UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavData& nav);
+
+  void encode_epoch(const ReceiverFix& fix, const EpochMeasurements& meas,
+                    std::int64_t epoch_index, std::string& out) override;
+  void receive(std::span<const std::uint8_t> bytes, std::string& replies) override;
+  std::int64_t period_ns() const override;
+  std::optional<int> take_baud_change() override;
+  bool restarting(GpsTime t) const override { return t < restart_until_; }
+
+  UbxDeviceCounters counters() const;
+  // The rate (every n-th solution, 0 off) of a message on this port.
+  int rate(ubx::MsgId id) const;
+
+ private:
+  void handle(std::uint8_t cls, std::uint8_t id, std::span<const std::uint8_t> payload,
+              std::vector<std::uint8_t>& out);
+  void handle_valset(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
+  void handle_valget(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
+  bool output_message(ubx::MsgId id, std::vector<std::uint8_t>& out) const;
+  void rebuild_nmea();
+
+  GnssProfile profile_;
+  ReceiverMode mode_;
+  const NavData& nav_;
+  std::unique_ptr<NmeaOutput> nmea_;
+  ubx::Parser parser_;
+  UbxDeviceCounters counters_;
+
+  // Configuration state (RAM layer).
+  std::uint8_t port_id_ = ubx::kPortUart1;
+  int baud_ = 9600;
+  std::optional<int> pending_baud_;
+  std::uint16_t in_proto_ = ubx::kProtoUbx | ubx::kProtoNmea;
+  std::uint16_t out_proto_ = ubx::kProtoUbx | ubx::kProtoNmea;
+  std::map<std::uint16_t, int> rates_;  // (class << 8 | id) -> every n-th solution
+  std::uint16_t meas_rate_ms_ = 1000;
+  std::uint16_t nav_rate_ = 1;
+  std::uint16_t time_ref_ = ubx::CfgRate::kTimeRefGps;
+  ubx::CfgNav5 nav5_;
+  ubx::CfgGnss gnss_;
+  GpsTime restart_until_{0};
+
+  // The latest epoch, for polled NAV messages and the restart clock.
+  ReceiverFix last_fix_;
+  EpochMeasurements last_meas_;
+  std::vector<std::uint8_t> scratch_;
+};
+
+}  // namespace navemu
