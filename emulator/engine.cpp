@@ -251,6 +251,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   std::unique_ptr<Receiver> receiver;
   std::unique_ptr<GnssDevice> device;
   std::vector<std::unique_ptr<transport::BytePort>> ports;
+  std::unique_ptr<transport::BytePort> capture_out, capture_in;  // mirrors of the wire
   const GnssProfile& prof = cfg.gnss;
   std::int64_t gnss_period_ns = std::llround(1e9 / prof.rate_hz);
   const std::int64_t gnss_latency_ns = std::llround(prof.output_latency_s * 1e9);
@@ -271,6 +272,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       ports.push_back(transport::open_log_file((opt.out_dir / (prof.ubx ? "ubx.bin" : "nmea.log")).string()));
     } else {
       for (const OutputSpec& o : cfg.gnss_outputs) ports.push_back(open_output(o, prof));
+      if (!cfg.gnss_capture.empty()) {
+        capture_out = transport::open_log_file(cfg.gnss_capture);
+        capture_in = transport::open_log_file(cfg.gnss_capture + ".in");
+      }
     }
   }
 
@@ -325,6 +330,9 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     for (const auto& p : ports)
       fmt::print(log, "navemu: GNSS {} on {}\n", prof.ubx ? "UBX/NMEA" : "NMEA", p->describe());
     if (!offline && ports.empty()) fmt::print(log, "navemu: GNSS has no output (gnss.outputs)\n");
+    if (capture_out)
+      fmt::print(log, "navemu: GNSS capture: sent bytes to {0}, received bytes to {0}.in\n",
+                 cfg.gnss_capture);
   }
   if (imu)
     fmt::print(log, "navemu: IMU {} ({} Hz){}\n", cfg.imu_profile, imu_params.output_rate_hz,
@@ -393,8 +401,13 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
           const std::size_t len = p->read(input);
           if (len == 0) break;
           replies.clear();
-          device->receive(std::span<const std::uint8_t>(input.data(), len), replies);
-          if (!replies.empty()) p->write(replies);
+          const std::span<const std::uint8_t> in(input.data(), len);
+          device->receive(in, replies);
+          if (capture_in) capture_in->write(in);
+          if (!replies.empty()) {
+            p->write(replies);
+            if (capture_out) capture_out->write(replies);
+          }
         }
       }
       if (const std::optional<int> baud = device->take_baud_change())
@@ -427,6 +440,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         p->service();
         if (!p->write(chunk)) ++sum.output_chunks_dropped;
       }
+      if (capture_out) capture_out->write(chunk);
       if (clock.realtime()) {
         const double late_ms = static_cast<double>(monotonic_ns() - clock.mono_of(deadline)) * 1e-6;
         lateness.add(late_ms);

@@ -252,6 +252,7 @@ RunConfig load_run_config(const std::filesystem::path& file) {
                                                  {"rtk", ReceiverMode::kRtkFixed}})
                     .value_or(c.gnss_mode);
   for (YamlMap& o : g.map_list("outputs")) c.gnss_outputs.push_back(output(o));
+  c.gnss_capture = resolve(file, g.text("capture").value_or(""));
   g.reject_unknown_keys();
 
   YamlMap imu = root.map("imu");

@@ -94,6 +94,7 @@ struct RunConfig {
   GnssProfile gnss;
   ReceiverMode gnss_mode = ReceiverMode::kStandalone;
   std::vector<OutputSpec> gnss_outputs;
+  std::string gnss_capture;  // every byte sent to PATH and every byte received to PATH.in
 
   bool imu_enabled = true;
   std::string imu_profile = "paper_phidget";
