@@ -39,11 +39,6 @@ extern "C" void on_stop_signal(int) { g_stop.store(true); }
 
 constexpr std::int64_t kComputeLead_ns = 2'000'000;  // GNSS epoch computed 2 ms before output
 
-std::int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
-}
 
 // Smallest multiple of `period` at or after t.
 std::int64_t first_index_at_or_after(GpsTime t, std::int64_t period_ns) {
@@ -55,9 +50,8 @@ std::int64_t first_index_at_or_after(GpsTime t, std::int64_t period_ns) {
 class Clock {
  public:
   enum class Kind { kRealTime, kLockstep, kOffline };
-  Clock(Kind kind, GpsTime start, TruthSource* truth) : kind_(kind), gps0_(start), truth_(truth) {
-    mono0_ = monotonic_ns();
-  }
+  Clock(Kind kind, GpsTime start, std::int64_t start_mono_ns, TruthSource* truth)
+      : kind_(kind), gps0_(start), mono0_(start_mono_ns), truth_(truth) {}
   // Waits until GPS time t; false when a stop was requested.
   bool wait_until(GpsTime t) {
     switch (kind_) {
@@ -202,6 +196,12 @@ class CsvFile {
 
 }  // namespace
 
+std::int64_t monotonic_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+}
+
 void install_stop_handlers() {
   g_stop.store(false);
   struct sigaction sa {};
@@ -339,12 +339,16 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
                imu_log ? " samples logged to " + cfg.imu_log
                        : offline ? "" : " (samples computed; set imu.log to record them)");
   log.flush();
+  // The geoid grid loads on first use: before the loop, not at the first fix.
+  (void)geoid_separation_m(cfg.truth.position.lat_deg, cfg.truth.position.lon_deg);
   if (!offline) try_realtime_hardening(cfg, log);
 
   const Clock::Kind kind = offline    ? Clock::Kind::kOffline
                            : lockstep ? Clock::Kind::kLockstep
                                       : Clock::Kind::kRealTime;
-  Clock clock(kind, start, truth.get());
+  Clock clock(kind, start,
+              opt.start_monotonic_ns && !lockstep ? *opt.start_monotonic_ns : monotonic_ns(),
+              truth.get());
   const std::int64_t wall0 = monotonic_ns();
 
   // --- Event state. Indices count whole periods since the GPS epoch.

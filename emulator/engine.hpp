@@ -29,7 +29,13 @@ struct EngineOptions {
   bool realtime = true;              // false: offline, as fast as possible (simulate)
   std::optional<double> duration_s;  // none: until SIGINT/SIGTERM
   std::filesystem::path out_dir;     // offline: nmea.log, truth.csv, gnss.csv, imu.csv
+  // CLOCK_MONOTONIC read together with the start time (a run that starts "now"), so that GPS
+  // time in the loop follows the system clock; unset: the loop's own start.
+  std::optional<std::int64_t> start_monotonic_ns;
 };
+
+// CLOCK_MONOTONIC in nanoseconds.
+std::int64_t monotonic_ns();
 
 struct EngineSummary {
   std::int64_t gnss_epochs = 0, gnss_fixes = 0, gnss_skipped = 0, gnss_late = 0;

@@ -97,10 +97,16 @@ std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app) {
 int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
   (void)out;
   const RunConfig cfg = load(opt);
-  // A real-time run that starts now follows the system clock to the nanosecond.
-  const GpsTime start = cfg.start == "now" && !opt.offline ? gps_now()
-                                                            : time_option(cfg.start, "scenario.start");
+  // A real-time run that starts now follows the system clock: the start and the monotonic
+  // clock are read together, before the setup's delay.
   EngineOptions eo;
+  GpsTime start;
+  if (cfg.start == "now" && !opt.offline) {
+    start = gps_now();
+    eo.start_monotonic_ns = monotonic_ns();
+  } else {
+    start = time_option(cfg.start, "scenario.start");
+  }
   eo.realtime = !opt.offline;
   eo.duration_s = opt.duration_s;
   eo.out_dir = opt.out_dir;
