@@ -20,26 +20,36 @@ constexpr std::uint16_t key(MsgId id) { return static_cast<std::uint16_t>(id.cls
 struct OutputMessage {
   const char* name;
   MsgId id;
-  std::uint32_t valset_uart1;  // CFG-MSGOUT-..._UART1 key (protocol 27+)
+  std::uint32_t valset_uart1;  // CFG-MSGOUT-..._UART1 and _USB keys (protocol 27+; 0: none)
+  std::uint32_t valset_usb;
 };
 constexpr OutputMessage kOutputs[] = {
-    {"RXM-RAWX", kRxmRawx, cfgkey::kMsgoutUbxRxmRawxUart1},
-    {"RXM-SFRBX", kRxmSfrbx, cfgkey::kMsgoutUbxRxmSfrbxUart1},
-    {"NAV-POSECEF", kNavPosecef, cfgkey::kMsgoutUbxNavPosecefUart1},
-    {"NAV-POSLLH", kNavPosllh, cfgkey::kMsgoutUbxNavPosllhUart1},
-    {"NAV-STATUS", kNavStatus, cfgkey::kMsgoutUbxNavStatusUart1},
-    {"NAV-DOP", kNavDop, cfgkey::kMsgoutUbxNavDopUart1},
-    {"NAV-SOL", kNavSol, 0},
-    {"NAV-PVT", kNavPvt, cfgkey::kMsgoutUbxNavPvtUart1},
-    {"NAV-VELECEF", kNavVelecef, cfgkey::kMsgoutUbxNavVelecefUart1},
-    {"NAV-VELNED", kNavVelned, cfgkey::kMsgoutUbxNavVelnedUart1},
-    {"NAV-TIMEGPS", kNavTimegps, cfgkey::kMsgoutUbxNavTimegpsUart1},
-    {"NAV-TIMEUTC", kNavTimeutc, cfgkey::kMsgoutUbxNavTimeutcUart1},
-    {"NAV-CLOCK", kNavClock, cfgkey::kMsgoutUbxNavClockUart1},
-    {"NAV-SVINFO", kNavSvinfo, 0},
-    {"NAV-SAT", kNavSat, cfgkey::kMsgoutUbxNavSatUart1},
-    {"NAV-EOE", kNavEoe, cfgkey::kMsgoutUbxNavEoeUart1},
+    {"RXM-RAWX", kRxmRawx, cfgkey::kMsgoutUbxRxmRawxUart1, cfgkey::kMsgoutUbxRxmRawxUsb},
+    {"RXM-SFRBX", kRxmSfrbx, cfgkey::kMsgoutUbxRxmSfrbxUart1, cfgkey::kMsgoutUbxRxmSfrbxUsb},
+    {"NAV-POSECEF", kNavPosecef, cfgkey::kMsgoutUbxNavPosecefUart1, cfgkey::kMsgoutUbxNavPosecefUsb},
+    {"NAV-POSLLH", kNavPosllh, cfgkey::kMsgoutUbxNavPosllhUart1, cfgkey::kMsgoutUbxNavPosllhUsb},
+    {"NAV-STATUS", kNavStatus, cfgkey::kMsgoutUbxNavStatusUart1, cfgkey::kMsgoutUbxNavStatusUsb},
+    {"NAV-DOP", kNavDop, cfgkey::kMsgoutUbxNavDopUart1, cfgkey::kMsgoutUbxNavDopUsb},
+    {"NAV-SOL", kNavSol, 0, 0},
+    {"NAV-PVT", kNavPvt, cfgkey::kMsgoutUbxNavPvtUart1, cfgkey::kMsgoutUbxNavPvtUsb},
+    {"NAV-VELECEF", kNavVelecef, cfgkey::kMsgoutUbxNavVelecefUart1, cfgkey::kMsgoutUbxNavVelecefUsb},
+    {"NAV-VELNED", kNavVelned, cfgkey::kMsgoutUbxNavVelnedUart1, cfgkey::kMsgoutUbxNavVelnedUsb},
+    {"NAV-TIMEGPS", kNavTimegps, cfgkey::kMsgoutUbxNavTimegpsUart1, cfgkey::kMsgoutUbxNavTimegpsUsb},
+    {"NAV-TIMEUTC", kNavTimeutc, cfgkey::kMsgoutUbxNavTimeutcUart1, cfgkey::kMsgoutUbxNavTimeutcUsb},
+    {"NAV-CLOCK", kNavClock, cfgkey::kMsgoutUbxNavClockUart1, cfgkey::kMsgoutUbxNavClockUsb},
+    {"NAV-SVINFO", kNavSvinfo, 0, 0},
+    {"NAV-SAT", kNavSat, cfgkey::kMsgoutUbxNavSatUart1, cfgkey::kMsgoutUbxNavSatUsb},
+    {"NAV-EOE", kNavEoe, cfgkey::kMsgoutUbxNavEoeUart1, cfgkey::kMsgoutUbxNavEoeUsb},
 };
+
+// The message and port a CFG-MSGOUT key configures, if it is one.
+std::optional<std::pair<MsgId, std::uint8_t>> msgout_key(std::uint32_t k) {
+  for (const OutputMessage& m : kOutputs) {
+    if (m.valset_uart1 && k == m.valset_uart1) return std::pair{m.id, kPortUart1};
+    if (m.valset_usb && k == m.valset_usb) return std::pair{m.id, kPortUsb};
+  }
+  return std::nullopt;
+}
 
 // NMEA sentences in CFG-MSG (class 0xF0) by their message ID.
 constexpr std::pair<std::uint8_t, const char*> kNmeaIds[] = {
@@ -123,10 +133,10 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
   meas_rate_ms_ = static_cast<std::uint16_t>(std::lround(1000.0 / profile_.rate_hz));
   for (const auto& [name, rate] : u.messages)
     for (const OutputMessage& m : kOutputs)
-      if (name == m.name) rates_[key(m.id)] = rate;
+      if (name == m.name) set_rate(m.id, port_id_, rate);
   for (const auto& [name, rate] : profile_.sentences)
     for (const auto& [id, n] : kNmeaIds)
-      if (name == n) rates_[static_cast<std::uint16_t>(kClassNmea << 8 | id)] = rate;
+      if (name == n) set_rate({kClassNmea, id}, port_id_, rate);
   nav5_.dyn_model = CfgNav5::kDynPortable;
   nav5_.fix_mode = 3;
   nav5_.min_elev_deg = static_cast<std::int8_t>(std::lround(profile_.elevation_mask_deg));
@@ -143,8 +153,7 @@ void UbxDevice::rebuild_nmea() {
   p.sentences.clear();
   // Keep the profile's order of sentences, then any other one a client switched on.
   for (const auto& [id, n] : kNmeaIds) {
-    const auto it = rates_.find(static_cast<std::uint16_t>(kClassNmea << 8 | id));
-    if (it != rates_.end() && it->second > 0) p.sentences.emplace_back(n, it->second);
+    if (const int r = rate({kClassNmea, id}); r > 0) p.sentences.emplace_back(n, r);
   }
   std::stable_sort(p.sentences.begin(), p.sentences.end(), [&](const auto& a, const auto& b) {
     const auto rank = [&](const std::string& s) {
@@ -167,9 +176,13 @@ std::optional<int> UbxDevice::take_baud_change() {
   return b;
 }
 
-int UbxDevice::rate(MsgId id) const {
+int UbxDevice::rate(MsgId id, std::uint8_t port) const {
   const auto it = rates_.find(key(id));
-  return it == rates_.end() ? 0 : it->second;
+  return it == rates_.end() || port >= kNumPorts ? 0 : it->second[port];
+}
+
+void UbxDevice::set_rate(MsgId id, std::uint8_t port, int r) {
+  if (port < kNumPorts) rates_[key(id)][port] = static_cast<std::uint8_t>(std::clamp(r, 0, 255));
 }
 
 UbxDeviceCounters UbxDevice::counters() const {
@@ -262,22 +275,27 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, std::span<const std::u
       CfgMsg r;
       r.msg_class = poll.msg_class;
       r.msg_id = poll.msg_id;
-      r.rate[port_id_] = static_cast<std::uint8_t>(rate({poll.msg_class, poll.msg_id}));
+      for (std::uint8_t port = 0; port < kNumPorts; ++port)
+        r.rate[port] = static_cast<std::uint8_t>(rate({poll.msg_class, poll.msg_id}, port));
       append(r, out);
       ack();
       return;
     }
-    std::optional<std::pair<MsgId, int>> change;
-    if (decode(p, cur)) change = {{cur.msg_class, cur.msg_id}, cur.rate};
-    else if (decode(p, all)) change = {{all.msg_class, all.msg_id}, all.rate[port_id_]};
+    // The 3-byte form sets the rate on the port the command came in on, the 8-byte form on all.
+    std::optional<MsgId> change;
+    if (decode(p, cur)) change = MsgId{cur.msg_class, cur.msg_id};
+    else if (decode(p, all)) change = MsgId{all.msg_class, all.msg_id};
     if (!change) return nak();
-    const MsgId target = change->first;
+    const MsgId target = *change;
     bool known = target.cls == kClassNmea &&
                  std::any_of(std::begin(kNmeaIds), std::end(kNmeaIds),
                              [&](const auto& e) { return e.first == target.id; });
     for (const OutputMessage& m : kOutputs) known = known || m.id == target;
     if (!known) return nak();
-    rates_[key(target)] = change->second;
+    if (p.size() == CfgMsgCurrentPort::kPayloadSize)
+      set_rate(target, port_id_, cur.rate);
+    else
+      for (std::uint8_t port = 0; port < kNumPorts; ++port) set_rate(target, port, all.rate[port]);
     if (target.cls == kClassNmea) rebuild_nmea();
     return ack();
   }
@@ -324,17 +342,26 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, std::span<const std::u
     return decode(p, c) ? ack() : nak();
   }
   if (msg == kCfgRst) {
-    // Not acknowledged (interface description, CFG-RST). Hot start: the fix returns at once;
-    // warm and cold starts: no fix until a new ephemeris is collected (30 s here).
+    // Not acknowledged (interface description, CFG-RST). The fix returns after the part's
+    // time to first fix (u-blox M8 data sheet: hot start 1 s, cold start 26 s; a warm start
+    // still has to collect the ephemerides, about as long).
     CfgRst r;
     if (!decode(p, r)) return nak();
-    const double outage_s = r.nav_bbr_mask == CfgRst::kHotStart ? 1.0 : 30.0;
+    const double outage_s = r.nav_bbr_mask == CfgRst::kHotStart    ? 1.0
+                            : r.nav_bbr_mask == CfgRst::kWarmStart ? 25.0
+                                                                   : 26.0;
     restart_until_ = last_fix_.t.plus_s(outage_s);
     return;
   }
   const bool protocol27 = profile_.ubx->protver >= "27";
   if (msg == kCfgValset && protocol27) return handle_valset(p, out);
   if (msg == kCfgValget && protocol27) return handle_valget(p, out);
+  if (msg == kCfgValdel && protocol27) {
+    // Deleting from the battery-backed or flash layers leaves the running (RAM) configuration
+    // as it is; nothing is stored beyond it here.
+    CfgValdel d;
+    return decode(p, d) ? ack() : nak();
+  }
   nak();  // a configuration message this receiver does not know
 }
 
@@ -352,7 +379,9 @@ void UbxDevice::handle_valset(std::span<const std::uint8_t> p, std::vector<std::
                  kv.key_id == cfgkey::kUart1outprotNmea || kv.key_id == cfgkey::kUart1outprotUbx ||
                  kv.key_id == cfgkey::kUart1inprotNmea || kv.key_id == cfgkey::kUart1inprotUbx ||
                  kv.key_id == cfgkey::kNavspgDynmodel;
-    for (const OutputMessage& m : kOutputs) known = known || (m.valset_uart1 && kv.key_id == m.valset_uart1);
+    known = known || msgout_key(kv.key_id).has_value() || kv.key_id == cfgkey::kUsbinprotUbx ||
+            kv.key_id == cfgkey::kUsbinprotNmea || kv.key_id == cfgkey::kUsboutprotUbx ||
+            kv.key_id == cfgkey::kUsboutprotNmea;
     if (!known) return nak();
     if (kv.key_id == cfgkey::kRateMeas && kv.value < 25) return nak();
     if (kv.key_id == cfgkey::kRateNav && (kv.value < 1 || kv.value > 127)) return nak();
@@ -373,11 +402,30 @@ void UbxDevice::handle_valset(std::span<const std::uint8_t> p, std::vector<std::
       baud_ = static_cast<int>(kv.value);
       pending_baud_ = baud_;
     }
-    for (const OutputMessage& m : kOutputs)
-      if (m.valset_uart1 && kv.key_id == m.valset_uart1) rates_[key(m.id)] = static_cast<int>(kv.value);
+    if (const auto mk = msgout_key(kv.key_id)) set_rate(mk->first, mk->second, static_cast<int>(kv.value));
+    // The USB port is not emulated: its protocol masks are kept for VALGET only.
+    if ((kv.key_id >> 16) == 0x1077 || (kv.key_id >> 16) == 0x1078) usb_proto_keys_[kv.key_id] = kv.value;
   }
   ++counters_.acks;
   append(AckAck{kCfgValset.cls, kCfgValset.id}, out);
+}
+
+std::optional<std::uint64_t> UbxDevice::value_of(std::uint32_t k) const {
+  if (k == cfgkey::kRateMeas) return meas_rate_ms_;
+  if (k == cfgkey::kRateNav) return nav_rate_;
+  if (k == cfgkey::kRateTimeref) return time_ref_;
+  if (k == cfgkey::kNavspgDynmodel) return nav5_.dyn_model;
+  if (k == cfgkey::kUart1Baudrate) return static_cast<std::uint64_t>(baud_);
+  if (k == cfgkey::kUart1outprotNmea) return (out_proto_ & kProtoNmea) ? 1 : 0;
+  if (k == cfgkey::kUart1outprotUbx) return (out_proto_ & kProtoUbx) ? 1 : 0;
+  if (k == cfgkey::kUart1inprotNmea) return (in_proto_ & kProtoNmea) ? 1 : 0;
+  if (k == cfgkey::kUart1inprotUbx) return (in_proto_ & kProtoUbx) ? 1 : 0;
+  if (const auto mk = msgout_key(k)) return static_cast<std::uint64_t>(rate(mk->first, mk->second));
+  if ((k >> 16) == 0x1077 || (k >> 16) == 0x1078) {
+    const auto it = usb_proto_keys_.find(k);
+    return it != usb_proto_keys_.end() ? it->second : 1;  // USB takes UBX and NMEA by default
+  }
+  return std::nullopt;
 }
 
 void UbxDevice::handle_valget(std::span<const std::uint8_t> p, std::vector<std::uint8_t>& out) {
@@ -387,22 +435,16 @@ void UbxDevice::handle_valget(std::span<const std::uint8_t> p, std::vector<std::
     append(AckNak{kCfgValget.cls, kCfgValget.id}, out);
   };
   if (!decode(p, req)) return nak();
+  // The default layer answers the power-up configuration; RAM, BBR and flash the running one
+  // (nothing here is saved apart from it).
+  std::unique_ptr<UbxDevice> defaults;
+  if (req.layer == kLayerDefault) defaults = std::make_unique<UbxDevice>(profile_, mode_, nav_);
+  const UbxDevice& from = defaults ? *defaults : *this;
   CfgValgetResponse r;
   r.layer = req.layer;
   r.position = req.position;
   for (std::uint32_t k : req.keys) {
-    std::optional<std::uint64_t> v;
-    if (k == cfgkey::kRateMeas) v = meas_rate_ms_;
-    if (k == cfgkey::kRateNav) v = nav_rate_;
-    if (k == cfgkey::kRateTimeref) v = time_ref_;
-    if (k == cfgkey::kNavspgDynmodel) v = nav5_.dyn_model;
-    if (k == cfgkey::kUart1Baudrate) v = static_cast<std::uint64_t>(baud_);
-    if (k == cfgkey::kUart1outprotNmea) v = (out_proto_ & kProtoNmea) ? 1 : 0;
-    if (k == cfgkey::kUart1outprotUbx) v = (out_proto_ & kProtoUbx) ? 1 : 0;
-    if (k == cfgkey::kUart1inprotNmea) v = (in_proto_ & kProtoNmea) ? 1 : 0;
-    if (k == cfgkey::kUart1inprotUbx) v = (in_proto_ & kProtoUbx) ? 1 : 0;
-    for (const OutputMessage& m : kOutputs)
-      if (m.valset_uart1 && k == m.valset_uart1) v = static_cast<std::uint64_t>(rate(m.id));
+    const std::optional<std::uint64_t> v = from.value_of(k);
     if (!v) return nak();
     r.values.push_back({k, *v});
   }

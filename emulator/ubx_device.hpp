@@ -34,16 +34,19 @@ class UbxDevice final : public GnssDevice {
   bool restarting(GpsTime t) const override { return t < restart_until_; }
 
   UbxDeviceCounters counters() const;
-  // The rate (every n-th solution, 0 off) of a message on this port.
-  int rate(ubx::MsgId id) const;
+  // The rate (every n-th solution, 0 off) of a message on a port (default: the one emulated,
+  // UART1; the other ports' rates are kept for polls).
+  int rate(ubx::MsgId id, std::uint8_t port = ubx::kPortUart1) const;
 
  private:
   void handle(std::uint8_t cls, std::uint8_t id, std::span<const std::uint8_t> payload,
               std::vector<std::uint8_t>& out);
   void handle_valset(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
   void handle_valget(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
+  std::optional<std::uint64_t> value_of(std::uint32_t key_id) const;  // a CFG-VALGET key
   bool output_message(ubx::MsgId id, std::vector<std::uint8_t>& out) const;
   void rebuild_nmea();
+  void set_rate(ubx::MsgId id, std::uint8_t port, int rate);
 
   GnssProfile profile_;
   ReceiverMode mode_;
@@ -58,13 +61,15 @@ class UbxDevice final : public GnssDevice {
   std::optional<int> pending_baud_;
   std::uint16_t in_proto_ = ubx::kProtoUbx | ubx::kProtoNmea;
   std::uint16_t out_proto_ = ubx::kProtoUbx | ubx::kProtoNmea;
-  std::map<std::uint16_t, int> rates_;  // (class << 8 | id) -> every n-th solution
+  // (class << 8 | id) -> every n-th solution, per port ID (CFG-MSG's six ports).
+  std::map<std::uint16_t, std::array<std::uint8_t, ubx::kNumPorts>> rates_;
   std::uint16_t meas_rate_ms_ = 1000;
   std::uint16_t nav_rate_ = 1;
   std::uint16_t time_ref_ = ubx::CfgRate::kTimeRefGps;
   ubx::CfgNav5 nav5_;
   ubx::CfgGnss gnss_;
   GpsTime restart_until_{0};
+  std::map<std::uint32_t, std::uint64_t> usb_proto_keys_;
 
   // The latest epoch, for polled NAV messages and the restart clock.
   ReceiverFix last_fix_;
