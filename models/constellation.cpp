@@ -72,6 +72,11 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 NavData nominal_constellation(GpsTime t) {
   NavData nav;
   nav.source = "nominal constellation (GPS SPS PS Table 3.2-1, epoch 1993-07-01)";
+  // The broadcast ionosphere a receiver decodes from subframe 4 page 18: a real broadcast set
+  // (2004-01-01, RTKLIB's default ion_default), so that the sky's ionosphere is the Klobuchar
+  // model's and a receiver corrects it as a real one would.
+  nav.klobuchar = KlobucharCoefficients{{0.1118e-07, -0.7451e-08, -0.5961e-07, 0.1192e-06},
+                                        {0.1167e+06, -0.2294e+06, -0.1311e+06, 0.1049e+07}};
 
   const double a = kSemiMajorAxis_m;
   const double n0 = std::sqrt(kGpsMu_m3ps2 / (a * a * a));

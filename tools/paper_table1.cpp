@@ -10,7 +10,7 @@
 // standard corrections. The troposphere row therefore has the receiver apply its standard
 // (Saastamoinen, standard atmosphere) model against a true troposphere of the paper's
 // meteorology; without any correction the troposphere alone moves this solution by ~7 m,
-// mostly in height. The built-in constellation carries no Klobuchar coefficients, so the
+// mostly in height. The built-in constellation's Klobuchar coefficients are removed, so the
 // ionosphere row is uncorrected, as in the paper.
 //
 // Usage: navemu-paper-table1 [--points N] [--radius-m R] [--seed S]
@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
 
   // The seven satellites highest above the site.
   NavData nav = nominal_constellation(t);
+  nav.klobuchar.reset();  // the paper's receiver applies no ionospheric model
   {
     MeasurementConfig probe;
     probe.errors = ErrorSwitches{false, false, false, false, false, false};
