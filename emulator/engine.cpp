@@ -263,7 +263,6 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
     rp.measurement.seed = cfg.seed;
     rp.max_channels = prof.max_channels;
-    rp.uere_m = ReceiverParams::default_uere_m(cfg.gnss_mode);
     receiver = std::make_unique<Receiver>(nav, rp);
     device = make_gnss_device(prof, cfg.gnss_mode, nav);
     gnss_period_ns = device->period_ns();
@@ -309,7 +308,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
           opt.out_dir / "gnss.csv",
           "time_s,gps_week,gps_tow_s,truth_lat_deg,truth_lon_deg,truth_h_m,fix,num_tracked,"
           "num_used,lat_deg,lon_deg,h_m,v_n_mps,v_e_mps,v_d_mps,err_e_m,err_n_m,err_u_m,"
-          "err_h_m,pdop,hdop,vdop\n");
+          "err_h_m,pdop,hdop,vdop,sigma_h_m,sigma_v_m\n");
     if (imu) imu_csv = std::make_unique<CsvFile>(opt.out_dir / "imu.csv", kImuHeader);
   } else if (imu && !cfg.imu_log.empty()) {
     imu_log = transport::open_log_file(cfg.imu_log);
@@ -480,12 +479,12 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
           const Vec3 e = enu_error(fix, *tr);
           fmt::format_to(std::back_inserter(b),
                          "{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
-                         "{:.3f},{:.3f},{:.3f}\n",
+                         "{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n",
                          fix.position.lat_deg, fix.position.lon_deg, fix.position.h_m, v.x(), v.y(),
                          v.z(), e.x(), e.y(), e.z(), std::hypot(e.x(), e.y()), fix.dops.pdop,
-                         fix.dops.hdop, fix.dops.vdop);
+                         fix.dops.hdop, fix.dops.vdop, fix.sigma_h_m, fix.sigma_v_m);
         } else {
-          fmt::format_to(std::back_inserter(b), ",,,,,,,,,,,,\n");
+          fmt::format_to(std::back_inserter(b), ",,,,,,,,,,,,,,\n");
         }
         gnss_csv->maybe_flush();
       }

@@ -94,13 +94,14 @@ void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::s
       f.talker = talker;
       f.utc = utc;
       if (valid) {
-        // Without the full covariance the horizontal error is taken as circular.
+        // The error ellipse is given by its north and east axes (the covariance's
+        // north-east correlation is not carried).
         f.range_rms_m = fix.range_rms_m;
-        f.major_m = fix.sigma_h_m / std::sqrt(2.0);
-        f.minor_m = fix.sigma_h_m / std::sqrt(2.0);
-        f.orientation_deg = 0.0;
-        f.lat_sigma_m = fix.sigma_h_m / std::sqrt(2.0);
-        f.lon_sigma_m = fix.sigma_h_m / std::sqrt(2.0);
+        f.major_m = std::max(fix.sigma_n_m, fix.sigma_e_m);
+        f.minor_m = std::min(fix.sigma_n_m, fix.sigma_e_m);
+        f.orientation_deg = fix.sigma_n_m >= fix.sigma_e_m ? 0.0 : 90.0;
+        f.lat_sigma_m = fix.sigma_n_m;
+        f.lon_sigma_m = fix.sigma_e_m;
         f.alt_sigma_m = fix.sigma_v_m;
       }
       nmea::encode(f, format_, out);

@@ -6,16 +6,6 @@
 namespace navemu {
 
 
-double ReceiverParams::default_uere_m(ReceiverMode mode) {
-  switch (mode) {
-    case ReceiverMode::kStandalone: return 3.0;     // ionosphere model error dominates
-    case ReceiverMode::kDualFrequency: return 1.5;  // iono-free: orbit/clock and amplified noise
-    case ReceiverMode::kDgps: return 0.7;
-    case ReceiverMode::kRtkFixed: return 0.02;
-  }
-  return 3.0;
-}
-
 Receiver::Receiver(const NavData& nav, const ReceiverParams& p) : p_(p), gen_(nav, p.measurement) {}
 
 ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
@@ -70,8 +60,12 @@ ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
   if (sol.v_ecef_mps) out.v_ned_mps = R_ned_from_ecef(out.position) * *sol.v_ecef_mps;
   out.dops = sol.dops;
   out.num_used = sol.num_used;
-  out.sigma_h_m = sol.dops.hdop * p_.uere_m;
-  out.sigma_v_m = sol.dops.vdop * p_.uere_m;
+  const Mat3 r = R_ned_from_ecef(out.position);
+  const Mat3 cov_ned = r * sol.cov_ecef_m2 * r.transpose();
+  out.sigma_n_m = std::sqrt(std::max(cov_ned(0, 0), 0.0));
+  out.sigma_e_m = std::sqrt(std::max(cov_ned(1, 1), 0.0));
+  out.sigma_h_m = std::hypot(out.sigma_n_m, out.sigma_e_m);
+  out.sigma_v_m = std::sqrt(std::max(cov_ned(2, 2), 0.0));
   out.range_rms_m = sol.num_used > 0 ? std::sqrt(sum_sq / sol.num_used) : 0.0;
   last_fix_ecef_m_ = sol.p_ecef_m;
   return out;

@@ -16,10 +16,6 @@ namespace navemu {
 struct ReceiverParams {
   MeasurementConfig measurement;
   int max_channels = 12;  // the highest satellites tracked at most
-  // User equivalent range error for the accuracy estimates (sigma_h = HDOP * UERE, ...): what
-  // the receiver believes of its own ranges, by mode (ReceiverParams::default_uere_m).
-  double uere_m = 3.0;
-  static double default_uere_m(ReceiverMode mode);
 };
 
 struct ReceiverSatellite {
@@ -37,7 +33,9 @@ struct ReceiverFix {
   Dops dops;
   int num_used = 0;
   std::vector<ReceiverSatellite> satellites;  // tracked, by PRN
-  double sigma_h_m = 0.0, sigma_v_m = 0.0;    // 1-sigma estimates, HDOP/VDOP * UERE
+  // 1-sigma accuracy estimates from the solution's covariance (models/solver.hpp), north, east,
+  // horizontal (root sum of squares) and vertical.
+  double sigma_n_m = 0.0, sigma_e_m = 0.0, sigma_h_m = 0.0, sigma_v_m = 0.0;
   double range_rms_m = 0.0;                   // RMS of the used pseudorange residuals
 };
 

@@ -100,6 +100,7 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
   std::vector<Row> rows;
   rows.reserve(meas.size());
   bool converged = false;
+  Mat3 cov = Mat3::Zero();  // of the last iteration's normal equations
   bool hold_height = false;
   // The elevation mask applies once the estimate is within 10 km (elevations then good to
   // ~0.1 deg): from the first iteration with a prior, otherwise after the first large steps
@@ -167,6 +168,7 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
     const Mat4 n = h.transpose() * w.asDiagonal() * h;
     Eigen::FullPivLU<Mat4> lu(n);
     if (!lu.isInvertible()) break;
+    cov = lu.inverse().topLeftCorner<3, 3>();
     const Eigen::Vector4d dx = lu.solve(h.transpose() * (w.asDiagonal() * v));
     p += dx.head<3>();
     clk += dx(3);
@@ -184,6 +186,7 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
   // the update is below the convergence threshold, so they stand.
   sol.p_ecef_m = p;
   sol.clock_m = clk;
+  sol.cov_ecef_m2 = cov;
   sol.num_used = static_cast<int>(rows.size());
   sol.fix = hold_height ? FixType::k2D : FixType::k3D;
   std::vector<AzEl> dirs;

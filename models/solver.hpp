@@ -66,6 +66,9 @@ struct Solution {
   std::optional<Vec3> v_ecef_mps;
   double clock_drift_mps = 0.0;
   Dops dops;
+  // Covariance of the position from the weighted least squares, (H^T W H)^-1 with the
+  // measurement variances above as weights, ECEF, m^2 (zero without a fix).
+  Mat3 cov_ecef_m2 = Mat3::Zero();
   int num_used = 0;
   int iterations = 0;
   std::vector<SatResidual> sats;
