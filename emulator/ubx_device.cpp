@@ -287,11 +287,14 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, std::span<const std::u
     else if (decode(p, all)) change = MsgId{all.msg_class, all.msg_id};
     if (!change) return nak();
     const MsgId target = *change;
-    bool known = target.cls == kClassNmea &&
-                 std::any_of(std::begin(kNmeaIds), std::end(kNmeaIds),
-                             [&](const auto& e) { return e.first == target.id; });
-    for (const OutputMessage& m : kOutputs) known = known || m.id == target;
-    if (!known) return nak();
+    // The receiver takes a rate for any message of its output classes (gpsd also sets e.g.
+    // NAV-TIMELS and NMEA GBS); it sends those it produces. Other classes are refused.
+    constexpr std::uint8_t kOutputClasses[] = {kClassNav, kClassRxm, kClassInf, kClassMon,
+                                               kClassTim, kClassEsf, kClassHnr, kClassSec,
+                                               kClassNmea, kClassPubx};
+    if (std::find(std::begin(kOutputClasses), std::end(kOutputClasses), target.cls) ==
+        std::end(kOutputClasses))
+      return nak();
     if (p.size() == CfgMsgCurrentPort::kPayloadSize)
       set_rate(target, port_id_, cur.rate);
     else
@@ -383,14 +386,14 @@ void UbxDevice::handle_valset(std::span<const std::uint8_t> p, std::vector<std::
             kv.key_id == cfgkey::kUsbinprotNmea || kv.key_id == cfgkey::kUsboutprotUbx ||
             kv.key_id == cfgkey::kUsboutprotNmea;
     if (!known) return nak();
-    if (kv.key_id == cfgkey::kRateMeas && kv.value < 25) return nak();
+    if (kv.key_id == cfgkey::kRateMeas && kv.value < 40) return nak();  // 25 Hz at most, as CFG-RATE
     if (kv.key_id == cfgkey::kRateNav && (kv.value < 1 || kv.value > 127)) return nak();
   }
   for (const CfgKeyValue& kv : v.values) {
     const auto flag = [&](std::uint16_t& mask, std::uint16_t bit) {
       mask = static_cast<std::uint16_t>(kv.value ? (mask | bit) : (mask & ~bit));
     };
-    if (kv.key_id == cfgkey::kRateMeas) meas_rate_ms_ = static_cast<std::uint16_t>(std::max<std::uint64_t>(kv.value, 40));
+    if (kv.key_id == cfgkey::kRateMeas) meas_rate_ms_ = static_cast<std::uint16_t>(kv.value);
     if (kv.key_id == cfgkey::kRateNav) nav_rate_ = static_cast<std::uint16_t>(kv.value);
     if (kv.key_id == cfgkey::kRateTimeref) time_ref_ = static_cast<std::uint16_t>(kv.value);
     if (kv.key_id == cfgkey::kNavspgDynmodel) nav5_.dyn_model = static_cast<std::uint8_t>(kv.value);

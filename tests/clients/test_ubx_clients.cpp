@@ -1,0 +1,1000 @@
+// `navemu run` with a u-blox profile against the real u-blox clients of Debian 12: gpsd 3.22 in
+// its u-blox mode, ubxtool (python3-gps 3.22) and RTKLIB 2.4.3 (str2str, convbin, rnx2rtkp),
+// each used as ../shared/TESTING.md describes. Each test skips with a message when its tool is
+// missing. Every wait has a deadline; children are stopped by RAII (client_support.hpp).
+//
+// What navemu sent is known exactly: every run has a `file` output beside the pty, the same
+// byte stream (replies to clients go only to the port they came from), parsed here with
+// ubx::Parser and compared with what the client reports.
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <map>
+#include <set>
+
+#include "emulator/commands.hpp"
+#include "models/constellation.hpp"
+#include "models/geodesy.hpp"
+#include "models/rinex.hpp"
+#include "protocols/gps_lnav.hpp"
+#include "protocols/ubx.hpp"
+#include "protocols/ubx_messages.hpp"
+#include "tests/clients/client_support.hpp"
+
+namespace navemu::test::clients {
+namespace {
+
+// The paper's test site (Vicksburg, MS), h above the WGS-84 ellipsoid.
+const Geodetic kUbxSite{32.3, -90.9, 60.0};
+
+#define NAVEMU_REQUIRE_TOOL(var, name, package)                                          \
+  const std::string var = find_program(name);                                            \
+  if (var.empty())                                                                       \
+    GTEST_SKIP() << name << " not found on PATH (nor in /usr/sbin): install Debian's "   \
+                 << package << " to run this client test"
+
+// ---- navemu with a u-blox profile ------------------------------------------------------------
+
+// A profile file in the test's folder: configs/gnss/BASE.yaml with its `messages:` line (the
+// UBX messages on at power-up) replaced; the other keys are the shipped profile's.
+fs::path write_profile(const TempDir& dir, const std::string& base, const std::string& messages) {
+  const std::string text = slurp(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / (base + ".yaml"));
+  static const std::regex re(R"(\n  messages:[^\n]*)");
+  EXPECT_TRUE(std::regex_search(text, re)) << base << ".yaml has no ubx.messages line";
+  const fs::path p = dir / (base + "-test.yaml");
+  std::ofstream(p) << std::regex_replace(text, re, "\n  messages: {" + messages + "}");
+  return p;
+}
+
+// `capture`: gnss.capture, a mirror of every byte sent (replies included) and, in CAPTURE.in,
+// of every byte received from the clients.
+std::string ubx_config(const fs::path& profile, const fs::path& link, const fs::path& log,
+                       const std::string& start = "now", const fs::path& capture = {}) {
+  return fmt::format(
+      "scenario: {{status_interval_s: 1, start: '{}'}}\n"
+      "truth: {{source: stationary, position: {{lat_deg: {}, lon_deg: {}, h_m: {}}}}}\n"
+      "gnss:\n"
+      "  profile: '{}'\n"
+      "{}"
+      "  outputs:\n"
+      "    - {{type: pty, link: '{}'}}\n"
+      "    - {{type: file, path: '{}'}}\n"
+      "imu: {{enabled: false}}\n",
+      start, kUbxSite.lat_deg, kUbxSite.lon_deg, kUbxSite.h_m, profile.string(),
+      capture.empty() ? std::string{} : fmt::format("  capture: '{}'\n", capture.string()),
+      link.string(), log.string());
+}
+
+// The pty link exists and navemu has announced it ("GNSS UBX/NMEA on pty ...").
+bool wait_for_ubx_pty(NavemuRun& nav, const fs::path& link, double timeout_s) {
+  return wait_until(
+      [&] {
+        return (fs::exists(link) && nav.err().find(" on pty ") != std::string::npos) ||
+               !nav.child().running();
+      },
+      timeout_s) &&
+         nav.child().running();
+}
+
+// ---- UBX frames --------------------------------------------------------------------------
+
+struct UbxFrame {
+  ubx::MsgId id;
+  std::vector<std::uint8_t> payload;
+  double t_mono = 0;  // arrival (pty reads); 0 for frames from a file
+};
+
+// Every good frame of a byte stream (NMEA and junk in between are skipped).
+std::vector<UbxFrame> parse_frames(const std::string& bytes, ubx::Parser::Counters* counters = nullptr) {
+  ubx::Parser p(65535);
+  std::vector<UbxFrame> out;
+  p.feed(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()),
+         [&](ubx::Parser::Result r) {
+           if (r != ubx::Parser::Result::kFrame) return;
+           out.push_back({{p.cls(), p.id()}, {p.payload().begin(), p.payload().end()}, 0.0});
+         });
+  if (counters != nullptr) *counters = p.counters();
+  return out;
+}
+
+template <typename Msg>
+std::vector<Msg> decode_all(const std::vector<UbxFrame>& frames, ubx::MsgId id) {
+  std::vector<Msg> out;
+  for (const UbxFrame& f : frames) {
+    Msg m;
+    if (f.id == id && ubx::decode(f.payload, m)) out.push_back(m);
+  }
+  return out;
+}
+
+std::vector<std::uint8_t> ubx_poll(ubx::MsgId id) {
+  std::vector<std::uint8_t> out;
+  ubx::append_poll(id, out);
+  return out;
+}
+
+// A client of the pty that reads and writes it (raw mode is navemu's, TESTING.md): UBX frames
+// time-stamped at arrival, NMEA sentences counted.
+class PtyClient {
+ public:
+  ~PtyClient() { close(); }
+  bool open(const fs::path& path) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    return fd_ >= 0;
+  }
+  void close() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+  // Reads until monotonic time `until`, or until `stop()` is true after a read.
+  template <class Stop>
+  void read_until(double until, Stop stop) {
+    for (;;) {
+      const double left = until - mono_s();
+      if (left <= 0 || fd_ < 0) return;
+      pollfd p{fd_, POLLIN, 0};
+      if (::poll(&p, 1, static_cast<int>(std::ceil(left * 1000.0))) <= 0) continue;
+      if (read_once() && stop()) return;
+    }
+  }
+  void read_until(double until) {
+    read_until(until, [] { return false; });
+  }
+
+  // Writes all of `bytes` (waiting for room up to `timeout_s`, reading meanwhile so that the
+  // other direction never fills). False when the deadline passed first.
+  bool write_all(std::span<const std::uint8_t> bytes, double timeout_s = 5.0) {
+    const double end = mono_s() + timeout_s;
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+      if (n > 0) {
+        done += static_cast<std::size_t>(n);
+        continue;
+      }
+      if (n < 0 && errno != EAGAIN && errno != EINTR) return false;
+      if (mono_s() >= end) return false;
+      pollfd p{fd_, POLLOUT | POLLIN, 0};
+      ::poll(&p, 1, 10);
+      if (p.revents & POLLIN) read_once();
+    }
+    return true;
+  }
+
+  const std::vector<UbxFrame>& frames() const { return frames_; }
+  // Arrival times of the NMEA sentences of one type ("RMC").
+  std::vector<double> nmea_times(const std::string& type) const {
+    std::vector<double> out;
+    for (const auto& [t, s] : nmea_)
+      if (s.size() > 6 && s.compare(3, 3, type) == 0) out.push_back(t);
+    return out;
+  }
+  std::size_t bytes_read() const { return bytes_; }
+  const ubx::Parser::Counters& parser_counters() const { return parser_.counters(); }
+
+ private:
+  bool read_once() {
+    std::uint8_t buf[8192];
+    const ssize_t n = ::read(fd_, buf, sizeof buf);
+    if (n <= 0) return false;
+    const double t = mono_s();
+    bytes_ += static_cast<std::size_t>(n);
+    for (ssize_t i = 0; i < n; ++i) {
+      // NMEA: '$' to LF outside UBX frames (UBX payloads may hold '$': only lines that end
+      // within 100 bytes and start right after a frame or a line end count).
+      const auto c = static_cast<char>(buf[i]);
+      if (c == '$' && line_.empty()) in_line_ = true;
+      if (in_line_) {
+        line_ += c;
+        if (c == '\n' || line_.size() > 100) {
+          if (c == '\n') nmea_.emplace_back(t, line_);
+          line_.clear();
+          in_line_ = false;
+        }
+      }
+      for (ubx::Parser::Result r = parser_.feed(buf[i]); r != ubx::Parser::Result::kNeedMore;
+           r = parser_.poll()) {
+        if (r != ubx::Parser::Result::kFrame) continue;
+        frames_.push_back({{parser_.cls(), parser_.id()}, {parser_.payload().begin(), parser_.payload().end()}, t});
+        line_.clear();
+        in_line_ = false;
+      }
+    }
+    return true;
+  }
+
+  int fd_ = -1;
+  ubx::Parser parser_{65535};
+  std::vector<UbxFrame> frames_;
+  std::vector<std::pair<double, std::string>> nmea_;
+  std::string line_;
+  bool in_line_ = false;
+  std::size_t bytes_ = 0;
+};
+
+// ---- time ------------------------------------------------------------------------------------
+
+// gpsd's ISO-8601 UTC "2026-11-22T13:08:03.000Z" as GPS time of week in milliseconds; -1 if
+// malformed.
+std::int64_t iso_gps_tow_ms(const std::string& iso) {
+  int y = 0, mo = 0, d = 0, h = 0, mi = 0;
+  double s = 0;
+  if (std::sscanf(iso.c_str(), "%d-%d-%dT%d:%d:%lfZ", &y, &mo, &d, &h, &mi, &s) != 6) return -1;
+  return std::llround(to_week_tow(gps_from_utc(CalendarTime{y, mo, d, h, mi, s})).tow_s * 1000.0);
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+// ---- gpsd with a raw watch -------------------------------------------------------------------
+
+// A gpsd socket client like GpsdClient, with a watch of our choice and requests on the way.
+class GpsdWatch {
+ public:
+  ~GpsdWatch() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  bool connect(int port, const std::string& watch) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    a.sin_port = htons(static_cast<std::uint16_t>(port));
+    if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return false;
+    return send(watch);
+  }
+  bool send(const std::string& line) {
+    return ::send(fd_, line.data(), line.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(line.size());
+  }
+  // The next JSON object (lines that are not JSON, such as the raw:1 hex dumps, are skipped).
+  std::optional<YAML::Node> next(double deadline) {
+    for (;;) {
+      const std::size_t nl = buf_.find('\n');
+      if (nl != std::string::npos) {
+        const std::string line = buf_.substr(0, nl);
+        buf_.erase(0, nl + 1);
+        if (line.empty() || line[0] != '{') continue;
+        try {
+          return YAML::Load(line);
+        } catch (const YAML::Exception&) {
+          bad_lines_.push_back(line);
+          continue;
+        }
+      }
+      const double left = deadline - mono_s();
+      if (left <= 0 || fd_ < 0) return std::nullopt;
+      pollfd p{fd_, POLLIN, 0};
+      if (::poll(&p, 1, static_cast<int>(std::ceil(left * 1000.0))) <= 0) continue;
+      char b[16384];
+      const ssize_t n = ::recv(fd_, b, sizeof b, 0);
+      if (n <= 0) {
+        ::close(fd_);
+        fd_ = -1;
+        return std::nullopt;
+      }
+      buf_.append(b, static_cast<std::size_t>(n));
+    }
+  }
+  const std::vector<std::string>& bad_lines() const { return bad_lines_; }
+
+ private:
+  int fd_ = -1;
+  std::string buf_;
+  std::vector<std::string> bad_lines_;
+};
+
+// ---- gpsd in u-blox mode ------------------------------------------------------------------
+
+// gpsd on the pty of a u-blox M8 whose profile turns on NAV-PVT, NAV-SAT, NAV-TIMEGPS, NAV-DOP,
+// RXM-RAWX and RXM-SFRBX at 1 Hz (what gpsd needs for fix, sky, time, RAW and SUBFRAME,
+// TESTING.md). gpsd must switch to its u-blox driver on the first valid UBX frame, show the
+// profile's PROTVER in ?DEVICES, report a 3D fix within 3 sigma of the truth by its own
+// accuracy figures (eph/epv, which gpsd takes from NAV-PVT hAcc/vAcc in u-blox mode), a sky
+// equal to navemu's NAV-SAT, RAW pseudoranges equal to navemu's RXM-RAWX and SUBFRAMEs of
+// navemu's RXM-SFRBX (gpsd checks their parity).
+TEST(UbxGpsd, UbloxDriverFixSkyRawAndSubframes) {
+  NAVEMU_REQUIRE_TOOL(gpsd, "gpsd", "gpsd 3.22");
+  TempDir dir("ubx-gpsd");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  const fs::path profile = write_profile(
+      dir, "ublox-m8", "NAV-PVT: 1, NAV-SAT: 1, NAV-TIMEGPS: 1, NAV-DOP: 1, RXM-RAWX: 1, RXM-SFRBX: 1");
+  const fs::path capture = dir / "wire.ubx";
+  NavemuRun nav(dir, "navemu", ubx_config(profile, link, log, "now", capture), 60);
+  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  Gpsd g;
+  ASSERT_TRUE(g.start(gpsd, dir, link, 5.0)) << g.diagnostics() << nav.diagnostics();
+  const double gpsd_start = mono_s();
+  GpsdWatch w;
+  ASSERT_TRUE(w.connect(g.port(), "?WATCH={\"enable\":true,\"json\":true,\"raw\":1}\n")) << g.diagnostics();
+
+  // Watch until the driver is u-blox, 8 distinct 3D fixes, RAW and SUBFRAMEs of two subframe
+  // epochs (every 6 s) are in, then ask ?DEVICES; at most 30 s.
+  std::string driver;
+  std::optional<double> driver_after_s, first_fix_after_s;
+  std::map<std::int64_t, YAML::Node> tpvs;  // by GPS tow ms; the last report of an epoch
+  std::optional<std::int64_t> switch_tow;
+  std::vector<YAML::Node> skies, raws, subframes;
+  std::set<long> subframe_tows;
+  std::optional<YAML::Node> devices;
+  bool asked = false;
+  const double end = gpsd_start + 30.0;
+  double stop_at = end;
+  while (const auto n = w.next(std::min(end, stop_at))) {
+    const std::string cls = str(*n, "class");
+    if (cls == "DEVICE" && !str(*n, "driver").empty()) {
+      driver = str(*n, "driver");
+      if (driver == "u-blox" && !driver_after_s) driver_after_s = mono_s() - gpsd_start;
+    } else if (cls == "TPV") {
+      // Before the switch gpsd is in NMEA mode, with eph/epv of its own (DOP x UERE); the
+      // epoch during which it switches still carries those: u-blox mode from the next one.
+      const std::int64_t tow = iso_gps_tow_ms(str(*n, "time"));
+      if (driver == "u-blox" && !switch_tow) switch_tow = tow;
+      if (tow >= 0 && switch_tow && tow > *switch_tow) tpvs[tow] = *n;
+      if (num(*n, "mode").value_or(0) == 3 && !first_fix_after_s) first_fix_after_s = mono_s() - gpsd_start;
+    } else if (cls == "SKY") {
+      skies.push_back(*n);
+    } else if (cls == "RAW") {
+      raws.push_back(*n);
+    } else if (cls == "SUBFRAME") {
+      subframes.push_back(*n);
+      subframe_tows.insert(static_cast<long>(num(*n, "TOW17").value_or(-1)));
+    } else if (cls == "DEVICES") {
+      for (const auto& d : (*n)["devices"])
+        if (str(d, "driver") == "u-blox") devices = *n;
+      if (devices) break;
+    }
+    std::size_t fixes = 0;
+    for (const auto& [t, v] : tpvs) fixes += num(v, "mode").value_or(0) == 3 ? 1u : 0u;
+    if (!asked && driver == "u-blox" && fixes >= 8 && !raws.empty() && subframe_tows.size() >= 2) {
+      // The subtype appears once MON-VER has been answered; ask now.
+      ASSERT_TRUE(w.send("?DEVICES;\n"));
+      asked = true;
+      stop_at = mono_s() + 3.0;
+    }
+  }
+  g.child().stop();
+  const auto st = nav.stop();
+  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  EXPECT_TRUE(w.bad_lines().empty()) << w.bad_lines().front();
+
+  // What navemu sent (the file output).
+  const std::vector<UbxFrame> sent = parse_frames(slurp(log));
+  std::map<std::uint32_t, ubx::NavPvt> pvt_by_tow;
+  for (const auto& m : decode_all<ubx::NavPvt>(sent, ubx::kNavPvt)) pvt_by_tow[m.i_tow_ms] = m;
+  std::map<std::uint32_t, ubx::NavSat> sat_by_tow;
+  for (const auto& m : decode_all<ubx::NavSat>(sent, ubx::kNavSat)) sat_by_tow[m.i_tow_ms] = m;
+  const std::vector<ubx::RxmRawx> rawx = decode_all<ubx::RxmRawx>(sent, ubx::kRxmRawx);
+  std::set<std::tuple<int, long, int>> sfrbx;  // (PRN, HOW TOW count, subframe ID)
+  for (const auto& m : decode_all<ubx::RxmSfrbx>(sent, ubx::kRxmSfrbx)) {
+    if (m.words.size() != 10) continue;
+    lnav::LnavSubframe words{};
+    std::copy(m.words.begin(), m.words.end(), words.begin());
+    const lnav::LnavTlmHow how = lnav::decode_tlm_how(words);
+    sfrbx.insert({m.sv_id, static_cast<long>(how.tow_count), how.subframe_id});
+  }
+  ASSERT_FALSE(pvt_by_tow.empty()) << "navemu's log has no NAV-PVT" << nav.diagnostics();
+
+  // Driver and identity. gpsd's ?DEVICES subtype carries MON-VER's sw/hw versions, subtype1
+  // its extensions (PROTVER=18.00 from the profile).
+  ASSERT_EQ(driver, "u-blox") << "gpsd did not switch to its u-blox driver" << g.diagnostics();
+  ASSERT_TRUE(devices.has_value()) << "no ?DEVICES answer with the u-blox driver" << g.diagnostics();
+  std::string subtype;
+  for (const auto& d : (*devices)["devices"])
+    if (str(d, "driver") == "u-blox") subtype = str(d, "subtype") + "," + str(d, "subtype1");
+  EXPECT_NE(subtype.find("PROTVER=18.00"), std::string::npos) << subtype;
+  EXPECT_NE(subtype.find("ROM CORE 3.01 (107888)"), std::string::npos) << subtype;
+  // Measured from gpsd's start: gpsd 3.22 first runs its blocking probes of other receivers
+  // (Garmin USB, GeoStar, Trimble TSIP, iSync; about 6.5 s on a pty, gpsd -D 5), then switches
+  // on the first UBX frame it reads.
+  RecordProperty("driver_switch_s", fmt::format("{:.2f}", driver_after_s.value_or(-1)));
+  EXPECT_LT(driver_after_s.value_or(99), 15.0);
+
+  // TPV: mode 3; position within 3 x gpsd's eph (horizontal) and 3 x epv (vertical); eph and
+  // epv equal to the NAV-PVT hAcc/vAcc of that epoch, lat/lon to NAV-PVT's.
+  double max_h_ratio = 0, max_v_ratio = 0, max_h_err = 0, max_v_err = 0;
+  std::size_t fixes = 0;
+  for (const auto& [tow, v] : tpvs) {
+    if (num(v, "mode").value_or(0) != 3) continue;
+    ++fixes;
+    SCOPED_TRACE(fmt::format("TPV {}", str(v, "time")));
+    const auto lat = num(v, "lat"), lon = num(v, "lon"), alt = num(v, "altHAE");
+    const auto eph = num(v, "eph"), epv = num(v, "epv");
+    ASSERT_TRUE(lat && lon && alt && eph && epv);
+    const Vec3 e = enu_from_ecef(ecef_from_geodetic(Geodetic{*lat, *lon, *alt}), kUbxSite);
+    const double h_err = std::hypot(e.x(), e.y()), v_err = std::abs(*alt - kUbxSite.h_m);
+    max_h_err = std::max(max_h_err, h_err);
+    max_v_err = std::max(max_v_err, v_err);
+    max_h_ratio = std::max(max_h_ratio, h_err / *eph);
+    max_v_ratio = std::max(max_v_ratio, v_err / *epv);
+    EXPECT_LE(h_err, 3.0 * *eph) << "horizontal error " << h_err << " m, eph " << *eph << " m";
+    EXPECT_LE(v_err, 3.0 * *epv) << "vertical error " << v_err << " m, epv " << *epv << " m";
+    const auto it = pvt_by_tow.find(static_cast<std::uint32_t>(tow));
+    if (it == pvt_by_tow.end()) continue;
+    EXPECT_NEAR(*eph, it->second.h_acc_mm * 1e-3, 0.0015) << "eph is NAV-PVT hAcc";
+    EXPECT_NEAR(*epv, it->second.v_acc_mm * 1e-3, 0.0015) << "epv is NAV-PVT vAcc";
+    // gpsd also reads the GGA of the epoch (NMEA stays on), which has 1e-7 minutes.
+    EXPECT_NEAR(*lat, it->second.lat_1e7deg * 1e-7, 2e-7);
+    EXPECT_NEAR(*lon, it->second.lon_1e7deg * 1e-7, 2e-7);
+  }
+  EXPECT_GE(fixes, 8u);
+  RecordProperty("first_fix_s", fmt::format("{:.2f}", first_fix_after_s.value_or(-1)));
+  RecordProperty("max_h_err_over_eph", fmt::format("{:.2f}", max_h_ratio));
+  RecordProperty("max_v_err_over_epv", fmt::format("{:.2f}", max_v_ratio));
+  std::printf("gpsd u-blox: driver after %.2f s, first 3D fix after %.2f s, %zu fixes; max horizontal "
+              "error %.2f m = %.2f eph, max vertical error %.2f m = %.2f epv\n",
+              driver_after_s.value_or(-1), first_fix_after_s.value_or(-1), fixes, max_h_err,
+              max_h_ratio, max_v_err, max_v_ratio);
+
+  // SKY: the satellites, used flags, elevations, azimuths and C/N0 of navemu's NAV-SAT of the
+  // same epoch (NMEA GSV/GSA of the epoch, which gpsd also reads, carry the same sky).
+  std::size_t sky_matched = 0;
+  for (const YAML::Node& s : skies) {
+    const YAML::Node sats = s["satellites"];
+    if (!sats || !sats.IsSequence() || sats.size() == 0) continue;
+    const std::int64_t tow = iso_gps_tow_ms(str(s, "time"));
+    const auto it = sat_by_tow.find(static_cast<std::uint32_t>(tow));
+    if (it == sat_by_tow.end()) continue;
+    SCOPED_TRACE(fmt::format("SKY {}", str(s, "time")));
+    const ubx::NavSat& ns = it->second;
+    ASSERT_EQ(sats.size(), ns.svs.size());
+    std::map<int, YAML::Node> by_prn;
+    for (std::size_t i = 0; i < sats.size(); ++i)
+      if (const auto prn = num(sats[i], "PRN")) by_prn[static_cast<int>(*prn)] = sats[i];
+    for (const ubx::NavSatSv& sv : ns.svs) {
+      SCOPED_TRACE(fmt::format("PRN {}", sv.sv_id));
+      const auto gs = by_prn.find(sv.sv_id);
+      ASSERT_NE(gs, by_prn.end()) << "satellite of NAV-SAT missing in SKY";
+      const YAML::Node& g_sat = gs->second;
+      EXPECT_EQ(str(g_sat, "used"), (sv.flags & ubx::NavSatSv::kSvUsed) != 0 ? "true" : "false")
+          << YAML::Dump(g_sat);
+      EXPECT_EQ(num(g_sat, "el"), std::optional<double>(sv.elev_deg)) << YAML::Dump(g_sat);
+      EXPECT_EQ(num(g_sat, "az"), std::optional<double>(sv.azim_deg)) << YAML::Dump(g_sat);
+      EXPECT_EQ(num(g_sat, "ss"), std::optional<double>(sv.cno_dbhz)) << YAML::Dump(g_sat);
+    }
+    ++sky_matched;
+  }
+  EXPECT_GE(sky_matched, 5u) << skies.size() << " SKY reports";
+
+  // RAW: each RAW's pseudoranges are those of one of navemu's RXM-RAWX (gpsd prints 6 decimals).
+  std::size_t raw_matched = 0;
+  for (const YAML::Node& r : raws) {
+    const YAML::Node data = r["rawdata"];
+    if (!data || !data.IsSequence()) continue;
+    std::map<int, double> pr;
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      const auto sv = num(data[i], "svid"), p = num(data[i], "pseudorange");
+      EXPECT_TRUE(sv && p) << YAML::Dump(data[i]);
+      if (sv && p) pr[static_cast<int>(*sv)] = *p;
+    }
+    const bool found = std::any_of(rawx.begin(), rawx.end(), [&](const ubx::RxmRawx& x) {
+      if (x.meas.size() != pr.size()) return false;
+      for (const auto& m : x.meas) {
+        const auto it = pr.find(m.sv_id);
+        if (it == pr.end() || std::abs(it->second - m.pr_mes_m) > 1e-5) return false;
+      }
+      return true;
+    });
+    EXPECT_TRUE(found) << "a RAW report whose pseudoranges navemu did not send";
+    raw_matched += found ? 1u : 0u;
+  }
+  EXPECT_GE(raw_matched, 5u) << raws.size() << " RAW reports";
+
+  // SUBFRAME: every one gpsd decoded (after its parity check) is one navemu sent, and all the
+  // satellites of a subframe epoch came through.
+  std::size_t sub_matched = 0;
+  std::map<long, std::size_t> per_tow;
+  for (const YAML::Node& s : subframes) {
+    const int sv = static_cast<int>(num(s, "tSV").value_or(-1));
+    const long tow17 = static_cast<long>(num(s, "TOW17").value_or(-1));
+    const int sf = static_cast<int>(num(s, "frame").value_or(-1));
+    // gpsd 3.22 prints TOW17 as seconds: the HOW's 17-bit TOW count times 6.
+    const bool found = tow17 % 6 == 0 && sfrbx.count({sv, tow17 / 6, sf}) > 0;
+    EXPECT_TRUE(found) << "SUBFRAME tSV " << sv << " TOW17 " << tow17 << " frame " << sf;
+    sub_matched += found ? 1u : 0u;
+    ++per_tow[tow17];
+  }
+  std::size_t sats_per_epoch = 0;
+  for (const auto& [tow, n] : per_tow) sats_per_epoch = std::max(sats_per_epoch, n);
+  EXPECT_GE(sats_per_epoch, 6u) << "SUBFRAMEs of one subframe epoch";
+  std::printf("gpsd u-blox: %zu/%zu SKY matched NAV-SAT, %zu/%zu RAW matched RXM-RAWX, %zu/%zu "
+              "SUBFRAME matched RXM-SFRBX (%zu subframe epochs)\n",
+              sky_matched, skies.size(), raw_matched, raws.size(), sub_matched, subframes.size(),
+              per_tow.size());
+
+  // gpsd's configuration burst (TESTING.md: CFG-PRT and 3-byte CFG-MSG, sent without waiting):
+  // every CFG message is answered with exactly one ACK-ACK or ACK-NAK, in order (the capture
+  // mirrors both directions), and MON-VER polls with MON-VER. The NAKed ones are listed.
+  const std::vector<UbxFrame> from_gpsd = parse_frames(slurp(fs::path(capture.string() + ".in")));
+  const std::vector<UbxFrame> to_gpsd = parse_frames(slurp(capture));
+  std::vector<const UbxFrame*> cfg, answers;
+  std::size_t mon_ver_polls = 0, mon_ver_answers = 0;
+  for (const UbxFrame& f : from_gpsd) {
+    if (f.id.cls == ubx::kClassCfg && f.id != ubx::kCfgRst) cfg.push_back(&f);
+    mon_ver_polls += f.id == ubx::kMonVer && f.payload.empty() ? 1u : 0u;
+  }
+  for (const UbxFrame& f : to_gpsd) {
+    if (f.id == ubx::kAckAck || f.id == ubx::kAckNak) answers.push_back(&f);
+    mon_ver_answers += f.id == ubx::kMonVer ? 1u : 0u;
+  }
+  EXPECT_GE(cfg.size(), 10u) << "gpsd's configuration burst";
+  EXPECT_EQ(answers.size(), cfg.size()) << "one ACK-ACK or ACK-NAK per CFG message";
+  EXPECT_EQ(mon_ver_answers, mon_ver_polls);
+  std::string naked;
+  for (std::size_t i = 0; i < std::min(cfg.size(), answers.size()); ++i) {
+    const UbxFrame& c = *cfg[i];
+    const UbxFrame& a = *answers[i];
+    EXPECT_TRUE(a.payload.size() == 2 && a.payload[0] == c.id.cls && a.payload[1] == c.id.id)
+        << "answer " << i << " is not for CFG message " << i;
+    if (a.id != ubx::kAckNak) continue;
+    std::string hex;
+    for (std::uint8_t b : c.payload) hex += fmt::format("{:02x}", b);
+    naked += fmt::format(" {:02x}/{:02x}:{}", c.id.cls, c.id.id, hex);
+  }
+  std::printf("gpsd u-blox: %zu CFG messages from gpsd, %zu answered; NAKed (class/id:payload):%s\n",
+              cfg.size(), answers.size(), naked.empty() ? " none" : naked.c_str());
+}
+
+// ---- ubxtool ---------------------------------------------------------------------------------
+
+// One ubxtool run straight on the pty (`ubxtool -f PTY -w WAIT -P PROTVER ARGS`); its output.
+// Its exit code is always 0 (TESTING.md): callers check the text.
+std::string run_ubxtool(const std::string& ubxtool, const TempDir& dir, const fs::path& pty,
+                        const std::string& protver, const std::vector<std::string>& args,
+                        double wait_s = 1.0) {
+  static int n = 0;
+  const fs::path out = dir / fmt::format("ubxtool-{}.out", n++);
+  std::vector<std::string> argv{"/usr/bin/python3", ubxtool, "-f", pty.string(), "-w",
+                                fmt::format("{}", wait_s), "-P", protver};
+  argv.insert(argv.end(), args.begin(), args.end());
+  Child c(argv, out, out);
+  const auto st = c.wait_exit(wait_s + 15.0);
+  EXPECT_TRUE(st.has_value()) << "ubxtool did not exit";
+  c.stop();
+  return slurp(out);
+}
+
+// The output's messages as "UBX-XXX-YYY:" headers followed by their indented lines.
+std::vector<std::string> ubxtool_messages(const std::string& text, const std::string& header) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string line, cur;
+  bool in = false;
+  while (std::getline(ss, line)) {
+    if (!line.empty() && line[0] != ' ') {
+      if (in) out.push_back(cur);
+      in = line.rfind(header, 0) == 0;
+      cur = line + "\n";
+    } else if (in) {
+      cur += line + "\n";
+    }
+  }
+  if (in) out.push_back(cur);
+  return out;
+}
+
+bool has_message(const std::string& text, const std::string& header, const std::string& content) {
+  for (const std::string& m : ubxtool_messages(text, header))
+    if (m.find(content) != std::string::npos) return true;
+  return false;
+}
+
+// ubxtool on the shipped M8 profile (NMEA only at power-up): MON-VER gives the profile's
+// versions; CFG-MSG,1,7,1 turns NAV-PVT on (ACK-ACK), CFG-MSG,1,7 reads its rate back (the
+// 2-byte poll: reply then ACK); CFG-RATE,100,1 is acknowledged and NAV-PVT then comes at 10 Hz
+// (100 +- 3 in 10 s, iTOW 100 ms apart); an invalid CFG-RATE (10 ms) and an unknown CFG
+// (CFG-TP5) get ACK-NAK and change nothing.
+TEST(UbxTool, M8PollsRateChangeAndRefusals) {
+  NAVEMU_REQUIRE_TOOL(ubxtool, "ubxtool", "python3-gps 3.22 (gpsd-clients)");
+  TempDir dir("ubxtool-m8");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  NavemuRun nav(dir, "navemu",
+                ubx_config(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-m8.yaml", link, log), 90);
+  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  const double t0 = mono_s();
+
+  std::string out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "MON-VER"});
+  EXPECT_TRUE(has_message(out, "UBX-MON-VER:", "swVersion ROM CORE 3.01 (107888)")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-MON-VER:", "hwVersion 00080000")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-MON-VER:", "extension PROTVER=18.00")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-MON-VER:", "extension FWVER=SPG 3.01")) << out;
+  EXPECT_EQ(out.find("WARNING:  protVer"), std::string::npos) << out;
+
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "CFG-MSG,1,7,1"});
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x01 (MSG)")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-NAV-PVT:", "fixType 3")) << "NAV-PVT once a second now\n" << out;
+
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "CFG-MSG,1,7"});
+  EXPECT_TRUE(has_message(out, "UBX-CFG-MSG:", "Class x01 (NAV) ID x07 (PVT) Rates 0 1 0 0 0 0")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x01 (MSG)")) << out;
+
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "CFG-RATE,100,1"});
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x08 (RATE)")) << out;
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "CFG-RATE"});
+  EXPECT_TRUE(has_message(out, "UBX-CFG-RATE:", "measRate 100 navRate 1")) << out;
+
+  // measRate 10 ms: above any u-blox 8 rate; CFG-TP5 with a 32-byte payload: not emulated.
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-c", "0x06,0x08,0x0a,0x00,0x01,0x00,0x01,0x00"}, 0.5);
+  EXPECT_TRUE(has_message(out, "UBX-ACK-NAK:", "NAK to Class x06 (CFG) ID x08 (RATE)")) << out;
+  std::string tp5 = "0x06,0x31";
+  for (int i = 0; i < 32; ++i) tp5 += ",0x00";
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-c", tp5}, 0.5);
+  EXPECT_TRUE(has_message(out, "UBX-ACK-NAK:", "NAK to Class x06 (CFG) ID x31 (TP5)")) << out;
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "CFG-RATE"}, 0.5);
+  EXPECT_TRUE(has_message(out, "UBX-CFG-RATE:", "measRate 100 navRate 1")) << "the NAKed rate changed nothing\n" << out;
+  const double ubxtool_s = mono_s() - t0;
+
+  // NAV-PVT at 10 Hz: count the frames arriving in 10 s on the pty.
+  PtyClient pty;
+  ASSERT_TRUE(pty.open(link));
+  pty.read_until(mono_s() + 1.0);  // settle: the first reads may hold a backlog
+  const std::size_t before = pty.frames().size();
+  const double w0 = mono_s();
+  pty.read_until(w0 + 10.0);
+  std::vector<std::uint32_t> tows;
+  for (std::size_t i = before; i < pty.frames().size(); ++i) {
+    ubx::NavPvt m;
+    if (pty.frames()[i].id == ubx::kNavPvt && ubx::decode(pty.frames()[i].payload, m)) tows.push_back(m.i_tow_ms);
+  }
+  pty.close();
+  nav.stop();
+  std::size_t steps_100ms = 0;
+  for (std::size_t i = 1; i < tows.size(); ++i) steps_100ms += tows[i] - tows[i - 1] == 100 ? 1u : 0u;
+  EXPECT_NEAR(static_cast<double>(tows.size()), 100.0, 3.0) << "NAV-PVT frames in 10 s";
+  EXPECT_EQ(steps_100ms + 1, tows.size()) << "consecutive NAV-PVT iTOW 100 ms apart";
+  RecordProperty("nav_pvt_in_10s", static_cast<int>(tows.size()));
+  std::printf("ubxtool M8: 8 ubxtool runs in %.1f s; NAV-PVT after CFG-RATE,100,1: %zu in 10 s "
+              "(%zu steps of 100 ms)\n",
+              ubxtool_s, tows.size(), steps_100ms);
+}
+
+// ubxtool on the ZED-F9P profile (protocol 27.11): MON-VER shows PROTVER=27.11; VALSET
+// CFG-RATE-MEAS 200 (RAM) is acknowledged and VALGET reads 200 back; a VALSET of a key the
+// receiver does not emulate (CFG-TP-PERIOD_TP1) gets ACK-NAK; NAV-PVT switched on by
+// CFG-MSGOUT-UBX_NAV_PVT_UART1 then comes at 5 Hz.
+TEST(UbxTool, F9pValsetValget) {
+  NAVEMU_REQUIRE_TOOL(ubxtool, "ubxtool", "python3-gps 3.22 (gpsd-clients)");
+  TempDir dir("ubxtool-f9p");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  NavemuRun nav(dir, "navemu",
+                ubx_config(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-f9p.yaml", link, log), 60);
+  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+
+  std::string out = run_ubxtool(ubxtool, dir, link, "27", {"-p", "MON-VER"});
+  EXPECT_TRUE(has_message(out, "UBX-MON-VER:", "extension PROTVER=27.11")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-MON-VER:", "extension MOD=ZED-F9P")) << out;
+
+  out = run_ubxtool(ubxtool, dir, link, "27", {"-z", "CFG-RATE-MEAS,200,1"});
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x8a (VALSET)")) << out;
+  out = run_ubxtool(ubxtool, dir, link, "27", {"-g", "CFG-RATE-MEAS"});
+  EXPECT_TRUE(has_message(out, "UBX-CFG-VALGET:", "item CFG-RATE-MEAS/0x30210001 val 200")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x8b (VALGET)")) << out;
+
+  out = run_ubxtool(ubxtool, dir, link, "27", {"-z", "CFG-TP-PERIOD_TP1,500000,1"}, 0.5);
+  EXPECT_TRUE(has_message(out, "UBX-ACK-NAK:", "NAK to Class x06 (CFG) ID x8a (VALSET)")) << out;
+
+  out = run_ubxtool(ubxtool, dir, link, "27", {"-z", "CFG-MSGOUT-UBX_NAV_PVT_UART1,1,1"}, 0.5);
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x8a (VALSET)")) << out;
+
+  PtyClient pty;
+  ASSERT_TRUE(pty.open(link));
+  pty.read_until(mono_s() + 1.0);
+  const std::size_t before = pty.frames().size();
+  pty.read_until(mono_s() + 4.0);
+  std::vector<std::uint32_t> tows;
+  for (std::size_t i = before; i < pty.frames().size(); ++i) {
+    ubx::NavPvt m;
+    if (pty.frames()[i].id == ubx::kNavPvt && ubx::decode(pty.frames()[i].payload, m)) tows.push_back(m.i_tow_ms);
+  }
+  nav.stop();
+  EXPECT_NEAR(static_cast<double>(tows.size()), 20.0, 2.0) << "NAV-PVT at 5 Hz over 4 s";
+  for (std::size_t i = 1; i < tows.size(); ++i) EXPECT_EQ(tows[i] - tows[i - 1], 200u);
+  std::printf("ubxtool F9P: NAV-PVT after CFG-RATE-MEAS 200: %zu in 4 s\n", tows.size());
+}
+
+// ---- RTKLIB ----------------------------------------------------------------------------------
+
+// str2str captures RXM-RAWX + RXM-SFRBX (1 Hz) from the pty, convbin makes RINEX 3.04, and
+// rnx2rtkp's single-point solutions (-p 0 -sys G -e, broadcast ionosphere and Saastamoinen
+// troposphere) must lie within 5 m (mean 3D) of the truth; the broadcast
+// ephemerides RTKLIB rebuilt from the subframes are navemu's (IODE, toe, sqrt(A), e, i0 to
+// their LNAV quantisation).
+//
+// Capture length: NAVEMU_UBX_CAPTURE_S seconds (default 45; 120 is the full acceptance run).
+// A 30 s LNAV frame carries subframes 1-3 once, so a capture of arbitrary phase needs up to
+// 48 s for a complete ephemeris. The scenario's start is chosen instead: the latest GPS time
+// before now at 2 s past a 30 s frame boundary, so subframe 1 ends 4 s and subframe 3 16 s
+// into the run, and RTKLIB has every tracked satellite's ephemeris within the first 20 s;
+// the remaining epochs give the mean. rnx2rtkp solves every epoch of the observation file
+// with the navigation file, so the early epochs count too.
+TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
+  NAVEMU_REQUIRE_TOOL(str2str, "str2str", "rtklib");
+  NAVEMU_REQUIRE_TOOL(convbin, "convbin", "rtklib");
+  NAVEMU_REQUIRE_TOOL(rnx2rtkp, "rnx2rtkp", "rtklib");
+  const char* env = std::getenv("NAVEMU_UBX_CAPTURE_S");
+  const double capture_s = env != nullptr ? std::max(30.0, std::atof(env)) : 45.0;
+
+  TempDir dir("ubx-rtklib");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  const fs::path profile = write_profile(dir, "ublox-m8", "NAV-PVT: 1, RXM-RAWX: 1, RXM-SFRBX: 1");
+  const GpsTime now = gps_now();
+  const WeekTow wt = to_week_tow(now);
+  double tow = std::floor((wt.tow_s - 2.0) / 30.0) * 30.0 + 2.0;
+  const GpsTime start = from_week_tow(wt.week, tow);
+  NavemuRun nav(dir, "navemu", ubx_config(profile, link, log, fmt::format("{}:{:.0f}", wt.week, tow)),
+                capture_s + 30.0);
+  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+
+  // RTKLIB prefixes /dev/ to a serial path (TESTING.md).
+  const fs::path capture = dir / "capture.ubx";
+  const std::string serial = "serial://.." + link.string() + ":115200#ubx";
+  Child s2s({str2str, "-in", serial, "-out", "file://" + capture.string()}, dir / "str2str.out",
+            dir / "str2str.err");
+  sleep_s(capture_s);
+  s2s.signal(SIGINT);
+  const auto s2s_status = s2s.wait_exit(5.0);
+  s2s.stop();
+  nav.stop();
+  EXPECT_TRUE(s2s_status.has_value()) << "str2str ignored SIGINT";
+  ASSERT_TRUE(fs::exists(capture) && fs::file_size(capture) > 0)
+      << slurp(dir / "str2str.err") << nav.diagnostics();
+
+  // What was captured, checked as RTKLIB needs it (TESTING.md): RAWX week != 0 and lock time
+  // never decreasing, SFRBX with 10 words passing the parity check.
+  ubx::Parser::Counters pc;
+  const std::vector<UbxFrame> frames = parse_frames(slurp(capture), &pc);
+  EXPECT_EQ(pc.checksum_errors, 0u);
+  const auto rawx = decode_all<ubx::RxmRawx>(frames, ubx::kRxmRawx);
+  const auto sfrbx = decode_all<ubx::RxmSfrbx>(frames, ubx::kRxmSfrbx);
+  EXPECT_GE(rawx.size(), static_cast<std::size_t>(capture_s - 5.0));
+  std::map<int, std::uint16_t> lock;
+  for (const auto& r : rawx) {
+    EXPECT_NE(r.week, 0);
+    for (const auto& m : r.meas) {
+      EXPECT_GE(m.locktime_ms, lock[m.sv_id]) << "lock time of PRN " << int(m.sv_id) << " went back";
+      lock[m.sv_id] = m.locktime_ms;
+    }
+  }
+  std::map<int, std::vector<lnav::LnavSubframe>> subs;
+  for (const auto& s : sfrbx) {
+    ASSERT_EQ(s.words.size(), 10u);
+    lnav::LnavSubframe w{};
+    std::copy(s.words.begin(), s.words.end(), w.begin());
+    EXPECT_TRUE(lnav::lnav_parity_ok(w));
+    subs[s.sv_id].push_back(w);
+  }
+
+  // convbin, then rnx2rtkp (single point, GPS, ECEF output).
+  const fs::path obs = dir / "out.obs", navf = dir / "out.nav", pos = dir / "out.pos";
+  Child cb({convbin, "-r", "ubx", "-v", "3.04", "-od", "-os", "-o", obs.string(), "-n", navf.string(),
+            capture.string()},
+           dir / "convbin.out", dir / "convbin.err");
+  const auto cb_status = cb.wait_exit(60.0);
+  ASSERT_TRUE(cb_status && WIFEXITED(*cb_status) && WEXITSTATUS(*cb_status) == 0)
+      << describe_status(cb_status) << tail(slurp(dir / "convbin.err"));
+  ASSERT_TRUE(fs::exists(obs) && fs::exists(navf));
+  // rnx2rtkp's built-in defaults apply no atmospheric model (pos1-ionoopt and pos1-tropopt
+  // off): a single-point user turns on the broadcast Klobuchar model and Saastamoinen, here
+  // with -k. Without them the ionosphere and troposphere go straight into the solution (mean
+  // up error +13.6 m measured on such a capture): that run is made too and reported.
+  const fs::path conf = dir / "spp.conf";
+  std::ofstream(conf) << "pos1-ionoopt       =brdc\npos1-tropopt       =saas\n";
+  const auto solve = [&](const fs::path& out, bool corrections) {
+    std::vector<std::string> argv{rnx2rtkp};
+    if (corrections) argv.insert(argv.end(), {"-k", conf.string()});
+    argv.insert(argv.end(), {"-p", "0", "-sys", "G", "-e", "-o", out.string(), obs.string(), navf.string()});
+    Child rk(argv, dir / "rnx2rtkp.out", dir / "rnx2rtkp.err");
+    const auto rk_status = rk.wait_exit(60.0);
+    EXPECT_TRUE(rk_status && WIFEXITED(*rk_status)) << describe_status(rk_status);
+    return read_rtklib_ecef_pos(out);
+  };
+  const std::vector<RtklibFix> fixes = solve(pos, true);
+  const std::vector<RtklibFix> plain = solve(dir / "out-no-atmosphere.pos", false);
+  ASSERT_GE(fixes.size(), static_cast<std::size_t>(capture_s - 10.0))
+      << "solutions in " << pos << "\n" << tail(slurp(dir / "rnx2rtkp.err"));
+  const Vec3 truth = ecef_from_geodetic(kUbxSite);
+  std::vector<double> err3d, err_h, err_up;
+  for (const RtklibFix& f : fixes) {
+    err3d.push_back((f.p_ecef_m - truth).norm());
+    const Vec3 e = enu_from_ecef(f.p_ecef_m, kUbxSite);
+    err_h.push_back(std::hypot(e.x(), e.y()));
+    err_up.push_back(e.z());
+  }
+  const double mean3d = mean(err3d);
+  std::vector<double> plain3d;
+  for (const RtklibFix& f : plain) plain3d.push_back((f.p_ecef_m - truth).norm());
+  RecordProperty("rtklib_epochs", static_cast<int>(fixes.size()));
+  RecordProperty("rtklib_mean_3d_error_m", fmt::format("{:.2f}", mean3d));
+  std::printf("RTKLIB: %.0f s capture, %zu RAWX, %zu SFRBX, %zu solutions: mean 3D error %.2f m "
+              "(mean horizontal %.2f m, mean up %+.2f m, max 3D %.2f m); without atmospheric "
+              "models %.2f m\n",
+              capture_s, rawx.size(), sfrbx.size(), fixes.size(), mean3d, mean(err_h), mean(err_up),
+              *std::max_element(err3d.begin(), err3d.end()), mean(plain3d));
+  EXPECT_LE(mean3d, 5.0) << "mean 3D error of rnx2rtkp's single-point solutions vs the truth";
+
+  // The ephemerides in the navigation file are navemu's: the built-in constellation at the
+  // scenario's start (IODE and toe identify the record; sqrt(A), e, i0 to their LNAV LSBs).
+  const NavData rinex = read_rinex_nav(navf);
+  const NavData truth_nav = nominal_constellation(start);
+  std::set<int> prns_in_file;
+  for (const GpsEphemeris& r : rinex.gps) {
+    SCOPED_TRACE(fmt::format("PRN {} IODE {}", r.prn, r.iode));
+    prns_in_file.insert(r.prn);
+    const GpsEphemeris* sent = nullptr;
+    for (const GpsEphemeris& e : truth_nav.gps)
+      if (e.prn == r.prn && (e.iode & 0xFF) == r.iode && std::abs(seconds_between(e.toe, r.toe)) < 16.0) sent = &e;
+    ASSERT_NE(sent, nullptr) << "no record of the built-in constellation has this IODE and toe";
+    EXPECT_NEAR(r.sqrt_a_sqrtm, sent->sqrt_a_sqrtm, std::ldexp(1.0, -19));
+    EXPECT_NEAR(r.e, sent->e, std::ldexp(1.0, -33));
+    EXPECT_NEAR(r.i0_rad, sent->i0_rad, std::ldexp(lnav::kGpsPi, -31) * 1.01);
+    EXPECT_NEAR(r.omega0_rad, std::remainder(sent->omega0_rad, 2 * lnav::kGpsPi), std::ldexp(lnav::kGpsPi, -31) * 1.01);
+    // And the subframes in the capture decode to the same record.
+    const auto& w = subs[r.prn];
+    for (std::size_t i = 0; i + 2 < w.size(); ++i) {
+      if (lnav::decode_tlm_how(w[i]).subframe_id != 1) continue;
+      const auto l = lnav::decode_ephemeris(w[i], w[i + 1], w[i + 2], wt.week);
+      ASSERT_TRUE(l.has_value());
+      EXPECT_EQ(l->iode, r.iode);
+      EXPECT_NEAR(l->toe_s, to_week_tow(r.toe).tow_s, 1e-6);
+      break;
+    }
+  }
+  std::set<int> tracked;
+  for (const auto& r : rawx)
+    for (const auto& m : r.meas) tracked.insert(m.sv_id);
+  for (int prn : tracked) EXPECT_TRUE(prns_in_file.count(prn)) << "no ephemeris for tracked PRN " << prn;
+  std::printf("RTKLIB: %zu ephemerides in the navigation file for %zu tracked satellites\n",
+              rinex.gps.size(), tracked.size());
+}
+
+// ---- faults on the wire ----------------------------------------------------------------------
+
+// A client writing garbage into the pty: random bytes, gpsd-style probes, truncated frames,
+// wrong checksums, lengths above the receiver's buffer (0xFFFF) and plausible lengths never
+// completed. navemu must not crash, its output must keep coming (NMEA and UBX every epoch), no
+// configuration may change (every CFG in the garbage is corrupt), and a MON-VER poll afterwards
+// is answered. A frame header with a plausible length holds the bytes that follow until that
+// many arrived (as on a real receiver), so 4200 filler bytes precede the poll.
+TEST(UbxFaults, GarbageFromTheClientNeverStopsTheOutput) {
+  TempDir dir("ubx-faults");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  const fs::path profile = write_profile(dir, "ublox-m8", "NAV-PVT: 1");
+  NavemuRun nav(dir, "navemu", ubx_config(profile, link, log), 60);
+  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  PtyClient pty;
+  ASSERT_TRUE(pty.open(link));
+  pty.read_until(mono_s() + 2.0);
+
+  std::uint32_t x = 987654321;
+  const auto rnd = [&] {
+    x = x * 1664525u + 1013904223u;
+    return static_cast<std::uint8_t>(x >> 24);
+  };
+  std::vector<std::uint8_t> good_rate;
+  ubx::append(ubx::CfgRate{100, 1, ubx::CfgRate::kTimeRefGps}, good_rate);
+  ubx::CfgPrt prt;
+  prt.port_id = ubx::kPortUart1;
+  prt.mode = ubx::CfgPrt::kMode8N1;
+  prt.baud_rate = 115200;
+  prt.in_proto_mask = ubx::kProtoUbx;
+  prt.out_proto_mask = ubx::kProtoUbx;  // would stop NMEA if it were accepted
+  std::vector<std::uint8_t> good_prt;
+  ubx::append(prt, good_prt);
+
+  const double g0 = mono_s();
+  std::size_t garbage_bytes = 0;
+  int bursts = 0;
+  bool writes_ok = true;
+  while (mono_s() < g0 + 6.0) {
+    std::vector<std::uint8_t> b;
+    for (int i = 0; i < 300; ++i) {
+      const std::uint8_t c = rnd();
+      b.push_back(c == ubx::kSync1 ? 0x00 : c);
+    }
+    const std::string probe = "$PASHQ,RID*28\r\n@F0.3=1*67\r\n$PMTK605*31\r\n";
+    b.insert(b.end(), probe.begin(), probe.end());
+    switch (bursts % 5) {
+      case 0:  // truncated CFG-RATE
+        b.insert(b.end(), good_rate.begin(), good_rate.begin() + 9);
+        break;
+      case 1: {  // wrong checksums
+        std::vector<std::uint8_t> r = good_rate, p = good_prt;
+        r[r.size() - 2] ^= 0x55;
+        p.back() ^= 0x01;
+        b.insert(b.end(), r.begin(), r.end());
+        b.insert(b.end(), p.begin(), p.end());
+        break;
+      }
+      case 2:  // lengths above the buffer
+        for (const std::uint8_t hi : std::array<std::uint8_t, 3>{0xFF, 0x80, 0x11})
+          b.insert(b.end(), {ubx::kSync1, ubx::kSync2, 0x06, 0x00, 0xFF, hi, 0x01, 0x02, 0x03});
+        break;
+      case 3:  // a plausible length (3000) never completed before the junk that follows
+        b.insert(b.end(), {ubx::kSync1, ubx::kSync2, 0x06, 0x00, 0xB8, 0x0B, 0x01});
+        break;
+      default:  // a complete frame whose payload is cut: length 20, 10 bytes, then a new sync
+        b.insert(b.end(), good_prt.begin(), good_prt.begin() + 16);
+        b.insert(b.end(), good_rate.begin(), good_rate.begin() + 3);
+        break;
+    }
+    writes_ok = writes_ok && pty.write_all(b, 2.0);
+    garbage_bytes += b.size();
+    ++bursts;
+    pty.read_until(mono_s() + 0.05);
+  }
+  const double g1 = mono_s();
+  EXPECT_TRUE(writes_ok) << "navemu stopped reading its port (writes blocked for 2 s)";
+  EXPECT_TRUE(nav.child().running()) << nav.diagnostics();
+
+  // Filler, then the poll; the answer must come within 1 s.
+  const std::vector<std::uint8_t> filler(4200, 'z');
+  ASSERT_TRUE(pty.write_all(filler));
+  const std::size_t frames_before_poll = pty.frames().size();
+  const std::vector<std::uint8_t> poll = ubx_poll(ubx::kMonVer);
+  const double p0 = mono_s();
+  ASSERT_TRUE(pty.write_all(poll));
+  std::optional<double> answered_s;
+  pty.read_until(p0 + 2.0, [&] {
+    for (std::size_t i = frames_before_poll; i < pty.frames().size(); ++i)
+      if (pty.frames()[i].id == ubx::kMonVer) {
+        answered_s = pty.frames()[i].t_mono - p0;
+        return true;
+      }
+    return false;
+  });
+  pty.read_until(mono_s() + 2.0);
+  const double end_t = mono_s();
+  pty.close();
+  const auto st = nav.stop();
+
+  ASSERT_TRUE(answered_s.has_value()) << "MON-VER poll after the garbage not answered" << nav.diagnostics();
+  EXPECT_LT(*answered_s, 1.0);
+  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st) << nav.diagnostics();
+
+  // Output never stopped: NAV-PVT and RMC once a second throughout, NAV-PVT epochs consecutive
+  // (1 s: the corrupt CFG-RATE did not apply; NMEA on: the corrupt CFG-PRT did not apply).
+  std::vector<double> pvt_t;
+  std::vector<std::uint32_t> tows;
+  for (const UbxFrame& f : pty.frames()) {
+    ubx::NavPvt m;
+    if (f.id == ubx::kNavPvt && ubx::decode(f.payload, m)) {
+      pvt_t.push_back(f.t_mono);
+      tows.push_back(m.i_tow_ms);
+    }
+  }
+  const std::vector<double> rmc_t = pty.nmea_times("RMC");
+  const auto max_gap = [&](const std::vector<double>& t) {
+    double g = 0;
+    for (std::size_t i = 1; i < t.size(); ++i) g = std::max(g, t[i] - t[i - 1]);
+    if (!t.empty()) g = std::max(g, end_t - t.back());
+    return g;
+  };
+  const auto count_in = [](const std::vector<double>& t, double a, double b) {
+    return std::count_if(t.begin(), t.end(), [&](double v) { return v >= a && v < b; });
+  };
+  EXPECT_LE(max_gap(pvt_t), 1.5) << "NAV-PVT stopped for a while";
+  EXPECT_LE(max_gap(rmc_t), 1.5) << "NMEA stopped for a while";
+  EXPECT_GE(count_in(pvt_t, g0, g1), 5);
+  EXPECT_GE(count_in(rmc_t, g0, g1), 5);
+  for (std::size_t i = 1; i < tows.size(); ++i) EXPECT_EQ(tows[i] - tows[i - 1], 1000u);
+  const std::vector<UbxFrame> acks = [&] {
+    std::vector<UbxFrame> a;
+    for (const UbxFrame& f : pty.frames())
+      if (f.id == ubx::kAckAck) a.push_back(f);
+    return a;
+  }();
+  EXPECT_TRUE(acks.empty()) << "a corrupt CFG message was acknowledged";
+  RecordProperty("garbage_bytes", static_cast<int>(garbage_bytes));
+  RecordProperty("mon_ver_answer_ms", fmt::format("{:.1f}", *answered_s * 1e3));
+  std::printf("faults: %zu garbage bytes in %d bursts over %.1f s; NAV-PVT max gap %.2f s, RMC max "
+              "gap %.2f s; MON-VER answered after %.1f ms\n",
+              garbage_bytes, bursts, g1 - g0, max_gap(pvt_t), max_gap(rmc_t), *answered_s * 1e3);
+}
+
+}  // namespace
+}  // namespace navemu::test::clients

@@ -1,0 +1,622 @@
+// The u-blox device behaviour (emulator/ubx_device.hpp) without processes: UBX command frames
+// built with protocols/ubx_messages.hpp go into UbxDevice::receive, and the replies are parsed
+// back with ubx::Parser and the message decoders. What a client expects of each command
+// follows the u-blox 8 Receiver Description (UBX-13003221) section 32.5 "UBX Message Flow"
+// (a set is answered with ACK-ACK or ACK-NAK, a poll with the message then ACK-ACK, CFG-RST is
+// not acknowledged) and the ZED-F9P interface description (UBX-18010854) for VALSET/VALGET;
+// the epoch output is decoded back and compared with the receiver model's fix and raw
+// measurements, as gpsd and RTKLIB read them (../shared/TESTING.md).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emulator/ubx_device.hpp"
+#include "models/constellation.hpp"
+#include "models/receiver.hpp"
+#include "protocols/gps_lnav.hpp"
+#include "protocols/ubx.hpp"
+#include "protocols/ubx_messages.hpp"
+
+namespace navemu {
+namespace {
+
+// One frame of the device's output.
+struct Frame {
+  ubx::MsgId id;
+  std::vector<std::uint8_t> payload;
+};
+
+// Every good UBX frame in a byte stream (NMEA in between is skipped by the parser).
+std::vector<Frame> frames_of(const std::string& bytes) {
+  ubx::Parser parser(65535);
+  std::vector<Frame> out;
+  const auto* p = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  parser.feed(std::span<const std::uint8_t>(p, bytes.size()), [&](ubx::Parser::Result r) {
+    EXPECT_NE(r, ubx::Parser::Result::kChecksumError) << "the device sent a frame with a bad checksum";
+    if (r != ubx::Parser::Result::kFrame) return;
+    const auto pl = parser.payload();
+    out.push_back({{parser.cls(), parser.id()}, std::vector<std::uint8_t>(pl.begin(), pl.end())});
+  });
+  EXPECT_EQ(parser.buffered(), 0u) << "the device's output ends inside a frame";
+  return out;
+}
+
+std::vector<Frame> of_type(const std::vector<Frame>& frames, ubx::MsgId id) {
+  std::vector<Frame> out;
+  for (const Frame& f : frames)
+    if (f.id == id) out.push_back(f);
+  return out;
+}
+
+// Replies of the device to `bytes`.
+std::string send(UbxDevice& d, const std::vector<std::uint8_t>& bytes) {
+  std::string replies;
+  d.receive(std::span<const std::uint8_t>(bytes.data(), bytes.size()), replies);
+  return replies;
+}
+
+template <typename Msg>
+std::vector<std::uint8_t> frame(const Msg& m) {
+  std::vector<std::uint8_t> out;
+  ubx::append(m, out);
+  return out;
+}
+
+std::vector<std::uint8_t> poll(ubx::MsgId id) {
+  std::vector<std::uint8_t> out;
+  ubx::append_poll(id, out);
+  return out;
+}
+
+std::vector<std::uint8_t> raw_frame(ubx::MsgId id, const std::vector<std::uint8_t>& payload) {
+  std::vector<std::uint8_t> out;
+  ubx::append_frame(id.cls, id.id, payload, out);
+  return out;
+}
+
+bool is_ack(const Frame& f, ubx::MsgId acked) {
+  ubx::AckAck a;
+  return f.id == ubx::kAckAck && ubx::decode(f.payload, a) && a.cls_id == acked.cls && a.msg_id == acked.id;
+}
+bool is_nak(const Frame& f, ubx::MsgId acked) {
+  ubx::AckNak a;
+  return f.id == ubx::kAckNak && ubx::decode(f.payload, a) && a.cls_id == acked.cls && a.msg_id == acked.id;
+}
+
+// A reply that is exactly one ACK-ACK (or ACK-NAK) of `acked`.
+::testing::AssertionResult only_ack(const std::string& replies, ubx::MsgId acked, bool nak = false) {
+  const std::vector<Frame> f = frames_of(replies);
+  if (f.size() != 1)
+    return ::testing::AssertionFailure() << f.size() << " frames instead of one " << (nak ? "NAK" : "ACK");
+  if (nak ? !is_nak(f[0], acked) : !is_ack(f[0], acked))
+    return ::testing::AssertionFailure() << "frame " << int(f[0].id.cls) << "/" << int(f[0].id.id)
+                                         << " is not the expected " << (nak ? "ACK-NAK" : "ACK-ACK");
+  return ::testing::AssertionSuccess();
+}
+
+const NavData& empty_nav() {
+  static const NavData nav;
+  return nav;
+}
+
+// A fixed 3D fix (for the tests that need some epoch, not the receiver model).
+ReceiverFix a_fix(GpsTime t) {
+  ReceiverFix f;
+  f.t = t;
+  f.fix = FixType::k3D;
+  f.position = Geodetic{32.3, -90.9, 60.0};
+  f.p_ecef_m = ecef_from_geodetic(f.position);
+  f.v_ned_mps = Vec3::Zero();
+  f.dops = Dops{2.0, 1.8, 1.1, 1.4, 0.9};
+  f.num_used = 2;
+  f.satellites = {{5, 120.0, 45.0, 44.0, true}, {12, 300.0, 10.0, 31.0, true}, {29, 30.0, 3.0, 25.0, false}};
+  f.sigma_h_m = 3.3;
+  f.sigma_v_m = 4.2;
+  return f;
+}
+
+const GpsTime kT0 = gps_from_utc(CalendarTime{2010, 11, 17, 13, 0, 0.0});
+
+class UbxDeviceTest : public ::testing::Test {
+ protected:
+  GnssProfile m8_ = load_gnss_profile("ublox-m8");
+  GnssProfile f9p_ = load_gnss_profile("ublox-f9p");
+};
+
+// MON-VER poll: the profile's software and hardware versions and extension strings, among
+// them PROTVER=, which gpsd needs to pick its u-blox protocol handling (TESTING.md).
+TEST_F(UbxDeviceTest, MonVerCarriesTheProfileStrings) {
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    SCOPED_TRACE(p->name);
+    UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kMonVer)));
+    ASSERT_EQ(f.size(), 1u) << "MON-VER is answered with MON-VER only (no ACK: not a CFG message)";
+    ASSERT_EQ(f[0].id, ubx::kMonVer);
+    ubx::MonVer v;
+    ASSERT_TRUE(ubx::decode(f[0].payload, v));
+    EXPECT_EQ(v.sw_version, p->ubx->sw_version);
+    EXPECT_EQ(v.hw_version, p->ubx->hw_version);
+    EXPECT_EQ(v.extensions, p->ubx->extensions);
+    const int expected = std::stoi(p->ubx->protver.substr(0, 2)) * 100 + std::stoi(p->ubx->protver.substr(3));
+    EXPECT_EQ(ubx::protocol_version_x100(v), expected);
+    EXPECT_EQ(d.counters().polls, 1u);
+  }
+}
+
+// CFG-PRT poll (empty: the port the poll came in on; one byte: that port) gives the port's
+// configuration followed by ACK-ACK; UART1 at the profile's baud with UBX+NMEA in and out.
+TEST_F(UbxDeviceTest, CfgPrtPollAnswersThenAcknowledges) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  for (const std::vector<std::uint8_t>& req :
+       {poll(ubx::kCfgPrt), frame(ubx::CfgPrtPoll{true, ubx::kPortUart1})}) {
+    const std::vector<Frame> f = frames_of(send(d, req));
+    ASSERT_EQ(f.size(), 2u);
+    ASSERT_EQ(f[0].id, ubx::kCfgPrt);
+    ubx::CfgPrt prt;
+    ASSERT_TRUE(ubx::decode(f[0].payload, prt));
+    EXPECT_EQ(prt.port_id, ubx::kPortUart1);
+    EXPECT_EQ(prt.baud_rate, static_cast<std::uint32_t>(m8_.baud));
+    EXPECT_EQ(prt.mode, ubx::CfgPrt::kMode8N1);
+    EXPECT_EQ(prt.in_proto_mask, ubx::kProtoUbx | ubx::kProtoNmea);
+    EXPECT_EQ(prt.out_proto_mask, ubx::kProtoUbx | ubx::kProtoNmea);
+    EXPECT_TRUE(is_ack(f[1], ubx::kCfgPrt));
+  }
+}
+
+// CFG-MSG in its three forms (told apart by length): the 2-byte poll answers with the 8-byte
+// form (rate on every port) then ACK-ACK; the 3-byte form sets the rate on this port (what
+// gpsd's burst uses, TESTING.md); the 8-byte form sets the rates of all ports.
+TEST_F(UbxDeviceTest, CfgMsgPollAndBothSetForms) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  const auto poll_rate = [&](ubx::MsgId id) -> int {
+    const std::vector<Frame> f = frames_of(send(d, frame(ubx::CfgMsgPoll{id.cls, id.id})));
+    EXPECT_EQ(f.size(), 2u);
+    if (f.size() != 2) return -1;
+    EXPECT_TRUE(is_ack(f[1], ubx::kCfgMsg));
+    ubx::CfgMsg m;
+    EXPECT_EQ(f[0].id, ubx::kCfgMsg);
+    if (!ubx::decode(f[0].payload, m)) return -1;
+    EXPECT_EQ(m.msg_class, id.cls);
+    EXPECT_EQ(m.msg_id, id.id);
+    return m.rate[ubx::kPortUart1];
+  };
+
+  EXPECT_EQ(poll_rate(ubx::kNavPvt), 0) << "the M8 profile has UBX output off at power-up";
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{0x01, 0x07, 1})), ubx::kCfgMsg));
+  EXPECT_EQ(d.rate(ubx::kNavPvt), 1);
+  EXPECT_EQ(poll_rate(ubx::kNavPvt), 1);
+
+  ubx::CfgMsg all;
+  all.msg_class = 0x01;
+  all.msg_id = 0x07;
+  all.rate = {0, 2, 0, 0, 0, 0};
+  EXPECT_TRUE(only_ack(send(d, frame(all)), ubx::kCfgMsg));
+  EXPECT_EQ(d.rate(ubx::kNavPvt), 2);
+  EXPECT_EQ(poll_rate(ubx::kNavPvt), 2);
+
+  // An NMEA sentence (class 0xF0): RMC off takes it out of the NMEA output.
+  EXPECT_EQ(poll_rate({ubx::kClassNmea, 0x04}), 1);
+  std::string before;
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, before);
+  EXPECT_NE(before.find("$GPRMC"), std::string::npos);
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{ubx::kClassNmea, 0x04, 0})), ubx::kCfgMsg));
+  std::string after;
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, after);
+  EXPECT_EQ(after.find("$GPRMC"), std::string::npos);
+  EXPECT_NE(after.find("$GPGGA"), std::string::npos);
+
+  // Messages of an output class that this receiver does not produce (gpsd's NAV-TIMELS, NMEA
+  // GBS) are acknowledged as on the real part; an unknown class is refused.
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{ubx::kClassNav, 0x26, 0xFF})), ubx::kCfgMsg));
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{ubx::kClassNmea, 0x09, 0})), ubx::kCfgMsg));
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{0x55, 0x01, 1})), ubx::kCfgMsg, true));
+}
+
+// CFG-RATE: a poll answers the current rate; a valid set is acknowledged and changes the
+// epoch period; measRate 10 ms (above the receiver's 25 Hz) and navRate 0 are refused with
+// ACK-NAK and change nothing.
+TEST_F(UbxDeviceTest, CfgRateSetValidAndInvalid) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_EQ(d.period_ns(), 1'000'000'000);
+  {
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgRate)));
+    ASSERT_EQ(f.size(), 2u);
+    ubx::CfgRate r;
+    ASSERT_TRUE(ubx::decode(f[0].payload, r));
+    EXPECT_EQ(r.meas_rate_ms, 1000);
+    EXPECT_EQ(r.nav_rate_cycles, 1);
+    EXPECT_TRUE(is_ack(f[1], ubx::kCfgRate));
+  }
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgRate{100, 1, ubx::CfgRate::kTimeRefGps})), ubx::kCfgRate));
+  EXPECT_EQ(d.period_ns(), 100'000'000);
+
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgRate{10, 1, ubx::CfgRate::kTimeRefGps})), ubx::kCfgRate, true));
+  EXPECT_EQ(d.period_ns(), 100'000'000);
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgRate{1000, 0, ubx::CfgRate::kTimeRefGps})), ubx::kCfgRate, true));
+  EXPECT_EQ(d.period_ns(), 100'000'000);
+  EXPECT_TRUE(only_ack(send(d, raw_frame(ubx::kCfgRate, {0xE8, 0x03, 0x01})), ubx::kCfgRate, true))
+      << "a CFG-RATE of the wrong length";
+  EXPECT_EQ(d.period_ns(), 100'000'000);
+
+  const std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgRate)));
+  ASSERT_EQ(f.size(), 2u);
+  ubx::CfgRate r;
+  ASSERT_TRUE(ubx::decode(f[0].payload, r));
+  EXPECT_EQ(r.meas_rate_ms, 100);
+  EXPECT_EQ(d.counters().naks, 3u);
+}
+
+// A configuration message the receiver does not implement (CFG-TP5, time pulse) is refused
+// with ACK-NAK, so a client knows it was not applied.
+TEST_F(UbxDeviceTest, UnknownCfgMessageIsNaked) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  const std::vector<std::uint8_t> tp5(32, 0x01);
+  EXPECT_TRUE(only_ack(send(d, raw_frame(ubx::kCfgTp5, tp5)), ubx::kCfgTp5, true));
+  EXPECT_EQ(d.counters().naks, 1u);
+  EXPECT_EQ(d.counters().acks, 0u);
+}
+
+// CFG-RST is not acknowledged (UBX-13003221, CFG-RST); the receiver then searches: a cold or
+// warm start has no fix for the outage, a hot start for about a second, and the epoch output
+// during it reports no fix and no satellites.
+TEST_F(UbxDeviceTest, CfgRstIsNotAcknowledgedAndRestarts) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{0x01, 0x07, 1})), ubx::kCfgMsg));
+  std::string out;
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
+  EXPECT_FALSE(d.restarting(kT0.plus_s(1.0)));
+
+  ubx::CfgRst cold;
+  cold.nav_bbr_mask = ubx::CfgRst::kColdStart;
+  cold.reset_mode = ubx::CfgRst::kControlledSoftwareResetGnss;
+  EXPECT_TRUE(send(d, frame(cold)).empty()) << "CFG-RST must not be answered";
+  EXPECT_EQ(d.counters().acks, 1u);
+  EXPECT_EQ(d.counters().naks, 0u);
+  // The outage: a cold start's time to first fix, 26 s or so on an M8 (data sheet).
+  const auto outage_s = [&](GpsTime from) {
+    double t = 0.0;
+    while (t < 120.0 && d.restarting(from.plus_s(t))) t += 0.5;
+    return t;
+  };
+  EXPECT_TRUE(d.restarting(kT0.plus_s(1.0)));
+  const double cold_s = outage_s(kT0);
+  EXPECT_GE(cold_s, 20.0);
+  EXPECT_LE(cold_s, 40.0);
+
+  out.clear();
+  d.encode_epoch(a_fix(kT0.plus_s(5.0)), EpochMeasurements{}, 5, out);
+  const std::vector<Frame> pvt = of_type(frames_of(out), ubx::kNavPvt);
+  ASSERT_EQ(pvt.size(), 1u);
+  ubx::NavPvt m;
+  ASSERT_TRUE(ubx::decode(pvt[0].payload, m));
+  EXPECT_EQ(m.fix_type, ubx::kFixNone);
+  EXPECT_EQ(m.num_sv, 0);
+  EXPECT_EQ(m.flags & ubx::NavPvt::kGnssFixOk, 0);
+
+  // After the outage the fix is back; a hot start is short.
+  out.clear();
+  d.encode_epoch(a_fix(kT0.plus_s(40.0)), EpochMeasurements{}, 40, out);
+  ASSERT_TRUE(ubx::decode(of_type(frames_of(out), ubx::kNavPvt).at(0).payload, m));
+  EXPECT_EQ(m.fix_type, ubx::kFix3d);
+  ubx::CfgRst hot;
+  hot.nav_bbr_mask = ubx::CfgRst::kHotStart;
+  hot.reset_mode = ubx::CfgRst::kControlledSoftwareResetGnss;
+  EXPECT_TRUE(send(d, frame(hot)).empty());
+  EXPECT_TRUE(d.restarting(kT0.plus_s(40.5)));
+  const double hot_s = outage_s(kT0.plus_s(40.0));
+  EXPECT_GT(hot_s, 0.0);
+  EXPECT_LE(hot_s, 2.0);
+  RecordProperty("cold_start_outage_s", std::to_string(cold_s));
+  RecordProperty("hot_start_outage_s", std::to_string(hot_s));
+}
+
+// VALSET/VALGET exist from protocol 27 (ZED-F9P): a set of known keys is acknowledged and
+// applied, VALGET reads it back (then ACK-ACK); a set with one unknown key is refused whole
+// (nothing applied, UBX-18010854 "CFG-VALSET": all or nothing).
+TEST_F(UbxDeviceTest, ValsetValgetOnProtocol27) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  const auto valget = [&](std::uint32_t key) -> std::optional<std::uint64_t> {
+    ubx::CfgValgetRequest req;
+    req.keys = {key};
+    const std::vector<Frame> f = frames_of(send(d, frame(req)));
+    if (f.size() == 1 && is_nak(f[0], ubx::kCfgValget)) return std::nullopt;
+    EXPECT_EQ(f.size(), 2u);
+    if (f.size() != 2) return std::nullopt;
+    EXPECT_TRUE(is_ack(f[1], ubx::kCfgValget));
+    ubx::CfgValgetResponse r;
+    EXPECT_TRUE(ubx::decode(f[0].payload, r));
+    EXPECT_EQ(r.values.size(), 1u);
+    if (r.values.size() != 1) return std::nullopt;
+    EXPECT_EQ(r.values[0].key_id, key);
+    return r.values[0].value;
+  };
+
+  EXPECT_EQ(valget(ubx::cfgkey::kRateMeas), 1000u);
+  ubx::CfgValset set;
+  set.values = {{ubx::cfgkey::kRateMeas, 200}};
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgValset));
+  EXPECT_EQ(valget(ubx::cfgkey::kRateMeas), 200u);
+  EXPECT_EQ(d.period_ns(), 200'000'000);
+
+  // One unknown key (CFG-TP-PERIOD_TP1, not implemented) beside a valid one: NAK, neither set.
+  ubx::CfgValset mixed;
+  mixed.values = {{ubx::cfgkey::kRateMeas, 500}, {0x40050002, 1'000'000}};
+  EXPECT_TRUE(only_ack(send(d, frame(mixed)), ubx::kCfgValset, true));
+  EXPECT_EQ(valget(ubx::cfgkey::kRateMeas), 200u);
+  EXPECT_EQ(d.period_ns(), 200'000'000);
+  EXPECT_FALSE(valget(0x40050002).has_value()) << "VALGET of an unknown key: ACK-NAK";
+
+  // 30 ms is above the receiver's 25 Hz: refused like CFG-RATE, not clamped after an ACK.
+  ubx::CfgValset fast;
+  fast.values = {{ubx::cfgkey::kRateMeas, 30}};
+  EXPECT_TRUE(only_ack(send(d, frame(fast)), ubx::kCfgValset, true));
+  EXPECT_EQ(valget(ubx::cfgkey::kRateMeas), 200u);
+
+  // Message output by key, as ubxtool -z CFG-MSGOUT-UBX_NAV_PVT_UART1,1 does.
+  ubx::CfgValset msg;
+  msg.values = {{ubx::cfgkey::kMsgoutUbxNavPvtUart1, 1}};
+  EXPECT_TRUE(only_ack(send(d, frame(msg)), ubx::kCfgValset));
+  EXPECT_EQ(d.rate(ubx::kNavPvt), 1);
+  EXPECT_EQ(valget(ubx::cfgkey::kMsgoutUbxNavPvtUart1), 1u);
+}
+
+// A protocol 18 receiver (M8) has no configuration interface: VALSET and VALGET get ACK-NAK.
+TEST_F(UbxDeviceTest, ValsetValgetNakedOnProtocol18) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  ubx::CfgValset set;
+  set.values = {{ubx::cfgkey::kRateMeas, 200}};
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgValset, true));
+  EXPECT_EQ(d.period_ns(), 1'000'000'000);
+  ubx::CfgValgetRequest req;
+  req.keys = {ubx::cfgkey::kRateMeas};
+  EXPECT_TRUE(only_ack(send(d, frame(req)), ubx::kCfgValget, true));
+}
+
+// What a misbehaving client or a line glitch produces: junk (gpsd's probe strings of other
+// vendors, TESTING.md), a truncated frame, a frame with a wrong checksum, a frame whose length
+// exceeds what the receiver buffers, and then a valid poll. The poll is answered, nothing else
+// is, and the parser's counters show the damage. Fed whole and byte by byte.
+TEST_F(UbxDeviceTest, GarbageTruncatedAndBadChecksumInputStillAnswersThePoll) {
+  std::vector<std::uint8_t> in;
+  const auto add = [&](const std::vector<std::uint8_t>& b) { in.insert(in.end(), b.begin(), b.end()); };
+  const std::string probes = "$PASHQ,RID*28\r\n@F0.3=1*67\r\n$PSRF100,0,9600,8,1,0*0C\r\n$PMTK605*31\r\n";
+  add(std::vector<std::uint8_t>(probes.begin(), probes.end()));
+  std::uint32_t x = 12345;  // a fixed pseudo-random junk sequence without sync bytes
+  for (int i = 0; i < 300; ++i) {
+    x = x * 1664525u + 1013904223u;
+    const auto b = static_cast<std::uint8_t>(x >> 24);
+    in.push_back(b == ubx::kSync1 ? 0x00 : b);
+  }
+  // Truncated: a CFG-RATE set (100 ms) cut after two payload bytes.
+  std::vector<std::uint8_t> rate = frame(ubx::CfgRate{100, 1, ubx::CfgRate::kTimeRefGps});
+  add({rate.begin(), rate.begin() + 8});
+  // Wrong checksum: the same set with CK_B flipped.
+  rate.back() ^= 0xFF;
+  add(rate);
+  // A length far above the receiver's buffer (0xFFFF).
+  add({ubx::kSync1, ubx::kSync2, 0x06, 0x01, 0xFF, 0xFF, 0x01, 0x07, 0x01});
+  add(std::vector<std::uint8_t>(40, 'x'));
+  add(poll(ubx::kMonVer));
+
+  for (bool byte_at_a_time : {false, true}) {
+    SCOPED_TRACE(byte_at_a_time ? "byte at a time" : "one chunk");
+    UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+    std::string replies;
+    if (byte_at_a_time) {
+      for (std::uint8_t b : in) d.receive(std::span<const std::uint8_t>(&b, 1), replies);
+    } else {
+      replies = send(d, in);
+    }
+    const std::vector<Frame> f = frames_of(replies);
+    ASSERT_EQ(f.size(), 1u) << "only the MON-VER poll is answered";
+    EXPECT_EQ(f[0].id, ubx::kMonVer);
+    EXPECT_EQ(d.period_ns(), 1'000'000'000) << "neither the cut nor the corrupted CFG-RATE applied";
+    const UbxDeviceCounters c = d.counters();
+    EXPECT_EQ(c.frames, 1u);
+    EXPECT_GE(c.checksum_errors, 1u);
+    EXPECT_GE(c.too_long, 1u);
+    EXPECT_GE(c.junk_bytes, 300u);
+  }
+}
+
+// CFG-PRT with a new baud: acknowledged first (at the old baud), and the new baud is handed to
+// the transport once.
+TEST_F(UbxDeviceTest, CfgPrtBaudChangeIsTakenOnce) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_FALSE(d.take_baud_change().has_value());
+  ubx::CfgPrt prt;
+  prt.port_id = ubx::kPortUart1;
+  prt.mode = ubx::CfgPrt::kMode8N1;
+  prt.baud_rate = 115200;
+  prt.in_proto_mask = ubx::kProtoUbx | ubx::kProtoNmea;
+  prt.out_proto_mask = ubx::kProtoUbx | ubx::kProtoNmea;
+  EXPECT_TRUE(only_ack(send(d, frame(prt)), ubx::kCfgPrt));
+  EXPECT_EQ(d.take_baud_change(), std::optional<int>(115200));
+  EXPECT_FALSE(d.take_baud_change().has_value());
+  // The same baud again changes nothing.
+  EXPECT_TRUE(only_ack(send(d, frame(prt)), ubx::kCfgPrt));
+  EXPECT_FALSE(d.take_baud_change().has_value());
+  const std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgPrt)));
+  ubx::CfgPrt now;
+  ASSERT_TRUE(ubx::decode(f.at(0).payload, now));
+  EXPECT_EQ(now.baud_rate, 115200u);
+}
+
+// CFG-PRT with the output mask UBX only (ubxtool -d NMEA): the epoch has no NMEA left, and
+// the enabled UBX messages still go out.
+TEST_F(UbxDeviceTest, OutputMaskUbxOnlyStopsNmea) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{0x01, 0x07, 1})), ubx::kCfgMsg));
+  std::string out;
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
+  EXPECT_NE(out.find('$'), std::string::npos) << "NMEA is on at power-up";
+  ubx::CfgPrt prt;
+  prt.port_id = ubx::kPortUart1;
+  prt.mode = ubx::CfgPrt::kMode8N1;
+  prt.baud_rate = static_cast<std::uint32_t>(m8_.baud);
+  prt.in_proto_mask = ubx::kProtoUbx | ubx::kProtoNmea;
+  prt.out_proto_mask = ubx::kProtoUbx;
+  EXPECT_TRUE(only_ack(send(d, frame(prt)), ubx::kCfgPrt));
+  EXPECT_FALSE(d.take_baud_change().has_value());
+  out.clear();
+  d.encode_epoch(a_fix(kT0.plus_s(1.0)), EpochMeasurements{}, 1, out);
+  EXPECT_EQ(out.find('$'), std::string::npos) << "no NMEA with outProtoMask = UBX";
+  const std::vector<Frame> f = frames_of(out);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].id, ubx::kNavPvt);
+  ubx::NavPvt pvt;
+  ASSERT_TRUE(ubx::decode(f[0].payload, pvt));
+  std::size_t ubx_bytes = 0;
+  for (const Frame& fr : f) ubx_bytes += fr.payload.size() + ubx::kFrameOverhead;
+  EXPECT_EQ(ubx_bytes, out.size()) << "nothing but UBX frames";
+}
+
+// The receiver model's epochs through the device with NAV-PVT, NAV-SAT, RXM-RAWX and RXM-SFRBX
+// on, decoded back: NAV-PVT carries the fix (1e-7 deg on the wire), NAV-SAT the tracked
+// satellites, RAWX the raw measurements exactly (R8 pseudoranges), and SFRBX, once per 6 s
+// subframe (IS-GPS-200 20.3.2), words that pass the parity check gpsd applies and decode to
+// the ephemeris the measurements were made with (what RTKLIB and gpsd rebuild, TESTING.md).
+TEST_F(UbxDeviceTest, EpochOutputDecodesToTheReceiversFixAndMeasurements) {
+  const NavData nav = nominal_constellation(kT0);
+  ReceiverParams rp;
+  apply_receiver_class(rp.measurement, m8_.receiver_class);
+  rp.measurement.elevation_mask_deg = m8_.elevation_mask_deg;
+  rp.max_channels = m8_.max_channels;
+  Receiver rx(nav, rp);
+  UbxDevice d(m8_, ReceiverMode::kStandalone, nav);
+  for (ubx::MsgId id : {ubx::kNavPvt, ubx::kNavSat, ubx::kRxmRawx, ubx::kRxmSfrbx})
+    ASSERT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{id.cls, id.id, 1})), ubx::kCfgMsg));
+
+  ImuTruth truth;
+  truth.position = Geodetic{32.3, -90.9, 60.0};
+
+  // Subframes per satellite in order of arrival, with the ephemeris in use at the time.
+  struct Sub {
+    int id;
+    lnav::LnavSubframe words;
+    const GpsEphemeris* eph;
+  };
+  std::map<int, std::vector<Sub>> subframes;
+  int sfrbx_epochs = 0;
+
+  // 48 one-second epochs: a 30 s frame repeats subframes 1, 2, 3 every 30 s, so 48 s hold one
+  // complete 1-2-3 sequence whatever the start phase.
+  for (int k = 0; k < 48; ++k) {
+    const GpsTime t = kT0.plus_s(k);
+    truth.t = t;
+    const ReceiverFix fix = rx.update(t, &truth);
+    const EpochMeasurements& meas = rx.measurements();
+    std::string out;
+    d.encode_epoch(fix, meas, t.ns / 1'000'000'000, out);
+    SCOPED_TRACE("epoch " + std::to_string(k));
+    EXPECT_NE(out.find('$'), std::string::npos) << "NMEA still on beside UBX";
+    const std::vector<Frame> f = frames_of(out);
+    const WeekTow wt = to_week_tow(t);
+    const auto tow_ms = std::llround(wt.tow_s * 1000.0);
+
+    ASSERT_EQ(fix.fix, FixType::k3D);
+    const std::vector<Frame> pvt = of_type(f, ubx::kNavPvt);
+    ASSERT_EQ(pvt.size(), 1u);
+    ubx::NavPvt p;
+    ASSERT_TRUE(ubx::decode(pvt[0].payload, p));
+    EXPECT_EQ(p.i_tow_ms, static_cast<std::uint32_t>(tow_ms));
+    EXPECT_EQ(p.fix_type, ubx::kFix3d);
+    EXPECT_EQ(p.flags & ubx::NavPvt::kGnssFixOk, ubx::NavPvt::kGnssFixOk);
+    EXPECT_EQ(p.valid & 0x03, 0x03) << "gpsd needs validDate and validTime (TESTING.md)";
+    EXPECT_EQ(p.num_sv, fix.num_used);
+    EXPECT_NEAR(p.lat_1e7deg * 1e-7, fix.position.lat_deg, 1e-7);
+    EXPECT_NEAR(p.lon_1e7deg * 1e-7, fix.position.lon_deg, 1e-7);
+    EXPECT_NEAR(p.height_mm * 1e-3, fix.position.h_m, 1e-3);
+    EXPECT_NEAR(p.h_acc_mm * 1e-3, fix.sigma_h_m, 1e-3);
+    EXPECT_NEAR(p.v_acc_mm * 1e-3, fix.sigma_v_m, 1e-3);
+
+    const std::vector<Frame> sat = of_type(f, ubx::kNavSat);
+    ASSERT_EQ(sat.size(), 1u);
+    ubx::NavSat s;
+    ASSERT_TRUE(ubx::decode(sat[0].payload, s));
+    ASSERT_EQ(s.svs.size(), fix.satellites.size());
+    for (std::size_t i = 0; i < s.svs.size(); ++i) {
+      EXPECT_EQ(s.svs[i].gnss_id, 0);
+      EXPECT_EQ(s.svs[i].sv_id, fix.satellites[i].prn);
+      EXPECT_EQ((s.svs[i].flags & ubx::NavSatSv::kSvUsed) != 0, fix.satellites[i].used);
+      EXPECT_NEAR(s.svs[i].elev_deg, fix.satellites[i].el_deg, 0.5);
+    }
+
+    const std::vector<Frame> raw = of_type(f, ubx::kRxmRawx);
+    ASSERT_EQ(raw.size(), 1u);
+    ubx::RxmRawx r;
+    ASSERT_TRUE(ubx::decode(raw[0].payload, r));
+    std::vector<const SatMeasurement*> with_l1;
+    for (const SatMeasurement& m : meas.sats)
+      if (m.signals[0]) with_l1.push_back(&m);
+    ASSERT_EQ(r.meas.size(), with_l1.size());
+    EXPECT_GT(r.meas.size(), 4u);
+    EXPECT_NE(r.week, 0) << "RTKLIB drops RAWX with week 0 (TESTING.md)";
+    EXPECT_NEAR(r.rcv_tow_s, to_week_tow(meas.t_receiver).tow_s, 1e-9);
+    for (std::size_t i = 0; i < r.meas.size(); ++i) {
+      EXPECT_EQ(r.meas[i].sv_id, with_l1[i]->prn);
+      EXPECT_EQ(r.meas[i].pr_mes_m, with_l1[i]->signals[0]->pseudorange_m);
+      EXPECT_EQ(r.meas[i].cp_mes_cycles, with_l1[i]->signals[0]->carrier_cycles);
+      EXPECT_EQ(r.meas[i].trk_stat & 0x03, 0x03) << "pseudorange and phase valid";
+      EXPECT_LE(r.meas[i].cp_stdev & 0x0F, 5) << "RTKLIB discards phase with cpStdev > 5";
+    }
+
+    const std::vector<Frame> sfrbx = of_type(f, ubx::kRxmSfrbx);
+    if (tow_ms % 6000 != 0) {
+      EXPECT_TRUE(sfrbx.empty()) << "SFRBX only when a subframe ends (every 6 s of GPS time)";
+      continue;
+    }
+    ++sfrbx_epochs;
+    std::size_t with_eph = 0;
+    for (const SatMeasurement& m : meas.sats) with_eph += m.eph != nullptr ? 1 : 0;
+    EXPECT_EQ(sfrbx.size(), with_eph);
+    for (const Frame& fr : sfrbx) {
+      ubx::RxmSfrbx m;
+      ASSERT_TRUE(ubx::decode(fr.payload, m));
+      ASSERT_EQ(m.words.size(), 10u);
+      lnav::LnavSubframe w{};
+      std::copy(m.words.begin(), m.words.end(), w.begin());
+      EXPECT_TRUE(lnav::lnav_parity_ok(w)) << "PRN " << int(m.sv_id);
+      const lnav::LnavTlmHow how = lnav::decode_tlm_how(w);
+      EXPECT_EQ(how.tow_count, static_cast<std::uint32_t>(tow_ms / 6000) % lnav::kTowCountsPerWeek)
+          << "the HOW carries the TOW count of the next subframe's start";
+      const auto it = std::find_if(meas.sats.begin(), meas.sats.end(),
+                                   [&](const SatMeasurement& sm) { return sm.prn == m.sv_id; });
+      ASSERT_NE(it, meas.sats.end());
+      subframes[m.sv_id].push_back({how.subframe_id, w, it->eph});
+    }
+  }
+  EXPECT_GE(sfrbx_epochs, 7);
+
+  int decoded = 0;
+  for (const auto& [prn, subs] : subframes) {
+    SCOPED_TRACE("PRN " + std::to_string(prn));
+    for (std::size_t i = 0; i + 2 < subs.size(); ++i) {
+      if (subs[i].id != 1 || subs[i + 1].id != 2 || subs[i + 2].id != 3) continue;
+      const GpsEphemeris& e = *subs[i + 2].eph;
+      const WeekTow toe = to_week_tow(e.toe);
+      const std::optional<lnav::LnavEphemeris> l =
+          lnav::decode_ephemeris(subs[i].words, subs[i + 1].words, subs[i + 2].words, toe.week);
+      ASSERT_TRUE(l.has_value()) << "subframes 1-3 do not form a consistent data set";
+      EXPECT_EQ(l->iode, e.iode & 0xFF);
+      EXPECT_EQ(l->iodc & 0xFF, e.iode & 0xFF);
+      EXPECT_NEAR(l->toe_s, toe.tow_s, 16.0) << "toe is sent in 16 s units";
+      EXPECT_NEAR(l->toe_s, 16.0 * std::round(toe.tow_s / 16.0), 1e-9);
+      EXPECT_EQ(l->week, toe.week);
+      EXPECT_NEAR(l->sqrt_a_sqrtm, e.sqrt_a_sqrtm, std::ldexp(1.0, -19));
+      EXPECT_NEAR(l->e, e.e, std::ldexp(1.0, -33));
+      ++decoded;
+      break;
+    }
+  }
+  EXPECT_GE(decoded, 5) << "satellites whose subframes 1-3 came in order within 48 s";
+}
+
+}  // namespace
+}  // namespace navemu
