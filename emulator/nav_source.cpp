@@ -59,13 +59,9 @@ Geodetic parse_geodetic(const std::string& text, const std::string& field) {
 
 GpsTime gps_now() {
   // The only wall-clock read of the commands: the system clock (UTC) turned into GPS time.
-  const auto unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                           std::chrono::system_clock::now().time_since_epoch())
-                           .count();
-  constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z
-  const std::int64_t unix_s = unix_ns / kNsPerS;
-  const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
-  return GpsTime{gps_from_utc(utc).ns + (unix_ns - unix_s * kNsPerS)};
+  return gps_from_unix_ns(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                              std::chrono::system_clock::now().time_since_epoch())
+                              .count());
 }
 
 GpsTime time_option(const std::string& text, const std::string& field) {

@@ -14,7 +14,6 @@ namespace navemu {
 
 namespace {
 
-constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z in Unix time
 
 class GeneratorSource final : public TruthSource {
  public:
@@ -122,10 +121,7 @@ std::optional<ImuTruth> truth_from_message(const truth_datagram::Message& m, Gps
   if (m.time_base == TimeBase::kGps) {
     s.t = GpsTime{m.time_ns};
   } else {
-    // Host UTC (Unix time, no leap seconds) to GPS time: add the GPS-UTC offset of that date.
-    const std::int64_t unix_s = m.time_ns / kNsPerS;
-    const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
-    s.t = GpsTime{gps_from_utc(utc).ns + (m.time_ns - unix_s * kNsPerS) + host_offset.ns};
+    s.t = GpsTime{gps_from_unix_ns(m.time_ns).ns + host_offset.ns};
   }
   const Vec3 p(m.position[0], m.position[1], m.position[2]);
   s.position = m.position_frame == PositionFrame::kEcef ? geodetic_from_ecef(p)

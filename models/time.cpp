@@ -342,6 +342,13 @@ GpsTime gps_from_utc(const CalendarTime& utc, std::optional<int> after_table_s) 
   return GpsTime{uniform + static_cast<std::int64_t>(leap) * kNsPerS};
 }
 
+GpsTime gps_from_unix_ns(std::int64_t unix_ns) {
+  constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z
+  const std::int64_t unix_s = unix_ns / kNsPerS - (unix_ns % kNsPerS < 0 ? 1 : 0);
+  const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
+  return GpsTime{gps_from_utc(utc).ns + (unix_ns - unix_s * kNsPerS)};
+}
+
 CalendarTime utc_from_gps(GpsTime t, std::optional<int> after_table_s) {
   return to_calendar(utc_cal_ns_from_gps(t, after_table_s));
 }

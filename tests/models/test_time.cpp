@@ -145,6 +145,9 @@ TEST(TimeLeap, SpanAcrossLeapSecondIsTwoSeconds) {
   EXPECT_EQ(after.ns - before.ns, 2 * kS);
   // 2017-01-01T00:00:00Z is Unix time 1483228800; GPS = Unix - 315964800 + 18.
   EXPECT_EQ(after.ns, (1'483'228'800 - 315'964'800 + 18) * kS);
+  // The same instant from Unix time, and one before the 2016-12-31 leap second (17 s then).
+  EXPECT_EQ(gps_from_unix_ns(1'483'228'800 * kS + 250'000'000).ns, after.ns + 250'000'000);
+  EXPECT_EQ(gps_from_unix_ns(1'483'228'799 * kS).ns, (1'483'228'799 - 315'964'800 + 17) * kS);
 
   const GpsTime inside = GpsTime{before.ns + kS + 250'000'000};
   const CalendarTime c = utc_from_gps(inside);
