@@ -547,18 +547,26 @@ class GpsdClient {
     if (fd_ >= 0) ::close(fd_);
   }
   bool connect_and_watch(int port) {
+    return connect(port, "?WATCH={\"enable\":true,\"json\":true}\n");
+  }
+  // Connects and sends `watch` (any ?WATCH, e.g. with "raw":1).
+  bool connect(int port, const std::string& watch) {
     fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
     sockaddr_in a{};
     a.sin_family = AF_INET;
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     a.sin_port = htons(static_cast<std::uint16_t>(port));
     if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return false;
-    static const char watch[] = "?WATCH={\"enable\":true,\"json\":true}\n";
-    return ::send(fd_, watch, sizeof watch - 1, MSG_NOSIGNAL) == static_cast<ssize_t>(sizeof watch - 1);
+    return send(watch);
+  }
+  // A request on the open connection (?DEVICES;).
+  bool send(const std::string& line) {
+    return ::send(fd_, line.data(), line.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(line.size());
   }
 
   // The next object gpsd sends, or none when monotonic time `deadline` comes first (or gpsd
-  // closes the connection). `arrival_real` gets the arrival time (CLOCK_REALTIME).
+  // closes the connection); lines that are not JSON (the raw:1 hex dumps) are skipped.
+  // `arrival_real` gets the arrival time (CLOCK_REALTIME).
   std::optional<YAML::Node> next(double deadline, double* arrival_real = nullptr) {
     for (;;) {
       const std::size_t nl = buf_.find('\n');

@@ -234,61 +234,6 @@ double mean(const std::vector<double>& v) {
 
 // ---- gpsd with a raw watch -------------------------------------------------------------------
 
-// A gpsd socket client like GpsdClient, with a watch of our choice and requests on the way.
-class GpsdWatch {
- public:
-  ~GpsdWatch() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  bool connect(int port, const std::string& watch) {
-    fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = htons(static_cast<std::uint16_t>(port));
-    if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return false;
-    return send(watch);
-  }
-  bool send(const std::string& line) {
-    return ::send(fd_, line.data(), line.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(line.size());
-  }
-  // The next JSON object (lines that are not JSON, such as the raw:1 hex dumps, are skipped).
-  std::optional<YAML::Node> next(double deadline) {
-    for (;;) {
-      const std::size_t nl = buf_.find('\n');
-      if (nl != std::string::npos) {
-        const std::string line = buf_.substr(0, nl);
-        buf_.erase(0, nl + 1);
-        if (line.empty() || line[0] != '{') continue;
-        try {
-          return YAML::Load(line);
-        } catch (const YAML::Exception&) {
-          bad_lines_.push_back(line);
-          continue;
-        }
-      }
-      const double left = deadline - mono_s();
-      if (left <= 0 || fd_ < 0) return std::nullopt;
-      pollfd p{fd_, POLLIN, 0};
-      if (::poll(&p, 1, static_cast<int>(std::ceil(left * 1000.0))) <= 0) continue;
-      char b[16384];
-      const ssize_t n = ::recv(fd_, b, sizeof b, 0);
-      if (n <= 0) {
-        ::close(fd_);
-        fd_ = -1;
-        return std::nullopt;
-      }
-      buf_.append(b, static_cast<std::size_t>(n));
-    }
-  }
-  const std::vector<std::string>& bad_lines() const { return bad_lines_; }
-
- private:
-  int fd_ = -1;
-  std::string buf_;
-  std::vector<std::string> bad_lines_;
-};
-
 // ---- gpsd in u-blox mode ------------------------------------------------------------------
 
 // gpsd on the pty of a u-blox M8 whose profile turns on NAV-PVT, NAV-SAT, NAV-TIMEGPS, NAV-DOP,
@@ -310,7 +255,7 @@ TEST(UbxGpsd, UbloxDriverFixSkyRawAndSubframes) {
   Gpsd g;
   ASSERT_TRUE(g.start(gpsd, dir, link, 5.0)) << g.diagnostics() << nav.diagnostics();
   const double gpsd_start = mono_s();
-  GpsdWatch w;
+  GpsdClient w;
   ASSERT_TRUE(w.connect(g.port(), "?WATCH={\"enable\":true,\"json\":true,\"raw\":1}\n")) << g.diagnostics();
 
   // Watch until the driver is u-blox, 8 distinct 3D fixes, RAW and SUBFRAMEs of two subframe
@@ -707,10 +652,12 @@ TEST(UbxTool, F9pValsetValget) {
 //
 // Capture length: NAVEMU_UBX_CAPTURE_S seconds (default 45; 120 is the full acceptance run).
 // A 30 s LNAV frame carries subframes 1-3 once, so a capture of arbitrary phase needs up to
-// 48 s for a complete ephemeris. The scenario's start is chosen instead: the latest GPS time
-// before now at 2 s past a 30 s frame boundary, so subframe 1 ends 4 s and subframe 3 16 s
-// into the run, and RTKLIB has every tracked satellite's ephemeris within the first 20 s;
-// the remaining epochs give the mean. rnx2rtkp solves every epoch of the observation file
+// 48 s for a complete ephemeris. The scenario's start is chosen instead: 10 s before a 30 s
+// frame boundary, so subframe 1 ends 16 s and subframe 3 28 s
+// into the run, and RTKLIB has every tracked satellite's ephemeris within the first 30 s;
+// the remaining epochs give the mean. The 16 s leave str2str time to open the pty on a loaded
+// machine: output nobody reads yet is flushed as stale, so a subframe sent before it attaches
+// is lost to the capture. rnx2rtkp solves every epoch of the observation file
 // with the navigation file, so the early epochs count too.
 TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   NAVEMU_REQUIRE_TOOL(str2str, "str2str", "rtklib");
@@ -722,9 +669,10 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   TempDir dir("ubx-rtklib");
   const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
   const fs::path profile = write_profile(dir, "ublox-m8", "NAV-PVT: 1, RXM-RAWX: 1, RXM-SFRBX: 1");
-  const GpsTime now = gps_now();
-  const WeekTow wt = to_week_tow(now);
-  double tow = std::floor((wt.tow_s - 2.0) / 30.0) * 30.0 + 2.0;
+  // A fixed scenario date (the paper's, 2010-11-17 about 13:00 UTC) rather than now, so that
+  // the sky and with it RTKLIB's error are the same on every run: 10 s before a frame boundary.
+  const WeekTow wt{1610, 306020.0};
+  const double tow = wt.tow_s;
   const GpsTime start = from_week_tow(wt.week, tow);
   NavemuRun nav(dir, "navemu", ubx_config(profile, link, log, fmt::format("{}:{:.0f}", wt.week, tow)),
                 capture_s + 30.0);
