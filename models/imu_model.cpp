@@ -381,6 +381,8 @@ bool ImuModel::step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuS
   out.w_body_radps = s.lp_w;
   const bool sat_f = s.accel.finish(out.f_body_mps2);
   const bool sat_w = s.gyro.finish(out.w_body_radps);
+  out.accel_saturated = sat_f;
+  out.gyro_saturated = sat_w;
   out.saturated = sat_f || sat_w;
   out.t = GpsTime{t.ns + s.latency_ns};
   out.temperature_c = temperature_c;

@@ -112,7 +112,9 @@ struct ImuSample {
   Vec3 f_body_mps2 = Vec3::Zero();
   Vec3 w_body_radps = Vec3::Zero();
   double temperature_c = 25.0;
-  bool saturated = false;
+  bool saturated = false;        // either of the two below
+  bool accel_saturated = false;  // an accelerometer axis was clipped at its range
+  bool gyro_saturated = false;   // a rate axis was clipped at its range
 };
 
 // The sensor: advanced at its internal rate, emits at its output rate. One random stream per

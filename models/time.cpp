@@ -349,6 +349,16 @@ GpsTime gps_from_unix_ns(std::int64_t unix_ns) {
   return GpsTime{gps_from_utc(utc).ns + (unix_ns - unix_s * kNsPerS)};
 }
 
+std::int64_t unix_ns_from_gps(GpsTime t) {
+  constexpr std::int64_t kGpsEpochUnix_ns = 315'964'800 * kNsPerS;  // 1980-01-06T00:00:00Z
+  const CalNs c = utc_cal_ns_from_gps(t, std::nullopt);
+  // 23:59:60.x reads as 23:59:59.x.
+  const std::int64_t seconds = c.second == 60 ? 59 : c.second;
+  const std::int64_t days = days_from_civil(c.year, c.month, c.day) - kGpsEpochDays;
+  return kGpsEpochUnix_ns + (days * 86'400 + c.hour * 3600 + c.minute * 60 + seconds) * kNsPerS +
+         c.nano;
+}
+
 CalendarTime utc_from_gps(GpsTime t, std::optional<int> after_table_s) {
   return to_calendar(utc_cal_ns_from_gps(t, after_table_s));
 }

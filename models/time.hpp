@@ -71,6 +71,9 @@ CalendarTime utc_from_gps(GpsTime t, std::optional<int> after_table_s = {});
 // Unix time (nanoseconds since 1970-01-01 UTC, leap seconds excluded, as CLOCK_REALTIME) to GPS
 // time: the GPS epoch is Unix second 315964800, plus GPS - UTC at that instant.
 GpsTime gps_from_unix_ns(std::int64_t unix_ns);
+// The inverse: GPS time to Unix nanoseconds. During an inserted leap second (23:59:60.x) Unix
+// time repeats the second before it, as CLOCK_REALTIME does.
+std::int64_t unix_ns_from_gps(GpsTime t);
 
 // Day of year (1..366) of a calendar date.
 int day_of_year(int year, int month, int day);

@@ -262,6 +262,12 @@ TEST(ImuModel, ResolutionAndSaturationExact) {
   EXPECT_EQ(s.f_body_mps2, Vec3(1.0, -1.0, 0.5));
   EXPECT_EQ(s.w_body_radps.z(), 100.0);
   EXPECT_TRUE(s.saturated);
+  EXPECT_TRUE(s.accel_saturated);
+  EXPECT_TRUE(s.gyro_saturated);
+  // Only the gyroscope over its range.
+  ASSERT_TRUE(m.step(GpsTime{20'000'000}, ideal_of(Vec3(0.5, 0, 0), Vec3(0, 0, 250.0)), 25.0, s));
+  EXPECT_FALSE(s.accel_saturated);
+  EXPECT_TRUE(s.gyro_saturated);
 }
 
 TEST(ImuModel, LowPassHasUnitDcGainAndFirstOrderStep) {

@@ -148,6 +148,11 @@ TEST(TimeLeap, SpanAcrossLeapSecondIsTwoSeconds) {
   // The same instant from Unix time, and one before the 2016-12-31 leap second (17 s then).
   EXPECT_EQ(gps_from_unix_ns(1'483'228'800 * kS + 250'000'000).ns, after.ns + 250'000'000);
   EXPECT_EQ(gps_from_unix_ns(1'483'228'799 * kS).ns, (1'483'228'799 - 315'964'800 + 17) * kS);
+  EXPECT_EQ(unix_ns_from_gps(after), 1'483'228'800 * kS);
+  EXPECT_EQ(unix_ns_from_gps(GpsTime{after.ns + 250'000'000}), 1'483'228'800 * kS + 250'000'000);
+  EXPECT_EQ(unix_ns_from_gps(before), 1'483'228'799 * kS);
+  // During the inserted second Unix time repeats 23:59:59, as CLOCK_REALTIME does.
+  EXPECT_EQ(unix_ns_from_gps(GpsTime{before.ns + kS + 250'000'000}), 1'483'228'799 * kS + 250'000'000);
 
   const GpsTime inside = GpsTime{before.ns + kS + 250'000'000};
   const CalendarTime c = utc_from_gps(inside);
