@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "emulator/commands.hpp"
+#include "emulator/imu_can.hpp"
 #include "emulator/imu_profile.hpp"
 #include "emulator/gnss_device.hpp"
 #include "emulator/truth_source.hpp"
@@ -196,6 +197,12 @@ class CsvFile {
 
 }  // namespace
 
+std::int64_t realtime_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+}
+
 std::int64_t monotonic_ns() {
   timespec ts{};
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -293,12 +300,21 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     imu = std::make_unique<ImuModel>(imu_params, cfg.seed);
   }
 
+  // --- The IMU's CAN frames: offline into can.log (candump -L), live on the configured ports.
+  std::unique_ptr<ImuCanOutputs> can_out;
+  if (imu) {
+    const std::vector<CanOutputSpec> specs =
+        offline ? offline_can_outputs(cfg.imu_outputs, (opt.out_dir / "can.log").string())
+                : cfg.imu_outputs;
+    if (!specs.empty()) can_out = std::make_unique<ImuCanOutputs>(specs, cfg.imu_can, log);
+  }
+
   // --- Offline files and the live IMU log.
   std::unique_ptr<CsvFile> truth_csv, gnss_csv, imu_csv;
   std::unique_ptr<transport::BytePort> imu_log;
   static constexpr std::string_view kImuHeader =
       "time_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c,"
-      "truth_valid\n";
+      "truth_valid,gps_time_ns,sequence\n";
   if (offline) {
     truth_csv = std::make_unique<CsvFile>(
         opt.out_dir / "truth.csv",
@@ -333,10 +349,15 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       fmt::print(log, "navemu: GNSS capture: sent bytes to {0}, received bytes to {0}.in\n",
                  cfg.gnss_capture);
   }
-  if (imu)
+  if (imu) {
     fmt::print(log, "navemu: IMU {} ({} Hz){}\n", cfg.imu_profile, imu_params.output_rate_hz,
-               imu_log ? " samples logged to " + cfg.imu_log
-                       : offline ? "" : " (samples computed; set imu.log to record them)");
+               imu_log ? " samples logged to " + cfg.imu_log : "");
+    if (can_out)
+      for (const std::string& line : can_out->describe())
+        fmt::print(log, "navemu: IMU CAN frames on {}\n", line);
+    else if (!offline)
+      fmt::print(log, "navemu: IMU has no output (imu.outputs; set imu.log to record samples)\n");
+  }
   log.flush();
   // The geoid grid loads on first use: before the loop, not at the first fix.
   (void)geoid_separation_m(cfg.truth.position.lat_deg, cfg.truth.position.lon_deg);
@@ -397,6 +418,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     if (device && !offline) next = std::min(next, next_service);
     if (!clock.wait_until(next)) break;
     truth->poll();
+    if (can_out && !offline) can_out->service();  // slcan commands, bus errors
     // Commands from the clients: answered on the port they came from, at once.
     if (device && !offline) {
       for (auto& p : ports) {
@@ -529,8 +551,24 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         if (imu->step(t, last_ideal, temperature_c, sample)) emitted = true;
       }
       if (emitted) {
+        const auto sequence = static_cast<std::uint16_t>(sum.imu_samples);
         ++sum.imu_samples;
         if (!valid) ++sum.imu_flagged;
+        if (can_out) {
+          can::ImuSample cs;
+          cs.gps_time_ns = t_meas.ns;
+          cs.sequence = sequence;
+          for (int i = 0; i < 3; ++i) {
+            cs.w_body_radps[static_cast<std::size_t>(i)] = sample.w_body_radps[i];
+            cs.f_body_mps2[static_cast<std::size_t>(i)] = sample.f_body_mps2[i];
+          }
+          cs.latency_s = imu_params.latency_s;
+          cs.truth_lost = !valid;
+          cs.gyro_saturated = sample.gyro_saturated;
+          cs.accel_saturated = sample.accel_saturated;
+          // Live frames are stamped when they leave; offline ones at their scheduled time.
+          can_out->send(cs, offline ? unix_ns_from_gps(sample.t) : realtime_ns());
+        }
         fmt::memory_buffer* b = nullptr;
         if (imu_csv) b = &imu_csv->buf();
         if (imu_log) {
@@ -538,10 +576,12 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
           b = &imu_line;
         }
         if (b) {
-          fmt::format_to(std::back_inserter(*b), "{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.4g},{}\n",
+          fmt::format_to(std::back_inserter(*b),
+                         "{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.4g},{},{},{}\n",
                          t_rel(sample.t), sample.f_body_mps2.x(), sample.f_body_mps2.y(),
                          sample.f_body_mps2.z(), sample.w_body_radps.x(), sample.w_body_radps.y(),
-                         sample.w_body_radps.z(), sample.temperature_c, valid ? 1 : 0);
+                         sample.w_body_radps.z(), sample.temperature_c, valid ? 1 : 0, t_meas.ns,
+                         sequence);
           if (imu_csv) imu_csv->maybe_flush();
           if (imu_log) imu_log->write(std::string_view(imu_line.data(), imu_line.size()));
         }
@@ -569,6 +609,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       }
       std::uint64_t dropped = 0;
       for (const auto& p : ports) dropped += p->counters().chunks_dropped;
+      if (can_out) dropped += can_out->totals().frames_dropped;
       if (!offline) {
         const CalendarTime c = utc_from_gps(next_status);
         fmt::print(log,
@@ -590,6 +631,12 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   if (truth_csv) truth_csv->close();
   if (gnss_csv) gnss_csv->close();
   if (imu_csv) imu_csv->close();
+  if (can_out) {
+    const CanOutputTotals t = can_out->totals();
+    sum.can_frames_written = t.frames_written;
+    sum.can_frames_dropped = t.frames_dropped;
+    sum.can_bus_errors = t.bus_errors;
+  }
   if (const TruthCounters* tc = truth->counters()) {
     sum.truth_accepted = tc->accepted;
     sum.truth_rejected = tc->rejected();

@@ -36,11 +36,14 @@ struct EngineOptions {
 
 // CLOCK_MONOTONIC in nanoseconds.
 std::int64_t monotonic_ns();
+// CLOCK_REALTIME in nanoseconds since 1970-01-01 UTC.
+std::int64_t realtime_ns();
 
 struct EngineSummary {
   std::int64_t gnss_epochs = 0, gnss_fixes = 0, gnss_skipped = 0, gnss_late = 0;
   std::int64_t imu_samples = 0, imu_flagged = 0, imu_skipped = 0;
   std::uint64_t output_chunks_dropped = 0;
+  std::uint64_t can_frames_written = 0, can_frames_dropped = 0, can_bus_errors = 0;
   std::uint64_t truth_accepted = 0, truth_rejected = 0;
   double wall_s = 0.0, scenario_s = 0.0;
 };

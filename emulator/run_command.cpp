@@ -81,7 +81,10 @@ std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app) {
               "             north, up, horizontal), DOPs and the receiver's 1-sigma accuracy\n"
               "             estimates (horizontal, vertical)\n"
               "  imu.csv    per IMU sample: time, specific force, angular rate, temperature, and\n"
-              "             truth_valid (0 when the truth was missing and the sample is flagged)\n"
+              "             truth_valid (0 when the truth was missing and the sample is flagged),\n"
+              "             gps_time_ns (time of validity) and the CAN sequence number\n"
+              "  can.log    the IMU's CAN frames, candump -L format (imu.outputs' layouts; J1939\n"
+              "             when none): log2asc and canplayer read it\n"
               "time_s counts from the scenario start. The same configuration, start and seed give\n"
               "identical files (set scenario.start or --start: 'now' changes every run).\n"
               "Example:\n"
@@ -124,10 +127,11 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
   } else {
     fmt::print(err,
                "navemu run: stopped after {:.1f} s: {} GNSS epochs ({} with a fix, {} late, {} "
-               "skipped), {} IMU samples ({} skipped), {} output chunks dropped, truth {} "
-               "accepted / {} rejected\n",
+               "skipped), {} IMU samples ({} skipped), {} output chunks dropped, {} CAN frames "
+               "({} dropped, {} bus errors), truth {} accepted / {} rejected\n",
                s.wall_s, s.gnss_epochs, s.gnss_fixes, s.gnss_late, s.gnss_skipped, s.imu_samples,
-               s.imu_skipped, s.output_chunks_dropped, s.truth_accepted, s.truth_rejected);
+               s.imu_skipped, s.output_chunks_dropped, s.can_frames_written, s.can_frames_dropped,
+               s.can_bus_errors, s.truth_accepted, s.truth_rejected);
   }
   return 0;
 }

@@ -71,6 +71,68 @@ OutputSpec output(YamlMap m) {
   return o;
 }
 
+CanOutputSpec can_output(YamlMap m, bool is_fallback) {
+  CanOutputSpec o;
+  o.type = m.text("type").value_or("");
+  if (o.type != "socketcan" && o.type != "slcan" && o.type != "candump")
+    m.fail("type", fmt::format("'{}' is not one of socketcan, slcan, candump", o.type));
+  if (o.type == "socketcan") {
+    o.interface = m.text("interface").value_or("");
+    if (o.interface.empty()) m.fail("interface", "required for a socketcan output (e.g. vcan0)");
+    if (o.interface.size() >= 16) m.fail("interface", "longer than 15 characters (IFNAMSIZ)");
+  } else if (o.type == "slcan") {
+    o.link = resolve(m.file(), m.text("link").value_or(""));
+    o.device = m.text("device").value_or("");
+    if (!o.link.empty() && !o.device.empty())
+      m.fail("device", "either link (a pty) or device (a serial port), not both");
+    o.baud = static_cast<int>(m.integer("baud", 300, 4'000'000).value_or(o.baud));
+    o.auto_open = m.boolean("auto_open").value_or(false);
+  } else {
+    o.path = resolve(m.file(), m.text("path").value_or(""));
+    if (o.path.empty()) m.fail("path", "required for a candump output");
+    o.interface = m.text("interface").value_or("can0");
+  }
+  if (!is_fallback) {
+    if (auto names = m.text_list("layouts")) {
+      o.layouts.clear();
+      for (const std::string& n : *names) {
+        if (n == "j1939") o.layouts.push_back(CanLayout::kJ1939);
+        else if (n == "highres") o.layouts.push_back(CanLayout::kHighRes);
+        else if (n == "highres-fd") o.layouts.push_back(CanLayout::kHighResFd);
+        else m.fail("layouts", fmt::format("'{}' is not one of j1939, highres, highres-fd", n));
+      }
+      if (o.layouts.empty()) m.fail("layouts", "at least one layout");
+    }
+    if (m.has("fallback")) {
+      if (o.type != "socketcan") m.fail("fallback", "only a socketcan output has a fallback");
+      CanOutputSpec f = can_output(m.map("fallback"), true);
+      if (f.type == "socketcan") m.fail("fallback", "the fallback must be slcan or candump");
+      f.layouts = o.layouts;
+      o.fallback.push_back(f);
+    }
+  }
+  m.reject_unknown_keys();
+  return o;
+}
+
+CanSettings can_settings(YamlMap m) {
+  CanSettings c;
+  YamlMap j = m.map("j1939");
+  c.priority = static_cast<std::uint8_t>(j.integer("priority", 0, 7).value_or(c.priority));
+  // 254 is the J1939 null address and 255 the global address (SAE J1939-81): not a source.
+  c.source_address =
+      static_cast<std::uint8_t>(j.integer("source_address", 0, 253).value_or(c.source_address));
+  j.reject_unknown_keys();
+  YamlMap h = m.map("highres");
+  c.extended = h.boolean("extended").value_or(false);
+  // The FD frame sits at base_id + 0x10: the whole block must fit the identifier space.
+  const std::int64_t max_base = (c.extended ? 0x1FFFFFFF : 0x7FF) - 0x10;
+  c.base_id = static_cast<std::uint32_t>(h.integer("base_id", 0, max_base).value_or(c.base_id));
+  h.reject_unknown_keys();
+  m.reject_unknown_keys();
+  return c;
+}
+
 TruthSpec truth(YamlMap m) {
   TruthSpec t;
   t.kind = choice<TruthSourceKind>(m, "source",
@@ -128,6 +190,15 @@ TruthSpec truth(YamlMap m) {
 }
 
 }  // namespace
+
+const char* can_layout_name(CanLayout layout) {
+  switch (layout) {
+    case CanLayout::kJ1939: return "j1939";
+    case CanLayout::kHighRes: return "highres";
+    case CanLayout::kHighResFd: return "highres-fd";
+  }
+  return "?";
+}
 
 const std::vector<std::string>& known_nmea_sentences() {
   static const std::vector<std::string> k = {"RMC", "GGA", "GSA", "GSV", "VTG",
@@ -259,6 +330,8 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   c.imu_enabled = imu.boolean("enabled").value_or(true);
   c.imu_profile = imu.text("profile").value_or(c.imu_profile);
   c.imu_log = resolve(file, imu.text("log").value_or(""));
+  c.imu_can = can_settings(imu.map("can"));
+  for (YamlMap& o : imu.map_list("outputs")) c.imu_outputs.push_back(can_output(o, false));
   imu.reject_unknown_keys();
 
   YamlMap rt = root.map("realtime");

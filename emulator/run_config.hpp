@@ -64,6 +64,36 @@ struct OutputSpec {
   std::size_t max_backlog_bytes = 4096;  // pty
 };
 
+// How IMU samples become CAN frames (protocols/can_frames.hpp, configs/can/navemu.dbc).
+enum class CanLayout {
+  kJ1939,      // SAE J1939-71 ARI + ACCS, two 8-byte frames per sample
+  kHighRes,    // navemu high resolution, five classic frames per sample
+  kHighResFd,  // navemu high resolution, one 64-byte CAN FD frame per sample
+};
+const char* can_layout_name(CanLayout layout);
+
+// Where CAN frames go.
+struct CanOutputSpec {
+  std::string type;            // socketcan | slcan | candump
+  std::string interface;       // socketcan: vcan0, can0; candump: the log's interface column
+  std::string link;            // slcan over a pty: symlink path (optional)
+  std::string device;          // slcan over a serial device (instead of a pty)
+  int baud = 115200;           // slcan serial
+  bool auto_open = false;      // slcan: send without waiting for the client's "O"
+  std::string path;            // candump
+  std::vector<CanLayout> layouts{CanLayout::kJ1939};
+  // socketcan: where the frames go instead when the interface cannot be opened (no kernel
+  // CAN, no such interface); empty: that is an error. Takes this output's layouts.
+  std::vector<CanOutputSpec> fallback;
+};
+
+struct CanSettings {
+  std::uint8_t priority = 3;          // J1939 identifier priority 0..7
+  std::uint8_t source_address = 0x80;  // J1939 source address 0..253
+  std::uint32_t base_id = 0x500;      // high-resolution layout's first identifier
+  bool extended = false;              // high-resolution layout with 29-bit identifiers
+};
+
 enum class TimeMode { kRealTime, kLockstep };
 enum class TruthSourceKind { kStationary, kCircle, kLine, kWaypoints, kCsv, kUdp };
 
@@ -99,6 +129,8 @@ struct RunConfig {
   bool imu_enabled = true;
   std::string imu_profile = "paper_phidget";
   std::string imu_log;  // CSV of the samples during `run`; empty: none
+  CanSettings imu_can;
+  std::vector<CanOutputSpec> imu_outputs;
 
   bool sched_fifo = false;   // SCHED_FIFO for the loop (needs CAP_SYS_NICE; falls back)
   bool lock_memory = false;  // mlockall (falls back with a message)

@@ -286,7 +286,7 @@ struct RunSummary {
 
 inline std::optional<RunSummary> run_summary(const std::string& err) {
   static const std::regex re(
-      R"(navemu run: stopped after ([0-9.]+) s: (\d+) GNSS epochs \((\d+) with a fix, (\d+) late, (\d+) skipped\).* (\d+) output chunks dropped, truth (\d+) accepted / (\d+) rejected)");
+      R"(navemu run: stopped after ([0-9.]+) s: (\d+) GNSS epochs \((\d+) with a fix, (\d+) late, (\d+) skipped\).* (\d+) output chunks dropped, .*truth (\d+) accepted / (\d+) rejected)");
   std::smatch m;
   if (!std::regex_search(err, m, re)) return std::nullopt;
   RunSummary s;

@@ -232,5 +232,28 @@ TEST(Cli, SppOnRealFilesReportsEveryEpoch) {
   EXPECT_NE(r.err.find("120 epochs, 120 with a 3D fix"), std::string::npos) << r.err;
 }
 
+
+// A CAN output that cannot work is an error at start-up, before the loop, naming the output.
+TEST(Cli, RunWithAnUnusableCanOutputFailsAtStartUp) {
+  const auto dir = std::filesystem::temp_directory_path() / "navemu_cli_can";
+  std::filesystem::create_directories(dir);
+  const auto cfg = dir / "can.yaml";
+  std::ofstream(cfg) << "gnss: {enabled: false}\nimu:\n  outputs:\n"
+                        "    - {type: socketcan, interface: navemu-none0}\n";
+  const test::CliRun r = test::navemu({"run", cfg.string(), "--duration", "30"});
+  EXPECT_EQ(r.code, 1);
+  // Without kernel CAN the socket itself fails; with it (user-mode Linux) the interface.
+  EXPECT_TRUE(r.err.find("navemu: error: socketcan navemu-none0: this kernel has no SocketCAN") == 0 ||
+              r.err.find("navemu: error: socketcan navemu-none0: no such interface") == 0)
+      << r.err;
+
+  std::ofstream(cfg) << "imu:\n  outputs:\n    - {type: slcan, link: '" << (dir / "imu").string()
+                     << "', layouts: [highres-fd, canopen]}\n";
+  const test::CliRun bad = test::navemu({"run", cfg.string(), "--duration", "30"});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("can.yaml:3: imu.outputs[0].layouts: 'canopen' is not one of"), std::string::npos)
+      << bad.err;
+}
+
 }  // namespace
 }  // namespace navemu

@@ -41,6 +41,62 @@ TEST(RunConfig, DefaultConfigIsThePapersCircleWithTheGarminReceiverOnAPty) {
   EXPECT_EQ(c.gnss_outputs[0].link, "/tmp/navemu-gnss");
   EXPECT_EQ(c.imu_profile, "paper_phidget");
   EXPECT_EQ(c.time_mode, TimeMode::kRealTime);
+  // The IMU on vcan0 as J1939, an slcan pty when vcan0 cannot be opened.
+  ASSERT_EQ(c.imu_outputs.size(), 1u);
+  EXPECT_EQ(c.imu_outputs[0].type, "socketcan");
+  EXPECT_EQ(c.imu_outputs[0].interface, "vcan0");
+  EXPECT_EQ(c.imu_outputs[0].layouts, std::vector<CanLayout>{CanLayout::kJ1939});
+  ASSERT_EQ(c.imu_outputs[0].fallback.size(), 1u);
+  EXPECT_EQ(c.imu_outputs[0].fallback[0].type, "slcan");
+  EXPECT_EQ(c.imu_outputs[0].fallback[0].link, "/tmp/navemu-imu");
+  EXPECT_EQ(c.imu_can.source_address, 0x80);  // written 0x80 in the file
+  EXPECT_EQ(c.imu_can.priority, 3);
+  EXPECT_EQ(c.imu_can.base_id, 0x500u);
+}
+
+TEST(RunConfig, CanOutputsAndLayouts) {
+  const RunConfig c = load_run_config(write_temp(
+      "can.yaml",
+      "imu:\n  can:\n    j1939: {priority: 6, source_address: 226}\n"
+      "    highres: {base_id: 0x18FF0000, extended: true}\n  outputs:\n"
+      "    - {type: candump, path: imu.log, layouts: [highres, highres-fd, j1939]}\n"
+      "    - {type: slcan, device: /dev/ttyACM0, baud: 921600, auto_open: true}\n"));
+  EXPECT_EQ(c.imu_can.priority, 6);
+  EXPECT_EQ(c.imu_can.source_address, 226);
+  EXPECT_EQ(c.imu_can.base_id, 0x18FF0000u);
+  EXPECT_TRUE(c.imu_can.extended);
+  ASSERT_EQ(c.imu_outputs.size(), 2u);
+  EXPECT_EQ(c.imu_outputs[0].layouts,
+            (std::vector<CanLayout>{CanLayout::kHighRes, CanLayout::kHighResFd, CanLayout::kJ1939}));
+  EXPECT_EQ(c.imu_outputs[0].interface, "can0");
+  EXPECT_EQ(c.imu_outputs[1].device, "/dev/ttyACM0");
+  EXPECT_EQ(c.imu_outputs[1].baud, 921600);
+  EXPECT_TRUE(c.imu_outputs[1].auto_open);
+}
+
+TEST(RunConfig, BadCanSettingsNameTheKey) {
+  const auto err = [](const std::string& yaml) { return load_error("imu:\n" + yaml); };
+  EXPECT_NE(err("  can:\n    j1939: {source_address: 254}\n")
+                .find(":3: imu.can.j1939.source_address: 254 outside [0, 253]"),
+            std::string::npos)
+      << err("  can:\n    j1939: {source_address: 254}\n");
+  EXPECT_NE(err("  can:\n    j1939: {priority: 8}\n").find("imu.can.j1939.priority: 8 outside [0, 7]"),
+            std::string::npos);
+  EXPECT_NE(err("  can:\n    highres: {base_id: 0x7F0}\n").find("imu.can.highres.base_id: 2032 outside"),
+            std::string::npos);
+  EXPECT_NE(err("  outputs:\n    - {type: socketcan, interface: vcan0, layouts: [nmea2000]}\n")
+                .find("imu.outputs[0].layouts: 'nmea2000' is not one of j1939, highres, highres-fd"),
+            std::string::npos)
+      << err("  outputs:\n    - {type: socketcan, interface: vcan0, layouts: [nmea2000]}\n");
+  EXPECT_NE(err("  outputs:\n    - {type: socketcan}\n").find("imu.outputs[0].interface: required"),
+            std::string::npos);
+  EXPECT_NE(err("  outputs:\n    - {type: isotp}\n").find("'isotp' is not one of socketcan, slcan, candump"),
+            std::string::npos);
+  EXPECT_NE(err("  outputs:\n    - {type: slcan, fallback: {type: candump, path: x}}\n")
+                .find("only a socketcan output has a fallback"),
+            std::string::npos);
+  EXPECT_NE(err("  outputs:\n    - {type: candump}\n").find("imu.outputs[0].path: required"),
+            std::string::npos);
 }
 
 TEST(RunConfig, EveryShippedGnssProfileLoads) {

@@ -9,7 +9,9 @@
 #include <map>
 #include <sstream>
 
+#include "models/time.hpp"
 #include "protocols/nmea.hpp"
+#include "tests/can_capture.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
@@ -59,7 +61,7 @@ TEST(Simulate, SameSeedGivesIdenticalFilesAndAnotherSeedDoesNot) {
   ASSERT_EQ(simulate(kDefault, a, 30).exit_code, 0);
   ASSERT_EQ(simulate(kDefault, b, 30).exit_code, 0);
   ASSERT_EQ(simulate(kDefault, c, 30, "--seed 2").exit_code, 0);
-  for (const char* f : {"nmea.log", "truth.csv", "gnss.csv", "imu.csv"}) {
+  for (const char* f : {"nmea.log", "truth.csv", "gnss.csv", "imu.csv", "can.log"}) {
     EXPECT_FALSE(slurp(a / f).empty()) << f;
     EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
   }
@@ -127,6 +129,74 @@ TEST(Simulate, FilesHoldEveryEpochOnTheGridWithAPlausibleFix) {
   // Truth: the paper's 30 ft circle around the site.
   const auto truth = csv_rows(d / "truth.csv");
   ASSERT_EQ(truth.size(), 301u);
+}
+
+// The IMU's CAN frames of an offline run: can.log in candump -L format, one J1939 ARI and ACCS
+// per sample (the default configuration's layout), stamped at the samples' output times,
+// decoding to the values in imu.csv; can-utils' log2asc converts it.
+TEST(Simulate, CanLogHoldsEverySampleAsJ1939FramesThatLog2ascConverts) {
+  const fs::path d = temp_dir("can");
+  const auto r = simulate(kDefault, d, 20);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto rows = test::read_imu_rows(d / "imu.csv");
+  ASSERT_EQ(rows.size(), 2500u);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].sequence, static_cast<int>(i));
+    EXPECT_EQ(rows[i].gps_time_ns - rows[0].gps_time_ns, static_cast<std::int64_t>(i) * 8'000'000);
+  }
+  const auto frames = test::read_candump_log(d / "can.log");
+  ASSERT_EQ(frames.size(), 5000u);
+  // The interface column: the configuration's SocketCAN interface.
+  EXPECT_NE(slurp(d / "can.log").find(") vcan0 0CF02A80#"), std::string::npos);
+  const test::CanCheck c = test::check_frames_against_log(frames, rows);
+  EXPECT_EQ(c.ari, 2500u);
+  EXPECT_EQ(c.accs, 2500u);
+  EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
+  // The comparison covers real motion: on the 30 ft circle at 1 m/s the yaw rate is 0.11 rad/s.
+  EXPECT_GT(std::abs(rows.back().w_radps[2]), 0.05);
+  // Priority 3, source address 0x80: 0x0CF02A80 and 0x0CF02D80.
+  EXPECT_EQ(frames[0].id, 0x0CF02A80u);
+  EXPECT_EQ(frames[1].id, 0x0CF02D80u);
+  // Time stamps: the sample's output time in Unix seconds, frames of a sample together.
+  const double t0 = static_cast<double>(unix_ns_from_gps(GpsTime{rows[0].gps_time_ns})) * 1e-9;
+  EXPECT_NEAR(frames[0].t_s - t0, 0.0, 0.01);  // + the profile's latency
+  EXPECT_EQ(frames[1].t_s, frames[0].t_s);
+  EXPECT_NEAR(frames[4998].t_s - frames[0].t_s, 2499 * 0.008, 2e-6);
+
+  const std::string log2asc = "/usr/bin/log2asc";
+  if (!fs::exists(log2asc)) GTEST_SKIP() << "can-utils' log2asc is not installed (tools/install-deps)";
+  const auto conv = test::run_command(log2asc + " -I " + test::shell_quote((d / "can.log").string()) +
+                                      " -O " + test::shell_quote((d / "can.asc").string()) + " vcan0 2>&1");
+  ASSERT_EQ(conv.exit_code, 0) << conv.out;
+  EXPECT_EQ(conv.out, "");
+  std::istringstream asc(slurp(d / "can.asc"));
+  int rx = 0;
+  for (std::string line; std::getline(asc, line);)
+    if (line.find(" Rx ") != std::string::npos) ++rx;
+  EXPECT_EQ(rx, 5000);
+}
+
+// The high-resolution layouts, classic and CAN FD, carry every sample to full precision with
+// its GPS time and sequence number.
+TEST(Simulate, HighResolutionFramesDecodeToFullPrecision) {
+  const fs::path d = temp_dir("can-hr");
+  const fs::path cfg = d / "hr.yaml";
+  std::ofstream(cfg) << "imu:\n  outputs:\n    - {type: socketcan, interface: vcan0, "
+                        "layouts: [j1939, highres, highres-fd]}\n";
+  const auto r = simulate(cfg, d / "out", 4);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto rows = test::read_imu_rows(d / "out" / "imu.csv");
+  ASSERT_EQ(rows.size(), 500u);
+  const auto frames = test::read_candump_log(d / "out" / "can.log");
+  ASSERT_EQ(frames.size(), 500u * 8);
+  EXPECT_NE(slurp(d / "out" / "can.log").find(") vcan0 510##"), std::string::npos);
+  const test::CanCheck c = test::check_frames_against_log(frames, rows);
+  EXPECT_EQ(c.samples, 500u);
+  EXPECT_EQ(c.ari, 500u);
+  EXPECT_EQ(c.highres, 500u);
+  EXPECT_EQ(c.highres_fd, 500u);
+  EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
+  EXPECT_LE(c.max_hr_rate_err_radps, 0.5e-7 + 1e-9);
 }
 
 TEST(Simulate, RejectsAStreamedTruth) {

@@ -1,0 +1,52 @@
+#pragma once
+// The IMU's CAN outputs: each sample encoded in the configured layouts (protocols/can_frames)
+// and its frames written back to back on every frame port (transports/can_port).
+
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "emulator/run_config.hpp"
+#include "protocols/can_frames.hpp"
+#include "transports/can_port.hpp"
+
+namespace navemu {
+
+struct CanOutputTotals {
+  std::uint64_t frames_written = 0, frames_dropped = 0, bus_errors = 0, errors = 0;
+};
+
+class ImuCanOutputs {
+ public:
+  // Opens every output. A socketcan output that cannot be opened falls back to its fallback
+  // (saying so on `log`) when it has one; otherwise the opening error propagates.
+  ImuCanOutputs(const std::vector<CanOutputSpec>& specs, const CanSettings& settings,
+                std::ostream& log);
+
+  bool empty() const { return outputs_.empty(); }
+  // Sends one sample's frames on every output; `unix_time_ns` stamps them in candump logs.
+  void send(const can::ImuSample& sample, std::int64_t unix_time_ns);
+  void service();
+  // One line per output: "socketcan vcan0: j1939, highres".
+  std::vector<std::string> describe() const;
+  CanOutputTotals totals() const;
+
+ private:
+  struct Output {
+    std::unique_ptr<transport::FramePort> port;
+    std::vector<CanLayout> layouts;
+  };
+  std::vector<Output> outputs_;
+  can::j1939::Config j1939_;
+  can::highres::Config highres_;
+};
+
+// The outputs of an offline run: one candump log at `path` carrying every layout the
+// configured outputs use (J1939 when none is configured), with the first socketcan output's
+// interface name (can0 when none).
+std::vector<CanOutputSpec> offline_can_outputs(const std::vector<CanOutputSpec>& configured,
+                                               const std::string& path);
+
+}  // namespace navemu

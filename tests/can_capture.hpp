@@ -1,0 +1,255 @@
+#pragma once
+// Checking captured CAN traffic against navemu's own IMU log: candump -L files (written by
+// navemu simulate, by can-utils' candump, or by python-can's logger) are parsed here, every
+// frame is decoded (J1939 by its published scaling, independently of navemu's encoder; the
+// high-resolution layout by its decoder, whose CRC check makes it independent of the byte
+// layout guessed here) and compared with the imu.csv / imu.log row of the same sample.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "protocols/can_frames.hpp"
+
+namespace navemu::test {
+
+struct LoggedFrame {
+  double t_s = 0.0;  // the log's time stamp
+  std::uint32_t id = 0;
+  bool extended = false;
+  bool fd = false;
+  std::vector<std::uint8_t> data;
+};
+
+// "(1700000000.123456) vcan0 18F02A80#0011223344556677" or "... 510##1<hex>".
+inline std::optional<LoggedFrame> parse_candump_line(const std::string& line) {
+  LoggedFrame f;
+  std::istringstream ss(line);
+  std::string stamp, iface, frame;
+  if (!(ss >> stamp >> iface >> frame) || stamp.size() < 3 || stamp.front() != '(') return std::nullopt;
+  f.t_s = std::stod(stamp.substr(1, stamp.size() - 2));
+  const std::size_t hash = frame.find('#');
+  if (hash == std::string::npos || (hash != 3 && hash != 8)) return std::nullopt;
+  f.id = static_cast<std::uint32_t>(std::stoul(frame.substr(0, hash), nullptr, 16));
+  f.extended = hash == 8;
+  std::size_t pos = hash + 1;
+  if (pos < frame.size() && frame[pos] == '#') {
+    f.fd = true;
+    pos += 2;  // '#' and the flags nibble
+  }
+  const std::string hex = frame.substr(std::min(pos, frame.size()));
+  if (hex.size() % 2 != 0) return std::nullopt;
+  for (std::size_t i = 0; i < hex.size(); i += 2)
+    f.data.push_back(static_cast<std::uint8_t>(std::stoul(hex.substr(i, 2), nullptr, 16)));
+  return f;
+}
+
+inline std::vector<LoggedFrame> read_candump_log(const std::filesystem::path& p) {
+  std::vector<LoggedFrame> frames;
+  std::ifstream in(p);
+  for (std::string line; std::getline(in, line);)
+    if (auto f = parse_candump_line(line)) frames.push_back(*f);
+  return frames;
+}
+
+// One row of imu.csv (navemu simulate) or of imu.log (navemu run, imu.log).
+struct ImuRow {
+  std::array<double, 3> f_mps2{}, w_radps{};
+  bool truth_valid = true;
+  std::int64_t gps_time_ns = 0;
+  int sequence = 0;
+};
+
+inline std::vector<ImuRow> read_imu_rows(const std::filesystem::path& p) {
+  std::vector<ImuRow> rows;
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> v;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) v.push_back(x);
+    if (v.size() < 11) continue;
+    ImuRow r;
+    for (std::size_t i = 0; i < 3; ++i) {
+      r.f_mps2[i] = std::stod(v[1 + i]);
+      r.w_radps[i] = std::stod(v[4 + i]);
+    }
+    r.truth_valid = v[8] == "1";
+    r.gps_time_ns = std::stoll(v[9]);
+    r.sequence = std::stoi(v[10]);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+// SAE J1939-71 decoding by the published scaling (little-endian 16-bit values):
+// ARI (PGN 61482) bytes 1-2 pitch, 3-4 roll, 5-6 yaw rate, 1/128 deg/s, offset -250 deg/s;
+// ACCS (PGN 61485) bytes 1-2 lateral, 3-4 longitudinal, 5-6 vertical, 0.01 m/s^2, offset -320.
+inline std::uint32_t j1939_pgn(std::uint32_t id) { return (id >> 8) & 0x3FFFF; }
+inline double j1939_u16(const std::vector<std::uint8_t>& d, std::size_t byte, double lsb, double offset) {
+  return (d[byte] | (d[byte + 1] << 8)) * lsb + offset;
+}
+
+struct CanCheck {
+  std::size_t ari = 0, accs = 0, highres = 0, highres_fd = 0;  // frames / samples decoded
+  std::size_t samples = 0;     // samples (groups of frames) seen
+  std::size_t mismatches = 0;  // frames whose values differ from the log beyond resolution
+  double max_rate_err_radps = 0, max_accel_err_mps2 = 0;  // J1939
+  double max_hr_rate_err_radps = 0, max_hr_accel_err_mps2 = 0;  // high resolution
+  std::int64_t first_time_ns = 0, last_time_ns = 0;  // of the samples' rows
+  std::string first_problem;
+};
+
+// Groups the frames into samples (a sample starts at an ARI frame, or at a high-resolution
+// TIME or FD frame that does not follow an ARI of the same sample), finds each sample's row
+// (by the high-resolution GPS time when the sample has one, otherwise by position: sample k is
+// row first_row + k) and compares every value with it.
+inline CanCheck check_frames_against_log(const std::vector<LoggedFrame>& frames,
+                                         const std::vector<ImuRow>& rows,
+                                         std::size_t first_row = 0,
+                                         const can::highres::Config& hr = {}) {
+  CanCheck c;
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const auto problem = [&](const std::string& what) {
+    ++c.mismatches;
+    if (c.first_problem.empty()) c.first_problem = what;
+  };
+  const auto to_can = [](const LoggedFrame& f) {
+    can::CanFrame cf;
+    cf.id = f.id;
+    cf.extended = f.extended;
+    cf.fd = f.fd;
+    cf.len = static_cast<std::uint8_t>(std::min<std::size_t>(f.data.size(), 64));
+    std::copy_n(f.data.begin(), cf.len, cf.data.begin());
+    return cf;
+  };
+  const auto is_j1939 = [](const LoggedFrame& f, std::uint32_t pgn) {
+    return f.extended && f.data.size() == 8 && j1939_pgn(f.id) == pgn;
+  };
+
+  // 1. Samples.
+  struct Sample {
+    std::vector<const LoggedFrame*> j1939;
+    std::vector<can::CanFrame> classic;
+    std::optional<can::CanFrame> fd;
+  };
+  std::vector<Sample> samples;
+  bool open_after_ari = false;  // the current sample began with an ARI and has no HR yet
+  for (const LoggedFrame& f : frames) {
+    if (is_j1939(f, can::j1939::kPgnAri)) {
+      samples.emplace_back();
+      samples.back().j1939.push_back(&f);
+      open_after_ari = true;
+      continue;
+    }
+    if (is_j1939(f, can::j1939::kPgnAccs)) {
+      if (samples.empty()) samples.emplace_back();
+      samples.back().j1939.push_back(&f);
+      continue;
+    }
+    const std::uint32_t offset = f.id - hr.base_id;
+    const bool ours = f.extended == hr.extended && f.id >= hr.base_id &&
+                      (offset <= can::highres::kOffsetStatus || offset == can::highres::kOffsetFd);
+    if (!ours) {
+      problem("unexpected frame id " + std::to_string(f.id));
+      continue;
+    }
+    const bool starts = offset == can::highres::kOffsetTime || offset == can::highres::kOffsetFd;
+    const bool joins = open_after_ari || (offset == can::highres::kOffsetFd && !samples.empty() &&
+                                          !samples.back().classic.empty() && !samples.back().fd);
+    if (samples.empty() || (starts && !joins)) samples.emplace_back();
+    if (offset == can::highres::kOffsetFd) {
+      samples.back().fd = to_can(f);
+    } else {
+      samples.back().classic.push_back(to_can(f));
+    }
+    open_after_ari = false;
+  }
+  c.samples = samples.size();
+
+  // 2. Rows and values.
+  std::map<std::int64_t, std::size_t> row_of_time;
+  for (std::size_t i = 0; i < rows.size(); ++i) row_of_time[rows[i].gps_time_ns] = i;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const Sample& s = samples[k];
+    std::vector<can::highres::Decoded> hr_values;
+    if (!s.classic.empty()) {
+      ++c.highres;
+      if (auto d = can::highres::decode_classic(s.classic, hr)) hr_values.push_back(*d);
+      else problem("classic high-resolution sample does not decode (CRC, ids, order or length)");
+    }
+    if (s.fd) {
+      ++c.highres_fd;
+      if (auto d = can::highres::decode_fd(*s.fd, hr)) hr_values.push_back(*d);
+      else problem("CAN FD high-resolution sample does not decode");
+    }
+    std::optional<std::size_t> row;
+    if (!hr_values.empty()) {
+      const auto it = row_of_time.find(hr_values.front().gps_time_ns);
+      if (it == row_of_time.end()) {
+        problem("sample at GPS time " + std::to_string(hr_values.front().gps_time_ns) + " not in the log");
+        continue;
+      }
+      row = it->second;
+    } else if (first_row + k < rows.size()) {
+      row = first_row + k;
+    } else {
+      problem("more samples than log rows");
+      continue;
+    }
+    const ImuRow& r = rows[*row];
+    if (k == 0) c.first_time_ns = r.gps_time_ns;
+    c.last_time_ns = r.gps_time_ns;
+    for (const can::highres::Decoded& d : hr_values) {
+      if (d.gps_time_ns != r.gps_time_ns) problem("the sample's two high-resolution times differ");
+      if (d.sequence != static_cast<std::uint16_t>(r.sequence)) problem("sequence differs");
+      if (((d.flags & can::highres::kFlagTruthLost) != 0) == r.truth_valid) problem("truth-lost flag differs");
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double ew = std::abs(d.w_body_radps[i] - r.w_radps[i]);
+        const double ef = std::abs(d.f_body_mps2[i] - r.f_mps2[i]);
+        c.max_hr_rate_err_radps = std::max(c.max_hr_rate_err_radps, ew);
+        c.max_hr_accel_err_mps2 = std::max(c.max_hr_accel_err_mps2, ef);
+        // Full precision: half a wire LSB, plus the log's 9 significant digits.
+        if (ew > 0.5e-7 + 1e-8 * std::abs(r.w_radps[i]) || ef > 0.5e-6 + 1e-8 * std::abs(r.f_mps2[i]))
+          problem("high-resolution value differs from the log");
+      }
+    }
+    for (const LoggedFrame* f : s.j1939) {
+      if (is_j1939(*f, can::j1939::kPgnAri)) {
+        ++c.ari;
+        const double lsb = 1.0 / 128.0;
+        const std::array<double, 3> got{j1939_u16(f->data, 2, lsb, -250) * kDeg,   // roll = w_x
+                                        j1939_u16(f->data, 0, lsb, -250) * kDeg,   // pitch = w_y
+                                        j1939_u16(f->data, 4, lsb, -250) * kDeg};  // yaw = w_z
+        for (std::size_t i = 0; i < 3; ++i) {
+          const double e = std::abs(got[i] - r.w_radps[i]);
+          c.max_rate_err_radps = std::max(c.max_rate_err_radps, e);
+          if (e > 0.5 * lsb * kDeg + 1e-9) problem("ARI rate differs from the log beyond 1/256 deg/s");
+        }
+      } else {
+        ++c.accs;
+        const std::array<double, 3> got{j1939_u16(f->data, 2, 0.01, -320),    // longitudinal = f_x
+                                        j1939_u16(f->data, 0, 0.01, -320),    // lateral = f_y
+                                        -j1939_u16(f->data, 4, 0.01, -320)};  // vertical = -f_z
+        for (std::size_t i = 0; i < 3; ++i) {
+          const double e = std::abs(got[i] - r.f_mps2[i]);
+          c.max_accel_err_mps2 = std::max(c.max_accel_err_mps2, e);
+          if (e > 0.005 + 1e-9) problem("ACCS acceleration differs from the log beyond 0.005 m/s^2");
+        }
+      }
+    }
+  }
+  return c;
+}
+
+}  // namespace navemu::test
