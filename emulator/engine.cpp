@@ -39,6 +39,7 @@ std::atomic<bool> g_stop{false};
 extern "C" void on_stop_signal(int) { g_stop.store(true); }
 
 constexpr std::int64_t kComputeLead_ns = 2'000'000;  // GNSS epoch computed 2 ms before output
+constexpr std::int64_t kImuCatchUp_ns = 100'000'000;  // later IMU samples are skipped
 
 
 // Smallest multiple of `period` at or after t.
@@ -249,8 +250,6 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     }
     start = *truth->newest();
   }
-  const GpsTime end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};
-
   if (offline) std::filesystem::create_directories(opt.out_dir);
 
   // --- GNSS receiver and its outputs.
@@ -370,6 +369,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
               opt.start_monotonic_ns && !lockstep ? *opt.start_monotonic_ns : monotonic_ns(),
               truth.get());
   const std::int64_t wall0 = monotonic_ns();
+  // Setting up took time: in real time the run begins with the first events still ahead (none
+  // is skipped as late at start), and the duration counts from there.
+  if (clock.realtime()) start = GpsTime{start.ns + std::max<std::int64_t>(0, wall0 - clock.mono_of(start))};
+  const GpsTime end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};
 
   // --- Event state. Indices count whole periods since the GPS epoch.
   std::int64_t gnss_k = first_index_at_or_after(start, gnss_period_ns);
@@ -439,14 +442,17 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         for (auto& p : ports) transport::set_serial_baud(*p, *baud);
     }
 
-    // An epoch whose output deadline passed more than a period ago is skipped, not sent late.
+    // A GNSS epoch whose output deadline passed more than a period ago is skipped, not sent
+    // late. IMU samples are what a driver integrates, and a real IMU never drops one: after a
+    // stall the late ones go out at once (each with its own time of validity), and only those
+    // more than kImuCatchUp late are skipped.
     if (clock.realtime()) {
       const std::int64_t now_mono = monotonic_ns();
       while (receiver && now_mono > clock.mono_of(gnss_epoch(gnss_k)) + gnss_latency_ns + gnss_period_ns) {
         ++gnss_k;
         ++sum.gnss_skipped;
       }
-      while (imu && now_mono > clock.mono_of(imu_event(imu_j)) + imu_out_ns) {
+      while (imu && now_mono > clock.mono_of(imu_event(imu_j)) + std::max(kImuCatchUp_ns, imu_out_ns)) {
         ++imu_j;
         ++sum.imu_skipped;
       }

@@ -6,8 +6,11 @@
 // 125 Hz: every 8 ms). In real time the loop sleeps to absolute deadlines on CLOCK_MONOTONIC
 // (clock_nanosleep TIMER_ABSTIME): deadline = the epoch + the sensor's output latency, mapped
 // from GPS time by one fixed offset taken at start, so nothing drifts. The GNSS epoch is
-// computed kComputeLead before its deadline and written at it. An epoch whose deadline passed
-// more than one period ago is skipped and counted, never sent late in a burst. Offline
+// computed kComputeLead before its deadline and written at it. A GNSS epoch whose deadline passed
+// more than one period ago is skipped and counted, never sent late in a burst; IMU samples
+// (which drivers integrate, and which a real IMU never drops) are sent late after a stall and
+// skipped only beyond 100 ms. The loop starts with the first events ahead of the moment setup
+// is done, so none is skipped at start. Offline
 // (`navemu simulate`) the same events run in the same order without sleeping.
 //
 // Time modes: realtime (GPS time = scenario start + monotonic time elapsed) and lockstep (GPS
