@@ -120,6 +120,7 @@ struct MeasurementGenerator::State {
   GaussMarkov dgps_tropo;
   std::map<int, SatProcesses> sats;
   std::map<int, double> receivable_since;  // PRN -> time its signal became receivable, s
+  std::map<int, std::pair<double, double>> scene_phase;  // PRN -> (t s, carrier multipath m)
   std::optional<GpsTime> last;
   std::vector<int> prns;
 };
@@ -170,10 +171,15 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
     if (eph == nullptr || std::abs(seconds_between(out.t_true, eph->toe)) > kMaxEphemerisAge_s)
       continue;
     const SatGeometry g = gps_sat_geometry(*eph, out.t_true, p_rx, v_rx);
-    const double cn0_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad);
+    // The scene: blocked, reflected, attenuated signals (open sky without one).
+    SignalEnvironment env;
+    if (cfg_.environment && g.dir.el_rad > 0.0)
+      env = cfg_.environment->evaluate(p_rx, (g.sat.p_ecef_m - p_rx).normalized());
+    const double cn0_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db;
     // Tracked while above the threshold; a signal that returns (rises, or comes back above the
     // threshold) is re-acquired only after the receiver's re-acquisition time.
-    const bool receivable = g.dir.el_rad > 0.0 && cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
+    const bool receivable = g.dir.el_rad > 0.0 && env.received &&
+                            cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
     auto [since, fresh] = st.receivable_since.try_emplace(prn, t_s);
     if (!receivable) {
       st.receivable_since.erase(since);
@@ -229,8 +235,24 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
         m.sat_error_m = st.sat_errors.range_error_m(prn, t_s, g.sat.p_ecef_m, g.sat.v_ecef_mps, los);
       }
     }
-    if (on.multipath)
+    // Multipath: the scene's composite-signal errors, or the statistical model in open sky.
+    // The carrier error's rate of change is the Doppler error.
+    double phase_mp_m = 0.0, doppler_mp_mps = 0.0;
+    if (cfg_.environment) {
+      m.multipath_m = env.code_error_m;
+      m.nlos = env.nlos;
+      phase_mp_m = env.phase_error_m;
+      const auto [prev, fresh_phase] = st.scene_phase.try_emplace(prn, t_s, phase_mp_m);
+      // A jump of half a wavelength or more (the dominant path changed) is a cycle slip, not
+      // a Doppler: no rate across it.
+      const double step_m = phase_mp_m - prev->second.second;
+      if (!fresh_phase && t_s > prev->second.first && !arc.new_arc &&
+          std::abs(step_m) < 0.5 * kL1WavelengthM)
+        doppler_mp_mps = step_m / (t_s - prev->second.first);
+      prev->second = {t_s, phase_mp_m};
+    } else if (on.multipath) {
       m.multipath_m = cfg_.multipath_zenith_sigma_m / std::max(sin_el, 0.05) * sp.multipath.value();
+    }
 
     // Satellite clock as the broadcast record gives it (relativistic term included): what a
     // user corrects with; the L1 C/A correction subtracts TGD (IS-GPS-200 20.3.3.3.3.2).
@@ -258,9 +280,9 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
       so.pseudorange_m =
           common_m + c * gm * eph->tgd_s + gm * m.iono_l1_m + m.multipath_m + code_noise_m;
       // Carrier: advanced by the ionosphere, an integer ambiguity per arc.
-      so.carrier_cycles = (common_m + c * gm * eph->tgd_s - gm * m.iono_l1_m) / lambda +
+      so.carrier_cycles = (common_m + c * gm * eph->tgd_s - gm * m.iono_l1_m + phase_mp_m) / lambda +
                           arc.ambiguity_cycles + phase_sigma * sp.phase_rng[bi].normal();
-      so.doppler_hz = -rate_mps / lambda + doppler_sigma * sp.doppler_rng[bi].normal();
+      so.doppler_hz = -(rate_mps + doppler_mp_mps) / lambda + doppler_sigma * sp.doppler_rng[bi].normal();
       so.loss_of_lock = arc.new_arc;
       so.lock_time_s = arc.lock_time_s;
       m.signals[static_cast<std::size_t>(b)] = so;

@@ -22,6 +22,7 @@
 #include "models/random.hpp"
 #include "models/receiver_clock.hpp"
 #include "models/sat_errors.hpp"
+#include "models/signal_environment.hpp"
 #include "models/solver.hpp"
 #include "models/time.hpp"
 #include "models/tracking.hpp"
@@ -97,6 +98,10 @@ struct MeasurementConfig {
 
   bool dual_frequency_signals = false;  // also generate L2 (L2C) and L5; on in kDualFrequency
   double elevation_mask_deg = 5.0;      // the position engine's mask
+  // A scene around the receiver (models/signal_environment.hpp): visibility, multipath of
+  // code, carrier and Doppler, and the composite C/N0 per satellite; replaces the statistical
+  // multipath. None: open sky.
+  std::shared_ptr<const SignalEnvironmentModel> environment;
   std::uint64_t seed = 1;
 };
 
@@ -125,6 +130,7 @@ struct SatMeasurement {
   double sat_error_m = 0.0;        // broadcast orbit + clock error on the line of sight
   double sat_clock_m = 0.0;        // c (dt_sv - TGD) from the broadcast record
   double multipath_m = 0.0;
+  bool nlos = false;               // tracked on reflections only (scene)
   std::array<std::optional<SignalObs>, 3> signals;  // by Band
   // The pseudorange the position engine uses in the configured mode (L1 in standalone, the
   // iono-free combination in dual-frequency, the differentially corrected one in DGPS/RTK).

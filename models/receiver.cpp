@@ -6,7 +6,8 @@
 namespace navemu {
 
 
-Receiver::Receiver(const NavData& nav, const ReceiverParams& p) : p_(p), gen_(nav, p.measurement) {}
+Receiver::Receiver(const NavData& nav, const ReceiverParams& p)
+    : p_(p), gen_(nav, p.measurement), ideal_rng_(p.measurement.seed, stream_id("ideal_fix")) {}
 
 ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
   ReceiverFix out;
@@ -51,6 +52,19 @@ ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
         sum_sq += r.residual_m * r.residual_m;
       }
     out.satellites.push_back(s);
+  }
+  if (p_.ideal_sigma_m) {
+    const double s = *p_.ideal_sigma_m;
+    const Vec3 noise_ned(s * ideal_rng_.normal(), s * ideal_rng_.normal(), s * ideal_rng_.normal());
+    out.fix = FixType::k3D;
+    out.p_ecef_m = p_ecef + R_ned_from_ecef(truth->position).transpose() * noise_ned;
+    out.position = geodetic_from_ecef(out.p_ecef_m);
+    out.v_ned_mps = truth->v_ned_mps;
+    out.dops = sol.dops;
+    out.num_used = static_cast<int>(e.sats.size());
+    out.sigma_n_m = out.sigma_e_m = out.sigma_v_m = s;
+    out.sigma_h_m = std::sqrt(2.0) * s;
+    return out;
   }
   if (sol.fix == FixType::kNone) return out;
 

@@ -9,6 +9,7 @@
 
 #include "models/imu_kinematics.hpp"
 #include "models/measurement.hpp"
+#include "models/random.hpp"
 #include "models/solver.hpp"
 
 namespace navemu {
@@ -16,6 +17,10 @@ namespace navemu {
 struct ReceiverParams {
   MeasurementConfig measurement;
   int max_channels = 12;  // the highest satellites tracked at most
+  // The paper's low-fidelity receiver (sect. 4): the fix is the truth plus white noise of this
+  // 1-sigma per axis (north, east, down), whatever the satellites do; DOPs and the satellites
+  // are still reported. Unset: the position engine's solution.
+  std::optional<double> ideal_sigma_m;
 };
 
 struct ReceiverSatellite {
@@ -56,6 +61,7 @@ class Receiver {
   std::optional<GpsTime> last_t_;
   Vec3 last_fix_ecef_m_ = Vec3::Zero();
   EpochMeasurements meas_;
+  RandomStream ideal_rng_;
 };
 
 }  // namespace navemu

@@ -339,16 +339,20 @@ class Waypoints final : public Trajectory {
     const double rate_radps = p.turn_rate_dps * kDegToRad;
     double t0 = 0.0;
     for (std::size_t i = 0; i < legs_.size(); ++i) {
+      if (i < p.stop_s.size() && p.stop_s[i] > 0.0) {
+        segments_.push_back(Segment{t0, p.stop_s[i], Segment::kStop, i});
+        t0 += p.stop_s[i];
+      }
       if (i > 0) {
         // The turn at waypoint i, from leg i-1's heading to leg i's by the smaller angle.
         double turn = legs_[i].heading_rad - legs_[i - 1].heading_rad;
         turn -= kTwoPiExact * std::round(turn / kTwoPiExact);
         legs_[i].turn_before_rad = turn;
         const double duration = std::abs(turn) / rate_radps;
-        segments_.push_back(Segment{t0, duration, true, i});
+        segments_.push_back(Segment{t0, duration, Segment::kTurn, i});
         t0 += duration;
       }
-      segments_.push_back(Segment{t0, profiles_[i].duration_s(), false, i});
+      segments_.push_back(Segment{t0, profiles_[i].duration_s(), Segment::kMove, i});
       t0 += profiles_[i].duration_s();
     }
     end_s_ = t0;
@@ -363,7 +367,10 @@ class Waypoints final : public Trajectory {
                                      [](double x, const Segment& s) { return x < s.t0_s; });
     const Segment& seg = *(it - 1);
     const double r = tau - seg.t0_s;
-    if (!seg.turn) return move(t, seg.leg, r);
+    if (seg.kind == Segment::kMove) return move(t, seg.leg, r);
+    // Standing at waypoint `seg.leg`: where the previous leg ended (or where the first starts).
+    if (seg.kind == Segment::kStop)
+      return seg.leg == 0 ? move(t, 0, 0.0) : move(t, seg.leg - 1, profiles_[seg.leg - 1].duration_s());
     // Turning in place at the start of leg `seg.leg`: heading, horizontal and vertical parts of
     // the direction blended from the previous leg's to this one's.
     const Leg& prev = legs_[seg.leg - 1];
@@ -389,10 +396,11 @@ class Waypoints final : public Trajectory {
     double turn_before_rad = 0.0;
   };
   struct Segment {
+    enum Kind { kMove, kTurn, kStop };
     double t0_s;
     double duration_s;
-    bool turn;
-    std::size_t leg;
+    Kind kind;
+    std::size_t leg;  // the leg it moves along, or starts (turn, stop)
   };
 
   static Vec3 direction(const Leg& leg) { return leg.delta_enu / leg.length_m; }
@@ -414,6 +422,9 @@ class Waypoints final : public Trajectory {
           static_cast<double>(p.waypoints.size()));
     for (std::size_t i = 0; i < p.waypoints.size(); ++i)
       check_position("waypoint", fmt::format("waypoints[{}]", i), p.waypoints[i]);
+    for (std::size_t i = 0; i < p.stop_s.size(); ++i)
+      if (!(p.stop_s[i] >= 0.0 && std::isfinite(p.stop_s[i])))
+        bad("waypoint", fmt::format("stop_s[{}]", i), "must be finite and >= 0", p.stop_s[i]);
     check_positive("waypoint", "speed_mps", p.speed_mps);
     check_positive("waypoint", "accel_mps2", p.accel_mps2);
     check_positive("waypoint", "turn_rate_dps", p.turn_rate_dps);

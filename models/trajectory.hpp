@@ -73,6 +73,9 @@ struct LineTrajectory {
 // horizontally.
 struct WaypointTrajectory {
   std::vector<Geodetic> waypoints;  // at least 2
+  // Seconds standing still on arrival at each waypoint (before turning to the next leg); may
+  // be shorter than waypoints (missing entries: 0). A stop at the first delays the departure.
+  std::vector<double> stop_s;
   double speed_mps = 1.0;
   double accel_mps2 = 0.5;
   double turn_rate_dps = 45.0;

@@ -310,6 +310,37 @@ TEST(Trajectory, LinePassesEndAtAlternatingEnds) {
   EXPECT_NEAR(std::hypot(e.x(), e.y()), 0.25, 1e-6);  // pass 1001, half way back
 }
 
+// Stops: the vehicle stands still at a waypoint for stop_s, then goes on; the whole run is
+// longer by the sum of the stops.
+TEST(Trajectory, WaypointStopsHoldTheVehicleAtTheWaypoint) {
+  WaypointTrajectory p;
+  p.waypoints = {{32.3, -90.9, 60.0}, {32.3002, -90.9, 60.0}, {32.3002, -90.8997, 60.0}};
+  p.speed_mps = 2.0;
+  const auto plain = make_trajectory(p, kStart);
+  p.stop_s = {5.0, 30.0};
+  const auto stopping = make_trajectory(p, kStart);
+  EXPECT_NEAR(seconds_between(stopping->end(), plain->end()), 35.0, 1e-9);
+  // Standing at the first waypoint for 5 s, then at the second for 30 s.
+  for (double t : {0.0, 2.5, 4.99}) {
+    const ImuTruth s = stopping->at(kStart.plus_s(t));
+    EXPECT_EQ(s.v_ned_mps.norm(), 0.0) << t;
+    EXPECT_NEAR((ecef_from_geodetic(s.position) - ecef_from_geodetic(p.waypoints[0])).norm(), 0.0, 1e-6);
+  }
+  double arrive = 0.0;  // first time at the second waypoint
+  for (double t = 5.0; t < 100.0 && arrive == 0.0; t += 0.01)
+    if ((ecef_from_geodetic(stopping->at(kStart.plus_s(t)).position) -
+         ecef_from_geodetic(p.waypoints[1])).norm() < 1e-6)
+      arrive = t;
+  ASSERT_GT(arrive, 5.0);
+  for (double dt : {1.0, 15.0, 29.0}) {
+    const ImuTruth s = stopping->at(kStart.plus_s(arrive + dt));
+    EXPECT_LT(s.v_ned_mps.norm(), 1e-9) << dt;
+    EXPECT_NEAR((ecef_from_geodetic(s.position) - ecef_from_geodetic(p.waypoints[1])).norm(), 0.0, 1e-6) << dt;
+  }
+  p.stop_s = {-1.0};
+  EXPECT_THROW(make_trajectory(p, kStart), std::invalid_argument);
+}
+
 TEST(Trajectory, WaypointsAreVisitedInOrder) {
   WaypointTrajectory p;
   p.waypoints = {{32.3, -90.9, 60.0},
