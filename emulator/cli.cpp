@@ -34,6 +34,7 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   const auto imu = add_imu_command(app);
   const auto allan = add_allan_command(app);
   const auto deadreckon = add_deadreckon_command(app);
+  const auto scene = add_scene_command(app);
 
   try {
     app.parse(argc, argv);
@@ -52,6 +53,7 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
     if (app.got_subcommand("imu")) return run_imu(*imu, out, err);
     if (app.got_subcommand("allan")) return run_allan(*allan, out, err);
     if (app.got_subcommand("deadreckon")) return run_deadreckon(*deadreckon, out, err);
+    if (app.got_subcommand("scene")) return run_scene(*scene, out, err);
   } catch (const InputError& e) {
     err << "navemu: " << e.what() << "\n";
     return 1;

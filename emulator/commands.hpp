@@ -90,6 +90,10 @@ std::shared_ptr<AllanOptions> add_allan_command(CLI::App& app);
 int run_allan(const AllanOptions& opt, std::ostream& out, std::ostream& err);
 std::shared_ptr<DeadreckonOptions> add_deadreckon_command(CLI::App& app);
 int run_deadreckon(const DeadreckonOptions& opt, std::ostream& out, std::ostream& err);
+// navemu scene: synthetic 3D scenes as OBJ files (emulator/scene_command.cpp).
+struct SceneOptions;
+std::shared_ptr<SceneOptions> add_scene_command(CLI::App& app);
+int run_scene(const SceneOptions& opt, std::ostream& out, std::ostream& err);
 // navemu run (real time) and navemu simulate (offline), emulator/run_command.cpp.
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app);
 std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app);

@@ -22,6 +22,7 @@
 #include "emulator/commands.hpp"
 #include "emulator/imu_can.hpp"
 #include "emulator/imu_profile.hpp"
+#include "emulator/gnss_scene.hpp"
 #include "emulator/gnss_device.hpp"
 #include "emulator/truth_source.hpp"
 #include "models/constellation.hpp"
@@ -269,6 +270,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
     rp.measurement.seed = cfg.seed;
     rp.max_channels = prof.max_channels;
+    rp.ideal_sigma_m = cfg.gnss_ideal_sigma_m;
+    if (!cfg.gnss_scene.obj.empty())
+      rp.measurement.environment = make_scene_environment(cfg.gnss_scene, cfg.truth.position,
+                                                          rp.measurement.tracking, log);
     receiver = std::make_unique<Receiver>(nav, rp);
     device = make_gnss_device(prof, cfg.gnss_mode, nav);
     gnss_period_ns = device->period_ns();

@@ -115,6 +115,31 @@ CanOutputSpec can_output(YamlMap m, bool is_fallback) {
   return o;
 }
 
+SceneSpec scene_spec(YamlMap m) {
+  SceneSpec s;
+  s.obj = resolve(m.file(), m.text("obj").value_or(""));
+  s.materials = resolve(m.file(), m.text("materials").value_or(""));
+  if (s.obj.empty() && !s.materials.empty()) m.fail("obj", "required with a material table (a Wavefront OBJ file)");
+  if (s.materials.empty()) s.materials = (config_dir() / "scenes" / "materials.yaml").string();
+  if (m.has("origin")) s.origin = position(m.map("origin"), Geodetic{});
+  if (auto v = m.number_list("offset_enu_m")) {
+    if (v->size() != 3) m.fail("offset_enu_m", "three numbers: [east, north, up]");
+    s.offset_enu_m = Vec3((*v)[0], (*v)[1], (*v)[2]);
+  }
+  s.max_order = static_cast<int>(m.integer("max_order", 0, 2).value_or(s.max_order));
+  s.max_range_m = m.positive("max_range_m").value_or(s.max_range_m);
+  s.response = m.text("response").value_or(s.response);
+  if (s.response != "discriminator" && s.response != "paper")
+    m.fail("response", fmt::format("'{}' is not one of discriminator, paper", s.response));
+  s.cutoff_m = m.positive("cutoff_m").value_or(s.cutoff_m);
+  if (auto v = m.positive("chip_spacing")) {
+    if (*v > 2.0) m.fail("chip_spacing", fmt::format("{} chips: at most 2", *v));
+    s.chip_spacing = *v;
+  }
+  m.reject_unknown_keys();
+  return s;
+}
+
 CanSettings can_settings(YamlMap m) {
   CanSettings c;
   YamlMap j = m.map("j1939");
@@ -170,7 +195,10 @@ TruthSpec truth(YamlMap m) {
   if (auto v = w.positive("speed_mps")) t.waypoints.speed_mps = *v;
   if (auto v = w.positive("accel_mps2")) t.waypoints.accel_mps2 = *v;
   if (auto v = w.positive("turn_rate_dps")) t.waypoints.turn_rate_dps = *v;
-  for (YamlMap& p : w.map_list("points")) t.waypoints.waypoints.push_back(position(p, t.position));
+  for (YamlMap& p : w.map_list("points")) {
+    t.waypoints.stop_s.push_back(p.positive("stop_s", true).value_or(0.0));
+    t.waypoints.waypoints.push_back(position(p, t.position));
+  }
   if (t.kind == TruthSourceKind::kWaypoints && t.waypoints.waypoints.size() < 2)
     w.fail("points", "at least two waypoints are needed");
   w.reject_unknown_keys();
@@ -324,6 +352,8 @@ RunConfig load_run_config(const std::filesystem::path& file) {
                     .value_or(c.gnss_mode);
   for (YamlMap& o : g.map_list("outputs")) c.gnss_outputs.push_back(output(o));
   c.gnss_capture = resolve(file, g.text("capture").value_or(""));
+  c.gnss_scene = scene_spec(g.map("scene"));
+  c.gnss_ideal_sigma_m = g.positive("ideal_sigma_m");
   g.reject_unknown_keys();
 
   YamlMap imu = root.map("imu");

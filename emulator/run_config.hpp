@@ -94,6 +94,19 @@ struct CanSettings {
   bool extended = false;              // high-resolution layout with 29-bit identifiers
 };
 
+// A 3D scene around the receiver (gnss.scene): visibility and multipath by ray tracing.
+struct SceneSpec {
+  std::string obj;        // Wavefront OBJ; empty: open sky
+  std::string materials;  // YAML material table (configs/scenes/materials.yaml by default)
+  std::optional<Geodetic> origin;  // the mesh's ENU origin; unset: truth.position
+  Vec3 offset_enu_m = Vec3::Zero();
+  int max_order = 1;               // reflections: 0, 1 or 2
+  double max_range_m = 300.0;      // reflection points farther from the antenna are ignored
+  std::string response = "discriminator";  // discriminator | paper
+  double cutoff_m = 45.0;          // paper rule: delay difference the correlator cannot resolve
+  std::optional<double> chip_spacing;  // early-late spacing, chips; unset: the receiver class's
+};
+
 enum class TimeMode { kRealTime, kLockstep };
 enum class TruthSourceKind { kStationary, kCircle, kLine, kWaypoints, kCsv, kUdp };
 
@@ -125,6 +138,8 @@ struct RunConfig {
   ReceiverMode gnss_mode = ReceiverMode::kStandalone;
   std::vector<OutputSpec> gnss_outputs;
   std::string gnss_capture;  // every byte sent to PATH and every byte received to PATH.in
+  SceneSpec gnss_scene;
+  std::optional<double> gnss_ideal_sigma_m;  // the paper's low-fidelity receiver: truth + noise
 
   bool imu_enabled = true;
   std::string imu_profile = "paper_phidget";

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 
 #include "models/errors.hpp"
@@ -103,6 +104,20 @@ std::optional<std::vector<std::string>> YamlMap::text_list(const std::string& ke
   for (const auto& item : v) {
     if (!item.IsScalar()) fail(key, "expected a list of text values");
     out.push_back(item.Scalar());
+  }
+  return out;
+}
+
+std::optional<std::vector<double>> YamlMap::number_list(const std::string& key) {
+  const std::optional<std::vector<std::string>> texts = text_list(key);
+  if (!texts) return std::nullopt;
+  std::vector<double> out;
+  for (const std::string& t : *texts) {
+    double x = 0.0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+    if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(x))
+      fail(key, fmt::format("'{}' is not a number", t));
+    out.push_back(x);
   }
   return out;
 }

@@ -28,6 +28,7 @@ class YamlMap {
   std::optional<std::int64_t> integer(const std::string& key, std::int64_t min, std::int64_t max);
   std::optional<bool> boolean(const std::string& key);
   std::optional<std::vector<std::string>> text_list(const std::string& key);
+  std::optional<std::vector<double>> number_list(const std::string& key);  // finite numbers
   // A nested mapping (empty when absent).
   YamlMap map(const std::string& key);
   // A list of mappings.
