@@ -48,42 +48,27 @@ ImuCanOutputs::ImuCanOutputs(const std::vector<CanOutputSpec>& specs, const CanS
     }
     if (needs_fd(spec.layouts) && !out.port->fd_capable())
       throw std::runtime_error(fmt::format("{}: layout highres-fd needs CAN FD", out.port->describe()));
+    for (CanLayout l : spec.layouts) {
+      uses_j1939_ |= l == CanLayout::kJ1939;
+      uses_highres_ |= l == CanLayout::kHighRes;
+      uses_fd_ |= l == CanLayout::kHighResFd;
+    }
     outputs_.push_back(std::move(out));
   }
 }
 
 void ImuCanOutputs::send(const can::ImuSample& sample, std::int64_t unix_time_ns) {
-  // Each layout is encoded once per sample, whatever the number of outputs using it.
-  std::array<can::CanFrame, 2> j1939{};
-  std::array<can::CanFrame, can::highres::kClassicFrameCount> highres{};
-  can::CanFrame fd{};
-  bool have_j1939 = false, have_highres = false, have_fd = false;
+  // Each layout in use is encoded once per sample, whatever the number of outputs using it.
+  if (uses_j1939_)
+    j1939_frames_ = {can::j1939::encode_ari(sample, j1939_), can::j1939::encode_accs(sample, j1939_)};
+  if (uses_highres_) highres_frames_ = can::highres::encode_classic(sample, highres_);
+  if (uses_fd_) fd_frame_ = can::highres::encode_fd(sample, highres_);
   for (Output& out : outputs_) {
     for (CanLayout layout : out.layouts) {
-      std::span<const can::CanFrame> frames;
-      switch (layout) {
-        case CanLayout::kJ1939:
-          if (!have_j1939) {
-            j1939 = {can::j1939::encode_ari(sample, j1939_), can::j1939::encode_accs(sample, j1939_)};
-            have_j1939 = true;
-          }
-          frames = j1939;
-          break;
-        case CanLayout::kHighRes:
-          if (!have_highres) {
-            highres = can::highres::encode_classic(sample, highres_);
-            have_highres = true;
-          }
-          frames = highres;
-          break;
-        case CanLayout::kHighResFd:
-          if (!have_fd) {
-            fd = can::highres::encode_fd(sample, highres_);
-            have_fd = true;
-          }
-          frames = std::span<const can::CanFrame>(&fd, 1);
-          break;
-      }
+      const std::span<const can::CanFrame> frames =
+          layout == CanLayout::kJ1939     ? std::span<const can::CanFrame>(j1939_frames_)
+          : layout == CanLayout::kHighRes ? std::span<const can::CanFrame>(highres_frames_)
+                                          : std::span<const can::CanFrame>(&fd_frame_, 1);
       for (const can::CanFrame& f : frames) out.port->write(view(f), unix_time_ns);
     }
   }

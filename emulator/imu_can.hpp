@@ -2,6 +2,7 @@
 // The IMU's CAN outputs: each sample encoded in the configured layouts (protocols/can_frames)
 // and its frames written back to back on every frame port (transports/can_port).
 
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
@@ -41,6 +42,10 @@ class ImuCanOutputs {
   std::vector<Output> outputs_;
   can::j1939::Config j1939_;
   can::highres::Config highres_;
+  bool uses_j1939_ = false, uses_highres_ = false, uses_fd_ = false;
+  std::array<can::CanFrame, 2> j1939_frames_{};
+  std::array<can::CanFrame, can::highres::kClassicFrameCount> highres_frames_{};
+  can::CanFrame fd_frame_{};
 };
 
 // The outputs of an offline run: one candump log at `path` carrying every layout the

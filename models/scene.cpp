@@ -332,6 +332,7 @@ struct Scene::Impl {
   RTCScene build_embree_scene(const std::vector<std::uint32_t>& triangles);
 
   // Queries.
+  void init_context(QueryContext& ctx, std::uint32_t ignore) const;
   std::uint32_t first_face(const Vec3& o, const Vec3& d, float tfar, std::uint32_t ignore) const;
   bool occluded(const Vec3& o, const Vec3& d, std::uint32_t ignore) const;
   double plane_distance(std::uint32_t face, const Vec3& o, const Vec3& d) const;
@@ -632,15 +633,21 @@ RTCScene Scene::Impl::build_embree_scene(const std::vector<std::uint32_t>& trian
 
 // ---- Queries ---------------------------------------------------------------------------------
 
-std::uint32_t Scene::Impl::first_face(const Vec3& o, const Vec3& d, float tfar,
-                                      std::uint32_t ignore) const {
-  QueryContext ctx;
+// A query context that skips the triangles of face `ignore` (kNone: none), so that a leg
+// leaving a face does not hit the face itself.
+void Scene::Impl::init_context(QueryContext& ctx, std::uint32_t ignore) const {
   rtcInitIntersectContext(&ctx.base);
   if (ignore != kNone) {
     ctx.base.filter = ignore_face_filter;
     ctx.face_of_prim = face_of_prim.data();
     ctx.ignore_face = ignore;
   }
+}
+
+std::uint32_t Scene::Impl::first_face(const Vec3& o, const Vec3& d, float tfar,
+                                      std::uint32_t ignore) const {
+  QueryContext ctx;
+  init_context(ctx, ignore);
   RTCRayHit rh;
   set_ray(rh.ray, o, d, tfar);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -654,12 +661,7 @@ std::uint32_t Scene::Impl::first_face(const Vec3& o, const Vec3& d, float tfar,
 
 bool Scene::Impl::occluded(const Vec3& o, const Vec3& d, std::uint32_t ignore) const {
   QueryContext ctx;
-  rtcInitIntersectContext(&ctx.base);
-  if (ignore != kNone) {
-    ctx.base.filter = ignore_face_filter;
-    ctx.face_of_prim = face_of_prim.data();
-    ctx.ignore_face = ignore;
-  }
+  init_context(ctx, ignore);
   RTCRay ray;
   set_ray(ray, o, d, kInfF);
   rtcOccluded1(opaque, &ctx.base, &ray);

@@ -199,6 +199,43 @@ TEST(Simulate, HighResolutionFramesDecodeToFullPrecision) {
   EXPECT_LE(c.max_hr_rate_err_radps, 0.5e-7 + 1e-9);
 }
 
+// A scene in the loop: the same seed and scene give identical files; the street canyon costs
+// satellites against open sky; a missing scene file stops navemu with its name.
+TEST(Simulate, SceneRunsAreDeterministicAndCostSatellites) {
+  const fs::path d = temp_dir("scene");
+  const auto gen = test::run_command(test::shell_quote(test::navemu_binary().string()) +
+                                     " scene urban-canyon --building-height-m 40 --out " +
+                                     test::shell_quote((d / "canyon.obj").string()) + " 2>&1");
+  ASSERT_EQ(gen.exit_code, 0) << gen.out;
+  const std::string base =
+      "truth:\n  source: line\n  line: {heading_deg: 0, length_m: 100, speed_mps: 2, passes: 2}\n"
+      "  position: {lat_deg: 32.3, lon_deg: -90.9, h_m: 61.5}\n";
+  std::ofstream(d / "open.yaml") << base;
+  std::ofstream(d / "canyon.yaml") << base << "gnss:\n  scene: {obj: canyon.obj, origin: {lat_deg: 32.3, "
+                                              "lon_deg: -90.9, h_m: 60}}\n";
+  std::ofstream(d / "missing.yaml") << base << "gnss:\n  scene: {obj: nowhere.obj}\n";
+  ASSERT_EQ(simulate(d / "open.yaml", d / "open", 60).exit_code, 0);
+  const auto r1 = simulate(d / "canyon.yaml", d / "c1", 60);
+  ASSERT_EQ(r1.exit_code, 0) << r1.out;
+  EXPECT_NE(r1.out.find("navemu: scene "), std::string::npos) << r1.out;
+  ASSERT_EQ(simulate(d / "canyon.yaml", d / "c2", 60).exit_code, 0);
+  for (const char* f : {"nmea.log", "gnss.csv"}) EXPECT_EQ(slurp(d / "c1" / f), slurp(d / "c2" / f)) << f;
+
+  const auto open = csv_rows(d / "open" / "gnss.csv");
+  const auto canyon = csv_rows(d / "c1" / "gnss.csv");
+  ASSERT_EQ(open.size(), canyon.size());
+  double open_sats = 0, canyon_sats = 0;
+  for (std::size_t i = 1; i < open.size(); ++i) {
+    open_sats += std::stod(open[i][7]);
+    canyon_sats += std::stod(canyon[i][7]);
+  }
+  EXPECT_LT(canyon_sats, 0.8 * open_sats);
+
+  const auto bad = simulate(d / "missing.yaml", d / "bad", 10);
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.out.find("nowhere.obj"), std::string::npos) << bad.out;
+}
+
 TEST(Simulate, RejectsAStreamedTruth) {
   const fs::path dir = temp_dir("udp");
   const fs::path cfg = dir / "udp.yaml";
