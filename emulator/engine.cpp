@@ -40,7 +40,7 @@ std::atomic<bool> g_stop{false};
 extern "C" void on_stop_signal(int) { g_stop.store(true); }
 
 constexpr std::int64_t kComputeLead_ns = 2'000'000;  // GNSS epoch computed 2 ms before output
-constexpr std::int64_t kImuCatchUp_ns = 100'000'000;  // later IMU samples are skipped
+constexpr std::int64_t kImuCatchUp_ns = 500'000'000;  // later IMU samples are skipped
 
 
 // Smallest multiple of `period` at or after t.

@@ -9,7 +9,7 @@
 // computed kComputeLead before its deadline and written at it. A GNSS epoch whose deadline passed
 // more than one period ago is skipped and counted, never sent late in a burst; IMU samples
 // (which drivers integrate, and which a real IMU never drops) are sent late after a stall and
-// skipped only beyond 100 ms. The loop starts with the first events ahead of the moment setup
+// skipped only beyond 500 ms. The loop starts with the first events ahead of the moment setup
 // is done, so none is skipped at start. Offline
 // (`navemu simulate`) the same events run in the same order without sleeping.
 //
