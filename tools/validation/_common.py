@@ -1,0 +1,125 @@
+"""Helpers shared by the tools/validation section scripts (standard library only).
+
+Not a section itself: tools/reproduce skips files whose name starts with '_'.
+Section interface: NAME.py --navemu PATH --out DIR [--quick]; writes DIR/NAME.md and
+DIR/NAME_*.png, prints one "BAND <name>: <value> in [lo, hi]: ok|OUT" line per band check,
+exits 1 when a band check failed, 2 on usage errors or missing tools.
+"""
+
+import argparse
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+
+class Section:
+    def __init__(self, name, description):
+        self.name = name
+        p = argparse.ArgumentParser(prog=f"{name}.py", description=description)
+        p.add_argument("--navemu", required=True, help="path of the navemu binary")
+        p.add_argument("--out", required=True, help="output folder (created)")
+        p.add_argument("--quick", action="store_true", help="shorter runs")
+        try:
+            self.args = p.parse_args()
+        except SystemExit as e:
+            sys.exit(0 if e.code == 0 else 2)
+        self.navemu = os.path.abspath(self.args.navemu)
+        if not (os.path.isfile(self.navemu) and os.access(self.navemu, os.X_OK)):
+            die(f"{name}: navemu not found or not executable: {self.args.navemu}")
+        if shutil.which("gnuplot") is None:
+            die(f"{name}: gnuplot not found (apt-get install gnuplot-nox)")
+        self.out = os.path.abspath(self.args.out)
+        self.quick = self.args.quick
+        self.work = os.path.join(self.out, f"{name}_work")
+        os.makedirs(self.work, exist_ok=True)
+        self.failed = 0
+        self.bands = []
+
+    def band(self, label, value, lo, hi, fmt="{:.3g}"):
+        ok = lo <= value <= hi
+        self.failed += 0 if ok else 1
+        line = f"BAND {label}: {fmt.format(value)} in [{fmt.format(lo)}, {fmt.format(hi)}]: {'ok' if ok else 'OUT'}"
+        print(line, flush=True)
+        self.bands.append((label, value, lo, hi, ok, fmt))
+        return ok
+
+    def band_table(self):
+        rows = ["| band check | value | band | result |", "|---|---|---|---|"]
+        for label, v, lo, hi, ok, fmt in self.bands:
+            rows.append(f"| {label} | {fmt.format(v)} | [{fmt.format(lo)}, {fmt.format(hi)}] | "
+                        f"{'ok' if ok else '**OUT**'} |")
+        return "\n".join(rows)
+
+    def write_md(self, text):
+        with open(os.path.join(self.out, f"{self.name}.md"), "w") as f:
+            f.write(text.rstrip() + "\n")
+
+    def finish(self, keep_work=False):
+        if not keep_work:
+            shutil.rmtree(self.work, ignore_errors=True)
+        sys.exit(1 if self.failed else 0)
+
+
+def die(msg, code=2):
+    print(msg, file=sys.stderr)
+    sys.exit(code)
+
+
+def run(cmd, **kw):
+    """Runs a command; on failure prints its stderr and exits 1 (the section failed)."""
+    r = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    if r.returncode != 0:
+        print(f"command failed ({r.returncode}): {' '.join(cmd)}\n{r.stderr}{r.stdout}", file=sys.stderr)
+        sys.exit(1)
+    return r
+
+
+def read_csv(path, every=1, columns=None):
+    """Dict of column -> list of floats (every n-th row)."""
+    with open(path, newline="") as f:
+        rd = csv.reader(f)
+        head = next(rd)
+        idx = [(c, head.index(c)) for c in (columns or head)]
+        cols = {c: [] for c, _ in idx}
+        for i, row in enumerate(rd):
+            if i % every:
+                continue
+            for c, j in idx:
+                cols[c].append(float(row[j]))
+    return cols
+
+
+def mean(v):
+    return sum(v) / len(v)
+
+
+def pvar(v):
+    m = mean(v)
+    return sum((x - m) ** 2 for x in v) / len(v)
+
+
+def pstd(v):
+    return math.sqrt(pvar(v))
+
+
+def write_dat(path, columns):
+    with open(path, "w") as f:
+        for row in zip(*columns):
+            f.write(" ".join(repr(x) if isinstance(x, float) else str(x) for x in row) + "\n")
+
+
+def gnuplot(script, png, size="1000,700", cwd=None):
+    """Runs a gnuplot script writing PNG `png` (pngcairo, legible fonts)."""
+    head = (f"set terminal pngcairo size {size} font 'DejaVu Sans,12' noenhanced\n"
+            f"set output '{png}'\nset grid\nset key outside right top\n")
+    r = subprocess.run(["gnuplot"], input=head + script, capture_output=True, text=True, cwd=cwd)
+    if r.returncode != 0:
+        print(f"gnuplot failed for {png}:\n{r.stderr}", file=sys.stderr)
+        sys.exit(1)
+
+
+def yaml_quote(s):
+    return '"' + s.replace('"', '\\"') + '"'
