@@ -268,12 +268,18 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     rp.measurement.mode = cfg.gnss_mode;
     apply_receiver_class(rp.measurement, prof.receiver_class);
     rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
+    AntennaPattern antenna = patch_antenna_pattern();
+    if (!prof.antenna_gain_db_by_el_deg.empty()) {
+      rp.measurement.cn0.gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;
+      antenna.rhcp_gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;
+    }
+    antenna.lhcp_rejection_db = prof.antenna_lhcp_rejection_db;
     rp.measurement.seed = cfg.seed;
     rp.max_channels = prof.max_channels;
     rp.ideal_sigma_m = cfg.gnss_ideal_sigma_m;
     if (!cfg.gnss_scene.obj.empty())
       rp.measurement.environment = make_scene_environment(cfg.gnss_scene, cfg.truth.position,
-                                                          rp.measurement.tracking, log);
+                                                          rp.measurement.tracking, antenna, log);
     receiver = std::make_unique<Receiver>(nav, rp);
     device = make_gnss_device(prof, cfg.gnss_mode, nav);
     gnss_period_ns = device->period_ns();

@@ -13,7 +13,7 @@ namespace navemu {
 
 std::shared_ptr<const SignalEnvironmentModel> make_scene_environment(
     const SceneSpec& spec, const Geodetic& default_origin, const TrackingParams& tracking,
-    std::ostream& log) {
+    const AntennaPattern& antenna, std::ostream& log) {
   const auto t0 = std::chrono::steady_clock::now();
   SceneMesh mesh = load_scene_mesh(spec.obj, spec.materials);
   std::shared_ptr<const Scene> scene;
@@ -33,6 +33,7 @@ std::shared_ptr<const SignalEnvironmentModel> make_scene_environment(
                                         : MultipathResponse::kDiscriminator;
   p.cutoff_m = spec.cutoff_m;
   p.chip_spacing = spec.chip_spacing.value_or(tracking.chip_spacing);
+  p.antenna = antenna;
   const SceneStats st = scene->stats();
   fmt::print(log,
              "navemu: scene {}: {} triangles, {} reflecting faces, {:.1f} MB, loaded and built in "

@@ -16,6 +16,6 @@ namespace navemu {
 // InputError naming the file and line.
 std::shared_ptr<const SignalEnvironmentModel> make_scene_environment(
     const SceneSpec& spec, const Geodetic& default_origin, const TrackingParams& tracking,
-    std::ostream& log);
+    const AntennaPattern& antenna, std::ostream& log);
 
 }  // namespace navemu

@@ -289,6 +289,18 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
                          .value_or(p.receiver_class);
   p.elevation_mask_deg = m.positive("elevation_mask_deg", true).value_or(p.elevation_mask_deg);
   p.max_channels = static_cast<int>(m.integer("max_channels", 4, 64).value_or(p.max_channels));
+  YamlMap ant = m.map("antenna");
+  if (auto g = ant.number_pairs("gain_db_by_el_deg")) {
+    if (g->empty()) ant.fail("gain_db_by_el_deg", "at least one [elevation_deg, gain_db] pair");
+    for (std::size_t i = 0; i < g->size(); ++i) {
+      const double el = (*g)[i].first;
+      if (el < -90.0 || el > 90.0 || (i > 0 && el <= (*g)[i - 1].first))
+        ant.fail("gain_db_by_el_deg", "elevations must rise from -90 to 90 deg");
+    }
+    p.antenna_gain_db_by_el_deg = *g;
+  }
+  p.antenna_lhcp_rejection_db = ant.positive("lhcp_rejection_db", true).value_or(p.antenna_lhcp_rejection_db);
+  ant.reject_unknown_keys();
 
   YamlMap s = m.map("sentences");
   if (!m.has("sentences")) m.fail("sentences", "required: sentence names with divisors, e.g. {RMC: 1, GSV: 5}");

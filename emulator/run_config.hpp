@@ -42,6 +42,11 @@ struct GnssProfile {
   ReceiverClass receiver_class = ReceiverClass::kConsumer;
   double elevation_mask_deg = 5.0;
   int max_channels = 12;  // satellites tracked at most (the highest)
+  // Antenna: RHCP gain (dB relative to the zenith) by elevation (deg), held beyond its ends,
+  // for C/N0 and for reflected signals arriving from below; empty: a typical patch
+  // (models/tracking.hpp). LHCP rejection applies to cross-polar reflections.
+  std::vector<std::pair<double, double>> antenna_gain_db_by_el_deg;
+  double antenna_lhcp_rejection_db = 15.0;
   std::optional<UbxSettings> ubx;  // a u-blox receiver: UBX output and configuration
 };
 

@@ -122,6 +122,26 @@ std::optional<std::vector<double>> YamlMap::number_list(const std::string& key) 
   return out;
 }
 
+std::optional<std::vector<std::pair<double, double>>> YamlMap::number_pairs(const std::string& key) {
+  const std::optional<YAML::Node> o = value(key);
+  if (!o) return std::nullopt;
+  const auto bad = [&] { fail(key, "expected a list of [number, number] pairs, e.g. [[0, -13], [90, 0]]"); };
+  if (!o->IsSequence()) bad();
+  std::vector<std::pair<double, double>> out;
+  for (const auto& item : *o) {
+    if (!item.IsSequence() || item.size() != 2 || !item[0].IsScalar() || !item[1].IsScalar()) bad();
+    double x[2] = {0.0, 0.0};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const std::string t = item[i].Scalar();
+      const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x[i]);
+      if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(x[i]))
+        fail(key, fmt::format("'{}' is not a number", t));
+    }
+    out.emplace_back(x[0], x[1]);
+  }
+  return out;
+}
+
 YamlMap YamlMap::map(const std::string& key) {
   const std::optional<YAML::Node> v = value(key);
   std::string where = where_.empty() ? key : where_ + "." + key;

@@ -29,6 +29,8 @@ class YamlMap {
   std::optional<bool> boolean(const std::string& key);
   std::optional<std::vector<std::string>> text_list(const std::string& key);
   std::optional<std::vector<double>> number_list(const std::string& key);  // finite numbers
+  // A list of two-number lists, e.g. [[0, -13], [90, 0]].
+  std::optional<std::vector<std::pair<double, double>>> number_pairs(const std::string& key);
   // A nested mapping (empty when absent).
   YamlMap map(const std::string& key);
   // A list of mappings.

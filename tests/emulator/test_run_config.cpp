@@ -114,6 +114,28 @@ TEST(RunConfig, EveryShippedGnssProfileLoads) {
   EXPECT_EQ(g.style, "garmin");
 }
 
+TEST(RunConfig, ProfileAntennaPattern) {
+  const GnssProfile g = load_gnss_profile("garmin-18x-5hz");
+  ASSERT_EQ(g.antenna_gain_db_by_el_deg.size(), 10u);
+  EXPECT_EQ(g.antenna_gain_db_by_el_deg.front(), (std::pair<double, double>{-90.0, -20.0}));
+  EXPECT_EQ(g.antenna_gain_db_by_el_deg.back(), (std::pair<double, double>{90.0, 0.0}));
+  EXPECT_EQ(g.antenna_lhcp_rejection_db, 15.0);
+  const auto bad = [](const std::string& antenna) {
+    try {
+      load_gnss_profile(write_temp("ant.yaml", "sentences: {RMC: 1}\nantenna:\n" + antenna).string());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(bad("  gain_db_by_el_deg: [[10, -8], [5, -10]]\n").find(":3: antenna.gain_db_by_el_deg: elevations must rise"),
+            std::string::npos)
+      << bad("  gain_db_by_el_deg: [[10, -8], [5, -10]]\n");
+  EXPECT_NE(bad("  gain_db_by_el_deg: [[10, -8, 1]]\n").find("expected a list of [number, number] pairs"),
+            std::string::npos);
+  EXPECT_NE(bad("  gain_db_by_el_deg: [[10, x]]\n").find("'x' is not a number"), std::string::npos);
+}
+
 TEST(RunConfig, UnknownKeyIsReportedWithItsLine) {
   const std::string e = load_error("scenario:\n  seed: 3\n  sede: 4\n");
   EXPECT_NE(e.find("bad.yaml:3: scenario.sede: unknown key"), std::string::npos) << e;
