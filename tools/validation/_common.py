@@ -15,6 +15,58 @@ import subprocess
 import sys
 
 
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def check_tools(name, navemu):
+    """Exits 2 unless navemu is an executable and gnuplot is installed."""
+    if not (os.path.isfile(navemu) and os.access(navemu, os.X_OK)):
+        die(f"{name}: navemu not found or not executable: {navemu}")
+    if shutil.which("gnuplot") is None:
+        die(f"{name}: gnuplot not found (apt-get install gnuplot-nox)")
+
+
+def print_band(label, value, lo, hi, fmt="{:.3f}"):
+    """Prints the band line of the section interface; True when the value is in the band."""
+    ok = lo <= value <= hi
+    print(f"BAND {label}: {fmt.format(value)} in [{fmt.format(lo)}, {fmt.format(hi)}]: "
+          f"{'ok' if ok else 'OUT'}", flush=True)
+    return ok
+
+
+def real_data_args(name, description, title, quick_help=None):
+    """Arguments of a section on ../shared data: --navemu, --out, --quick, --shared (default
+    $NAVEMU_SHARED or ../shared). Without the data it writes a fragment titled `title` saying
+    so and exits 0; without navemu or gnuplot it exits 2."""
+    ap = argparse.ArgumentParser(prog=f"{name}.py", description=description,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--navemu", required=True, help="path of the navemu binary")
+    ap.add_argument("--out", required=True, help="output folder (created)")
+    ap.add_argument("--quick", action="store_true", help=quick_help or "shorter runs")
+    ap.add_argument("--shared", default=os.environ.get("NAVEMU_SHARED", os.path.join(ROOT, "..", "shared")))
+    try:
+        a = ap.parse_args()
+    except SystemExit as e:
+        sys.exit(0 if e.code == 0 else 2)
+    os.makedirs(a.out, exist_ok=True)
+    if not os.path.isdir(a.shared):
+        print(f"{name}: {a.shared} not found: skipped (real data absent)")
+        with open(os.path.join(a.out, name + ".md"), "w") as f:
+            f.write(f"## {title}\n\nThe real data (`{a.shared}`) is absent: section skipped, "
+                    "no band checks made.\n")
+        sys.exit(0)
+    check_tools(name, a.navemu)
+    return a
+
+
+def run_gnuplot(script, what, cwd=None):
+    """Runs a whole gnuplot script; on failure says so on stderr and returns False."""
+    r = subprocess.run(["gnuplot"], input=script, capture_output=True, text=True, cwd=cwd)
+    if r.returncode != 0:
+        print(f"gnuplot failed for {what}:\n{r.stderr}", file=sys.stderr)
+    return r.returncode == 0
+
+
 class Section:
     def __init__(self, name, description):
         self.name = name
@@ -27,10 +79,7 @@ class Section:
         except SystemExit as e:
             sys.exit(0 if e.code == 0 else 2)
         self.navemu = os.path.abspath(self.args.navemu)
-        if not (os.path.isfile(self.navemu) and os.access(self.navemu, os.X_OK)):
-            die(f"{name}: navemu not found or not executable: {self.args.navemu}")
-        if shutil.which("gnuplot") is None:
-            die(f"{name}: gnuplot not found (apt-get install gnuplot-nox)")
+        check_tools(name, self.navemu)
         self.out = os.path.abspath(self.args.out)
         self.quick = self.args.quick
         self.work = os.path.join(self.out, f"{name}_work")
@@ -39,10 +88,8 @@ class Section:
         self.bands = []
 
     def band(self, label, value, lo, hi, fmt="{:.3g}"):
-        ok = lo <= value <= hi
+        ok = print_band(label, value, lo, hi, fmt)
         self.failed += 0 if ok else 1
-        line = f"BAND {label}: {fmt.format(value)} in [{fmt.format(lo)}, {fmt.format(hi)}]: {'ok' if ok else 'OUT'}"
-        print(line, flush=True)
         self.bands.append((label, value, lo, hi, ok, fmt))
         return ok
 
@@ -115,9 +162,7 @@ def gnuplot(script, png, size="1000,700", cwd=None):
     """Runs a gnuplot script writing PNG `png` (pngcairo, legible fonts)."""
     head = (f"set terminal pngcairo size {size} font 'DejaVu Sans,12' noenhanced\n"
             f"set output '{png}'\nset grid\nset key outside right top\n")
-    r = subprocess.run(["gnuplot"], input=head + script, capture_output=True, text=True, cwd=cwd)
-    if r.returncode != 0:
-        print(f"gnuplot failed for {png}:\n{r.stderr}", file=sys.stderr)
+    if not run_gnuplot(head + script, png, cwd):
         sys.exit(1)
 
 

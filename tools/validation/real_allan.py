@@ -15,18 +15,19 @@ and sensor; exit 1 if one is out, 2 on usage errors or missing data, 0 (with a n
 ../shared. Full: 3 h runs (as tests/integration/test_imu_acceptance.cpp), 10 tau per decade;
 quick: 1 h runs, 5 tau per decade, tau up to 360 s. Standard library only; gnuplot.
 """
-import argparse
 import concurrent.futures
 import csv
 import math
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True
+sys.path.insert(0, HERE)
+import _common as common  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(HERE))
 NAME = "real_allan"
 FACTOR = 1.5
@@ -40,12 +41,6 @@ PARTS = [("bmi160", "BMI160", "Bosch BMI160"),
 RADPS_TO_DEGPH = 180.0 / math.pi * 3600.0
 SENSORS = [("gyr", "gyroscope", ["w_x_radps", "w_y_radps", "w_z_radps"], RADPS_TO_DEGPH, "deg/h"),
            ("acc", "accelerometer", ["f_x_mps2", "f_y_mps2", "f_z_mps2"], 1.0, "m/s^2")]
-
-
-def band(name, value, lo, hi):
-    ok = lo <= value <= hi
-    print(f"BAND {name}: {value:.3f} in [{lo:.3f}, {hi:.3f}]: {'ok' if ok else 'OUT'}", flush=True)
-    return ok
 
 
 def read_column(path):
@@ -80,8 +75,6 @@ def generate(navemu, profile, duration, ppd, work):
 
 
 def plot(out, profile, part, per_sensor, duration, ppd):
-    if not shutil.which("gnuplot"):
-        return None
     png = f"{NAME}_{profile}.png"
     with tempfile.TemporaryDirectory() as t:
         panels = []
@@ -118,34 +111,14 @@ set format y "10^{{%L}}"
 set grid xtics ytics mxtics mytics
 set key bottom left font "Sans,10"
 """ + "\n".join(panels) + "\nunset multiplot\n"
-        r = subprocess.run(["gnuplot"], input=script, text=True, capture_output=True)
-        if r.returncode != 0:
-            print(f"{NAME}: gnuplot failed: {r.stderr.strip()}", file=sys.stderr)
+        if not common.run_gnuplot(script, png):
             return None
     return png
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--navemu", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--shared", default=os.environ.get("NAVEMU_SHARED", os.path.join(ROOT, "..", "shared")))
-    a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
+    a = common.real_data_args(NAME, __doc__, "IMU Allan deviation against real parts")
     md_path = os.path.join(a.out, NAME + ".md")
-    if not os.path.isdir(a.shared):
-        print(f"{NAME}: {a.shared} not found: skipped (real data absent)")
-        with open(md_path, "w") as f:
-            f.write("## IMU Allan deviation against real parts\n\nThe real data "
-                    f"(`{a.shared}`) is absent: section skipped, no band checks made.\n")
-        return 0
-    if not os.access(a.navemu, os.X_OK):
-        print(f"{NAME}: {a.navemu} is not an executable", file=sys.stderr)
-        return 2
-    if shutil.which("gnuplot") is None:
-        print(f"{NAME}: gnuplot not found (apt-get install gnuplot-nox)", file=sys.stderr)
-        return 2
     data = os.path.join(a.shared, "data", "imu", "imu_utils_allan")
     for _, prefix, _ in PARTS:
         for kind in ("gyr", "acc"):
@@ -188,7 +161,7 @@ def main():
                     worst, worst_tau = ratio, t
             lo_t = min(t for t in real_t if t >= TAU_MIN)
             hi_t = max(t for t in real_t if t <= tau_hi)
-            ok = n > 0 and band(f"real_allan {profile} {label} worst ratio", worst, 1 / FACTOR, FACTOR)
+            ok = n > 0 and common.print_band(f"real_allan {profile} {label} worst ratio", worst, 1 / FACTOR, FACTOR)
             failures += not ok
             rows.append(f"| {part} | `{profile}` | {label} | {n} ({lo_t:.2g}-{hi_t:.3g} s) | "
                         f"{worst:.3f} at {worst_tau:.3g} s | {'ok' if ok else 'OUT'} |"

@@ -13,18 +13,18 @@ Exit code: follows real-vs-synthetic's guard (--min-in-band 16): 1 only when few
 the 21 figures are in band; 2 on usage errors or missing data; 0 (with a note) without
 ../shared. Standard library only; gnuplot for the figure.
 """
-import argparse
 import importlib.machinery
 import importlib.util
 import os
-import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True
+sys.path.insert(0, HERE)
+import _common as common  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(HERE))
 NAME = "real_spp"
 MIN_IN_BAND = 16          # the guard of real-vs-synthetic used by the README's claim
@@ -55,22 +55,8 @@ def load_rvs():
     return mod
 
 
-def band(name, value, lo, hi):
-    ok = lo <= value <= hi
-    print(f"BAND {name}: {value:.3f} in [{lo:.3f}, {hi:.3f}]: {'ok' if ok else 'OUT'}", flush=True)
-    return ok
-
-
-def write_skip(out, why):
-    with open(os.path.join(out, NAME + ".md"), "w") as f:
-        f.write(f"## Real versus synthetic single-point positioning\n\n{why}: section skipped, "
-                "no band checks made.\n")
-
-
 def plot(out, rows, factor, seeds):
     """rows: (station, label, ratio, lo, hi) -> log-scale ratio per figure with the band."""
-    if not shutil.which("gnuplot"):
-        return None
     png = NAME + "_ratios.png"
     with tempfile.TemporaryDirectory() as t:
         dat = os.path.join(t, "r.dat")
@@ -95,31 +81,14 @@ plot "{dat}" using 1:2:3:4:xticlabels(5) with yerrorbars pt 7 ps 1.3 lw 1.5 titl
      {1 / factor} with lines lw 2 dt 2 lc rgb "red" notitle, \\
      1 with lines lw 1 lc rgb "gray" notitle
 """
-        r = subprocess.run(["gnuplot"], input=script, text=True, capture_output=True)
-        if r.returncode != 0:
-            print(f"{NAME}: gnuplot failed: {r.stderr.strip()}", file=sys.stderr)
+        if not common.run_gnuplot(script, png):
             return None
     return png
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--navemu", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--quick", action="store_true", help=f"{SEEDS_QUICK} seeds instead of {SEEDS_FULL}")
-    ap.add_argument("--shared", default=os.environ.get("NAVEMU_SHARED", os.path.join(ROOT, "..", "shared")))
-    a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
-    if not os.path.isdir(a.shared):
-        print(f"{NAME}: {a.shared} not found: skipped (real data absent)")
-        write_skip(a.out, f"The real data (`{a.shared}`) is absent")
-        return 0
-    if not os.access(a.navemu, os.X_OK):
-        print(f"{NAME}: {a.navemu} is not an executable", file=sys.stderr)
-        return 2
-    if shutil.which("gnuplot") is None:
-        print(f"{NAME}: gnuplot not found (apt-get install gnuplot-nox)", file=sys.stderr)
-        return 2
+    a = common.real_data_args(NAME, __doc__, "Real versus synthetic single-point positioning",
+                              quick_help=f"{SEEDS_QUICK} seeds instead of {SEEDS_FULL}")
     rvs = load_rvs()
     data = os.path.join(a.shared, "data", "gnss")
     for _, obs_rel, nav_rel, *_ in rvs.STATIONS:
@@ -148,7 +117,7 @@ def main():
                 vals = [x[key] for x in runs]
                 s = statistics.median(vals)
                 ratio = s / r if r > 0 else float("inf")
-                ok = band(f"real_spp {name} {label.replace(' %', '%')} ratio", ratio,
+                ok = common.print_band(f"real_spp {name} {label.replace(' %', '%')} ratio", ratio,
                           1 / rvs.FACTOR, rvs.FACTOR)
                 total += 1
                 in_band += ok

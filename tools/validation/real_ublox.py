@@ -17,7 +17,6 @@ if one is out, 2 on usage errors or missing data, 0 (with a note) without ../sha
 Full: seeds 1..20 pooled per capture; quick: seed 1, at most 180 s per capture.
 Standard library only; gnuplot for the figure.
 """
-import argparse
 import csv
 import datetime
 import math
@@ -31,6 +30,9 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True
+sys.path.insert(0, HERE)
+import _common as common  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(HERE))
 NAME = "real_ublox"
 FACTOR = 2.0
@@ -54,12 +56,6 @@ CAPTURES = [
     ("nav-solutions/F9T-L2-5min.ubx", "ZED-F9T (L2)", "u-blox ZED-F9T, L1/L2", "ublox-f9p", True, ""),
 ]
 QUANTITIES = [("hacc", "hAcc", "m"), ("vacc", "vAcc", "m"), ("pdop", "pDOP", "-"), ("numsv", "numSV", "-")]
-
-
-def band(name, value, lo, hi):
-    ok = lo <= value <= hi
-    print(f"BAND {name}: {value:.3f} in [{lo:.3f}, {hi:.3f}]: {'ok' if ok else 'OUT'}", flush=True)
-    return ok
 
 
 def strip_comments(data):
@@ -151,8 +147,6 @@ def config_text(profile_path, lat, lon, h, start, seed):
 
 
 def plot(out, results):
-    if not shutil.which("gnuplot"):
-        return None
     png = NAME + "_medians.png"
     with tempfile.TemporaryDirectory() as t:
         dat = os.path.join(t, "m.dat")
@@ -187,34 +181,14 @@ set xtics rotate by 20 right font "Sans,10"
 set grid ytics
 set key top left font "Sans,10"
 """ + "\n".join(panels) + "\nunset multiplot\n"
-        r = subprocess.run(["gnuplot"], input=script, text=True, capture_output=True)
-        if r.returncode != 0:
-            print(f"{NAME}: gnuplot failed: {r.stderr.strip()}", file=sys.stderr)
+        if not common.run_gnuplot(script, png):
             return None
     return png
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--navemu", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--shared", default=os.environ.get("NAVEMU_SHARED", os.path.join(ROOT, "..", "shared")))
-    a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
+    a = common.real_data_args(NAME, __doc__, "Real u-blox receivers' accuracy reports")
     md_path = os.path.join(a.out, NAME + ".md")
-    if not os.path.isdir(a.shared):
-        print(f"{NAME}: {a.shared} not found: skipped (real data absent)")
-        with open(md_path, "w") as f:
-            f.write("## Real u-blox receivers' accuracy reports\n\nThe real data "
-                    f"(`{a.shared}`) is absent: section skipped, no band checks made.\n")
-        return 0
-    if not os.access(a.navemu, os.X_OK):
-        print(f"{NAME}: {a.navemu} is not an executable", file=sys.stderr)
-        return 2
-    if shutil.which("gnuplot") is None:
-        print(f"{NAME}: gnuplot not found (apt-get install gnuplot-nox)", file=sys.stderr)
-        return 2
     logs = os.path.join(a.shared, "data", "receiver_logs")
     for rel, *_ in CAPTURES:
         if not os.path.isfile(os.path.join(logs, rel)):
@@ -263,7 +237,7 @@ def main():
             for k in ("hacc", "vacc"):
                 ratio = res["sim"][k][0] / res["real"][k][0]
                 if checked:
-                    ok = band(f"real_ublox {label.replace(' ', '_')} median {k} ratio", ratio,
+                    ok = common.print_band(f"real_ublox {label.replace(' ', '_')} median {k} ratio", ratio,
                               1 / FACTOR, FACTOR)
                     checks += 1
                     failures += not ok
