@@ -108,17 +108,19 @@ std::optional<std::vector<std::string>> YamlMap::text_list(const std::string& ke
   return out;
 }
 
+double YamlMap::finite_number(const std::string& key, const std::string& text) const {
+  double x = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(x))
+    fail(key, fmt::format("'{}' is not a number", text));
+  return x;
+}
+
 std::optional<std::vector<double>> YamlMap::number_list(const std::string& key) {
   const std::optional<std::vector<std::string>> texts = text_list(key);
   if (!texts) return std::nullopt;
   std::vector<double> out;
-  for (const std::string& t : *texts) {
-    double x = 0.0;
-    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-    if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(x))
-      fail(key, fmt::format("'{}' is not a number", t));
-    out.push_back(x);
-  }
+  for (const std::string& t : *texts) out.push_back(finite_number(key, t));
   return out;
 }
 
@@ -130,14 +132,7 @@ std::optional<std::vector<std::pair<double, double>>> YamlMap::number_pairs(cons
   std::vector<std::pair<double, double>> out;
   for (const auto& item : *o) {
     if (!item.IsSequence() || item.size() != 2 || !item[0].IsScalar() || !item[1].IsScalar()) bad();
-    double x[2] = {0.0, 0.0};
-    for (std::size_t i = 0; i < 2; ++i) {
-      const std::string t = item[i].Scalar();
-      const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x[i]);
-      if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(x[i]))
-        fail(key, fmt::format("'{}' is not a number", t));
-    }
-    out.emplace_back(x[0], x[1]);
+    out.emplace_back(finite_number(key, item[0].Scalar()), finite_number(key, item[1].Scalar()));
   }
   return out;
 }

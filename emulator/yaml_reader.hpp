@@ -45,6 +45,8 @@ class YamlMap {
 
  private:
   std::optional<YAML::Node> value(const std::string& key);
+  // `text` as a finite number, else fail(key, ...).
+  double finite_number(const std::string& key, const std::string& text) const;
   std::filesystem::path file_;
   YAML::Node node_;
   std::string where_;

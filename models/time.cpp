@@ -342,20 +342,20 @@ GpsTime gps_from_utc(const CalendarTime& utc, std::optional<int> after_table_s) 
   return GpsTime{uniform + static_cast<std::int64_t>(leap) * kNsPerS};
 }
 
+constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // Unix time of 1980-01-06T00:00:00Z
+
 GpsTime gps_from_unix_ns(std::int64_t unix_ns) {
-  constexpr std::int64_t kGpsEpochUnix_s = 315'964'800;  // 1980-01-06T00:00:00Z
   const std::int64_t unix_s = unix_ns / kNsPerS - (unix_ns % kNsPerS < 0 ? 1 : 0);
   const CalendarTime utc = calendar_from_gps(GpsTime{(unix_s - kGpsEpochUnix_s) * kNsPerS});
   return GpsTime{gps_from_utc(utc).ns + (unix_ns - unix_s * kNsPerS)};
 }
 
 std::int64_t unix_ns_from_gps(GpsTime t) {
-  constexpr std::int64_t kGpsEpochUnix_ns = 315'964'800 * kNsPerS;  // 1980-01-06T00:00:00Z
   const CalNs c = utc_cal_ns_from_gps(t, std::nullopt);
   // 23:59:60.x reads as 23:59:59.x.
   const std::int64_t seconds = c.second == 60 ? 59 : c.second;
   const std::int64_t days = days_from_civil(c.year, c.month, c.day) - kGpsEpochDays;
-  return kGpsEpochUnix_ns + (days * 86'400 + c.hour * 3600 + c.minute * 60 + seconds) * kNsPerS +
+  return kGpsEpochUnix_s * kNsPerS + (days * 86'400 + c.hour * 3600 + c.minute * 60 + seconds) * kNsPerS +
          c.nano;
 }
 
