@@ -243,8 +243,8 @@ md += ["Where navemu lands: the two stationary runs are nearly identical "
        "trail 2 truth; the paper's own simulated values straddle its truth by a factor 0.5 to 5, "
        "so this column constrains little. On the tracks navemu's total (error only) is "
        f"{results['circle']['tot']:.2f} / {results['line']['tot']:.2f} m, near the real "
-       "receiver's 2.67 / 2.65 m and about four times the paper's simulated 0.85 m. The OUT "
-       "checks above are these differences, not failures to run.", ""]
+       "receiver's 2.67 / 2.65 m and about four times the paper's simulated 0.85 m. The known "
+       "gaps above are these differences, not failures to run.", ""]
 for png, cap in figs:
     md += [f"![{png}]({png})", "", f"*Figure: {png}. {cap}*", ""]
 S.write_md("\n".join(md))

@@ -161,10 +161,11 @@ def main():
                     worst, worst_tau = ratio, t
             lo_t = min(t for t in real_t if t >= TAU_MIN)
             hi_t = max(t for t in real_t if t <= tau_hi)
-            ok = n > 0 and common.print_band(f"real_allan {profile} {label} worst ratio", worst, 1 / FACTOR, FACTOR)
-            failures += not ok
+            status = (common.print_band(f"real_allan {profile} {label} worst ratio", worst,
+                                        1 / FACTOR, FACTOR) if n else common.OUT)
+            failures += status == common.OUT
             rows.append(f"| {part} | `{profile}` | {label} | {n} ({lo_t:.2g}-{hi_t:.3g} s) | "
-                        f"{worst:.3f} at {worst_tau:.3g} s | {'ok' if ok else 'OUT'} |"
+                        f"{worst:.3f} at {worst_tau:.3g} s | {status} |"
                         if n else f"| {part} | `{profile}` | {label} | 0 | - | OUT |")
             per_sensor.append((kind, label, unit, real_t, real_axes, gen_t, gen_axes, lo_t, hi_t))
         png = plot(a.out, profile, part, per_sensor, duration, ppd)
