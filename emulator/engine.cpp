@@ -28,6 +28,7 @@
 #include "models/constellation.hpp"
 #include "models/errors.hpp"
 #include "models/imu_model.hpp"
+#include "models/prn_table.hpp"
 #include "models/receiver.hpp"
 #include "models/rinex.hpp"
 #include "transports/byte_port.hpp"
@@ -103,17 +104,21 @@ class LatenessStats {
   void add(double ms) {
     if (v_.size() < v_.capacity()) v_.push_back(ms);
   }
-  std::string summary_and_reset() {
-    if (v_.empty()) return "-";
+  // p50/p99/max of the interval into `out`, then a fresh interval.
+  void summary_and_reset(fmt::memory_buffer& out) {
+    if (v_.empty()) {
+      out.push_back('-');
+      return;
+    }
     sorted_.assign(v_.begin(), v_.end());
     std::sort(sorted_.begin(), sorted_.end());
     const auto pct = [&](double p) {
       return sorted_[std::min(sorted_.size() - 1,
                               static_cast<std::size_t>(p * static_cast<double>(sorted_.size())))];
     };
-    std::string s = fmt::format("{:.2f}/{:.2f}/{:.2f} ms", pct(0.5), pct(0.99), sorted_.back());
+    fmt::format_to(std::back_inserter(out), "{:.2f}/{:.2f}/{:.2f} ms", pct(0.5), pct(0.99),
+                   sorted_.back());
     v_.clear();
-    return s;
   }
 
  private:
@@ -130,7 +135,7 @@ const char* receiver_mode_name(ReceiverMode m) {
   return "?";
 }
 
-std::string fix_name(FixType f) {
+const char* fix_name(FixType f) {
   switch (f) {
     case FixType::kNone: return "no fix";
     case FixType::kDeadReckoning: return "DR";
@@ -168,17 +173,20 @@ void try_realtime_hardening(const RunConfig& cfg, std::ostream& log) {
   }
 }
 
-// A CSV file of the offline run, written through one buffer.
+// A CSV file of the offline run, written through one buffer. The buffer is flushed past
+// kFlushBytes and holds twice that from the start, so it never grows (rows are short).
 class CsvFile {
  public:
+  static constexpr std::size_t kFlushBytes = 1u << 16;
   CsvFile(const std::filesystem::path& path, std::string_view header) : path_(path), out_(path) {
     if (!out_) throw InputError(path.string(), 0, "--out", "cannot open for writing");
+    buf_.reserve(2 * kFlushBytes);
     buf_.append(header);
   }
   ~CsvFile() { flush(); }
   fmt::memory_buffer& buf() { return buf_; }
   void maybe_flush() {
-    if (buf_.size() > (1u << 16)) flush();
+    if (buf_.size() > kFlushBytes) flush();
   }
   void flush() {
     out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
@@ -402,11 +410,12 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   GpsTime next_service{start.ns + service_ns};
   LatenessStats lateness;
   ReceiverFix last_fix;
+  last_fix.satellites.reserve(kMaxPrn);  // copied every epoch: no allocation
   std::optional<ImuTruth> last_fix_truth;
   std::int64_t interval_epochs = 0;
   std::optional<ImuTruth> imu_before, imu_now, imu_after;
   std::int64_t window_n = -2;  // the internal step imu_now belongs to
-  fmt::memory_buffer imu_line;
+  fmt::memory_buffer imu_line, status_line;
   IdealImu last_ideal = ideal_imu_static(cfg.truth.position, Quat::Identity());
   ImuSample sample;
   const auto t_rel = [&](GpsTime t) { return seconds_between(t, start); };
@@ -473,7 +482,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     if (gnss_due && gnss_compute_time(gnss_k) <= next) {
       const GpsTime te = gnss_epoch(gnss_k);
       const std::optional<ImuTruth> tr = truth->at(te);
-      const ReceiverFix fix = receiver->update(te, tr ? &*tr : nullptr);
+      const ReceiverFix& fix = receiver->update(te, tr ? &*tr : nullptr);
       chunk.clear();
       device->encode_epoch(fix, receiver->measurements(), gnss_k, chunk);
       const GpsTime deadline{te.ns + gnss_latency_ns};
@@ -608,35 +617,42 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
 
     if (next_service <= next) next_service = GpsTime{next.ns + service_ns};
 
-    // --- Status line.
+    // --- Status line (real time only), formatted into one reused buffer: no allocation.
     if (next_status <= next) {
-      const TruthCounters* tc = truth->counters();
-      std::string fix_text = "no epoch";
-      if (receiver && interval_epochs > 0) {
-        fix_text = fmt::format("{} {}/{} sv", fix_name(last_fix.fix), last_fix.num_used,
-                               last_fix.satellites.size());
-        if (last_fix.fix != FixType::kNone) {
-          fix_text += fmt::format(" PDOP {:.1f}", last_fix.dops.pdop);
-          if (last_fix_truth) {
-            const Vec3 e = enu_error(last_fix, *last_fix_truth);
-            fix_text += fmt::format(" err {:.1f} m h {:.1f} m v", std::hypot(e.x(), e.y()),
-                                    std::abs(e.z()));
+      if (!offline) {
+        status_line.clear();
+        const auto out = std::back_inserter(status_line);
+        const CalendarTime c = utc_from_gps(next_status);
+        fmt::format_to(out, "navemu: {:02}:{:02}:{:02.0f} UTC gnss {} ep (", c.hour, c.minute,
+                       std::floor(c.second), sum.gnss_epochs);
+        if (!receiver || interval_epochs == 0) {
+          fmt::format_to(out, "no epoch");
+        } else {
+          fmt::format_to(out, "{} {}/{} sv", fix_name(last_fix.fix), last_fix.num_used,
+                         last_fix.satellites.size());
+          if (last_fix.fix != FixType::kNone) {
+            fmt::format_to(out, " PDOP {:.1f}", last_fix.dops.pdop);
+            if (last_fix_truth) {
+              const Vec3 e = enu_error(last_fix, *last_fix_truth);
+              fmt::format_to(out, " err {:.1f} m h {:.1f} m v", std::hypot(e.x(), e.y()),
+                             std::abs(e.z()));
+            }
           }
         }
-      }
-      std::uint64_t dropped = 0;
-      for (const auto& p : ports) dropped += p->counters().chunks_dropped;
-      if (can_out) dropped += can_out->totals().frames_dropped;
-      if (!offline) {
-        const CalendarTime c = utc_from_gps(next_status);
-        fmt::print(log,
-                   "navemu: {:02}:{:02}:{:02.0f} UTC gnss {} ep ({}) imu {} smp{} | jitter {} | "
-                   "late {} skipped {} dropped {} | truth {}{}\n",
-                   c.hour, c.minute, std::floor(c.second), sum.gnss_epochs, fix_text,
-                   sum.imu_samples, sum.imu_flagged ? fmt::format(" ({} flagged)", sum.imu_flagged) : "",
-                   lateness.summary_and_reset(), sum.gnss_late, sum.gnss_skipped + sum.imu_skipped,
-                   dropped, last_fix_truth || !receiver ? "ok" : "LOST",
-                   tc ? fmt::format(" (accepted {}, rejected {})", tc->accepted, tc->rejected()) : "");
+        fmt::format_to(out, ") imu {} smp", sum.imu_samples);
+        if (sum.imu_flagged) fmt::format_to(out, " ({} flagged)", sum.imu_flagged);
+        fmt::format_to(out, " | jitter ");
+        lateness.summary_and_reset(status_line);
+        std::uint64_t dropped = 0;
+        for (const auto& p : ports) dropped += p->counters().chunks_dropped;
+        if (can_out) dropped += can_out->totals().frames_dropped;
+        fmt::format_to(out, " | late {} skipped {} dropped {} | truth {}", sum.gnss_late,
+                       sum.gnss_skipped + sum.imu_skipped, dropped,
+                       last_fix_truth || !receiver ? "ok" : "LOST");
+        if (const TruthCounters* tc = truth->counters())
+          fmt::format_to(out, " (accepted {}, rejected {})", tc->accepted, tc->rejected());
+        status_line.push_back('\n');
+        log.write(status_line.data(), static_cast<std::streamsize>(status_line.size()));
         log.flush();
       }
       interval_epochs = 0;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "models/geodesy.hpp"
+#include "models/reuse.hpp"
 
 namespace navemu {
 
@@ -21,7 +22,7 @@ NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode)
   }
   if (profile.time_decimals) format_.time_decimals = *profile.time_decimals;
   gsv_.reserve(64);
-  used_.reserve(64);
+  gsa_.prns.reserve(64);
 }
 
 void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::string& out) {
@@ -65,13 +66,11 @@ void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::s
       f.geoid_separation_m = separation_m;
       nmea::encode(f, format_, out);
     } else if (name == "GSA") {
-      used_.clear();
+      nmea::GsaFields& f = reset_keeping_storage(gsa_, &nmea::GsaFields::prns);
       for (const ReceiverSatellite& s : fix.satellites)
-        if (s.used) used_.push_back(s.prn);
-      nmea::GsaFields f;
+        if (s.used) f.prns.push_back(s.prn);
       f.talker = talker;
       f.fix = fix.fix == FixType::k3D ? 3 : fix.fix == FixType::k2D ? 2 : 1;
-      f.prns = used_;
       if (valid) {
         f.pdop = fix.dops.pdop;
         f.hdop = fix.dops.hdop;

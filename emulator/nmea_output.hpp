@@ -24,7 +24,7 @@ class NmeaOutput {
   int quality_ = 1;  // GGA quality of a fix in this mode
   char mode_ = 'A';  // NMEA 2.3 mode indicator of a fix in this mode
   std::vector<nmea::GsvSatellite> gsv_;
-  std::vector<int> used_;
+  nmea::GsaFields gsa_;  // its PRN list is reused from epoch to epoch
 };
 
 }  // namespace navemu

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -63,7 +64,7 @@ TruthVerdict TruthBuffer::push(ImuTruth sample) {
     ++counters_.out_of_range;
     return TruthVerdict::kOutOfRange;
   }
-  if (!samples_.empty()) {
+  if (!empty()) {
     const GpsTime newest = samples_.back().t;
     if (sample.t == newest) {
       ++counters_.duplicate;
@@ -81,25 +82,32 @@ TruthVerdict TruthBuffer::push(ImuTruth sample) {
   // Forget what the window no longer needs: the oldest sample goes once the next one is itself
   // at or before the window's start, so any instant inside the window stays interpolable.
   const GpsTime window_start{samples_.back().t.ns - window_.ns};
-  while (samples_.size() > 2 && samples_[1].t <= window_start) samples_.pop_front();
+  while (size() > 2 && samples_[head_ + 1].t <= window_start) ++head_;
+  // Forgotten samples are removed in bulk once they are the larger part; the vector keeps its
+  // capacity, so a steady stream stops allocating once the window is full.
+  if (head_ > samples_.size() / 2) {
+    samples_.erase(samples_.begin(), samples_.begin() + static_cast<std::ptrdiff_t>(head_));
+    head_ = 0;
+  }
   return TruthVerdict::kAccepted;
 }
 
 std::optional<ImuTruth> TruthBuffer::at(GpsTime t) const {
-  if (samples_.empty() || t < samples_.front().t) return std::nullopt;
-  const ImuTruth& newest = samples_.back();
+  const std::span<const ImuTruth> held(samples_.data() + head_, size());
+  if (held.empty() || t < held.front().t) return std::nullopt;
+  const ImuTruth& newest = held.back();
   if (t >= newest.t) {
     if (t.ns - newest.t.ns > max_extrapolation_.ns) return std::nullopt;
     return extrapolate_truth(newest, t);
   }
   // The first sample after t; t lies in [*(it - 1), *it).
-  const auto it = std::upper_bound(samples_.begin(), samples_.end(), t,
+  const auto it = std::upper_bound(held.begin(), held.end(), t,
                                    [](GpsTime x, const ImuTruth& s) { return x < s.t; });
   return interpolate_truth(*(it - 1), *it, t);
 }
 
 std::optional<GpsTime> TruthBuffer::newest_time() const {
-  if (samples_.empty()) return std::nullopt;
+  if (empty()) return std::nullopt;
   return samples_.back().t;
 }
 

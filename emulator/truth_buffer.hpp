@@ -15,8 +15,8 @@
 // sample) there is no truth and the sensors report its loss.
 
 #include <cstdint>
-#include <deque>
 #include <optional>
+#include <vector>
 
 #include "models/imu_kinematics.hpp"
 #include "models/time.hpp"
@@ -50,15 +50,16 @@ class TruthBuffer {
   // the newest. Samples older than `window_s` before the newest are forgotten.
   std::optional<ImuTruth> at(GpsTime t) const;
   std::optional<GpsTime> newest_time() const;
-  bool empty() const { return samples_.empty(); }
+  bool empty() const { return size() == 0; }
   // Samples held: those within `window_s` of the newest, and the one just before that span.
-  std::size_t size() const { return samples_.size(); }
+  std::size_t size() const { return samples_.size() - head_; }
 
   const TruthCounters& counters() const { return counters_; }
   TruthCounters& counters() { return counters_; }
 
  private:
-  std::deque<ImuTruth> samples_;
+  std::vector<ImuTruth> samples_;  // held from index head_ on, oldest first
+  std::size_t head_ = 0;
   GpsTime max_extrapolation_;
   GpsTime window_;
   TruthCounters counters_;

@@ -5,6 +5,8 @@
 
 #include "models/geodesy.hpp"
 #include "protocols/gps_lnav.hpp"
+#include "models/prn_table.hpp"
+#include "models/reuse.hpp"
 
 namespace navemu {
 
@@ -127,6 +129,12 @@ lnav::LnavEphemeris to_lnav(const GpsEphemeris& e) {
 
 UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavData& nav)
     : profile_(profile), mode_(mode), nav_(nav) {
+  // Room for every PRN: copying and refilling the epoch's lists never allocates.
+  last_fix_.satellites.reserve(kMaxPrn);
+  last_meas_.sats.reserve(kMaxPrn);
+  scratch_svinfo_.channels.reserve(kMaxPrn);
+  scratch_sat_.svs.reserve(kMaxPrn);
+  scratch_rawx_.meas.reserve(kMaxPrn);
   const UbxSettings& u = *profile_.ubx;
   baud_ = profile_.baud;
   out_proto_ = static_cast<std::uint16_t>(kProtoUbx | (u.nmea_out ? kProtoNmea : 0));
@@ -632,7 +640,7 @@ bool UbxDevice::output_message(MsgId id, std::vector<std::uint8_t>& out) const {
     m.f_acc_psps = 500;
     append(m, out);
   } else if (id == kNavSvinfo) {
-    NavSvinfo m;
+    NavSvinfo& m = reset_keeping_storage(scratch_svinfo_, &NavSvinfo::channels);
     m.i_tow_ms = i_tow;
     m.global_flags = 4;  // u-blox 8 generation
     std::uint8_t chn = 0;
@@ -650,7 +658,7 @@ bool UbxDevice::output_message(MsgId id, std::vector<std::uint8_t>& out) const {
     }
     append(m, out);
   } else if (id == kNavSat) {
-    NavSat m;
+    NavSat& m = reset_keeping_storage(scratch_sat_, &NavSat::svs);
     m.i_tow_ms = i_tow;
     for (const ReceiverSatellite& s : fix.satellites) {
       NavSatSv v;
@@ -668,7 +676,7 @@ bool UbxDevice::output_message(MsgId id, std::vector<std::uint8_t>& out) const {
     append(NavEoe{i_tow}, out);
   } else if (id == kRxmRawx) {
     const WeekTow rt = to_week_tow(meas.t_receiver);
-    RxmRawx m;
+    RxmRawx& m = reset_keeping_storage(scratch_rawx_, &RxmRawx::meas);
     m.rcv_tow_s = rt.tow_s;
     m.week = static_cast<std::uint16_t>(rt.week);
     m.leap_s = static_cast<std::int8_t>(leap_s);
@@ -715,7 +723,7 @@ bool UbxDevice::output_message(MsgId id, std::vector<std::uint8_t>& out) const {
     std::uint8_t chn = 0;
     for (const SatMeasurement& s : meas.sats) {
       if (s.eph == nullptr) continue;
-      RxmSfrbx m;
+      RxmSfrbx& m = reset_keeping_storage(scratch_sfrbx_, &RxmSfrbx::words);
       m.gnss_id = 0;
       m.sv_id = static_cast<std::uint8_t>(s.prn);
       m.chn = chn++;
@@ -734,8 +742,7 @@ void UbxDevice::encode_epoch(const ReceiverFix& fix_in, const EpochMeasurements&
   last_fix_ = fix_in;
   last_meas_ = meas;
   if (restarting(fix_in.t)) {  // after CFG-RST: searching, no fix and no satellites yet
-    last_fix_ = ReceiverFix{};
-    last_fix_.t = fix_in.t;
+    reset_keeping_storage(last_fix_, &ReceiverFix::satellites).t = fix_in.t;
     last_meas_.sats.clear();
   }
   if (out_proto_ & kProtoUbx) {

@@ -75,6 +75,12 @@ class UbxDevice final : public GnssDevice {
   ReceiverFix last_fix_;
   EpochMeasurements last_meas_;
   std::vector<std::uint8_t> scratch_;
+  // Messages with lists, refilled every epoch (the lists keep their storage; output_message
+  // is const because polls use it too).
+  mutable ubx::NavSvinfo scratch_svinfo_;
+  mutable ubx::NavSat scratch_sat_;
+  mutable ubx::RxmRawx scratch_rawx_;
+  mutable ubx::RxmSfrbx scratch_sfrbx_;
 };
 
 }  // namespace navemu

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "models/orbit.hpp"
+#include "models/prn_table.hpp"
 
 namespace navemu {
 
@@ -118,9 +119,9 @@ struct MeasurementGenerator::State {
   GaussMarkov iono_common, iono_gradient_north, iono_gradient_east;
   GaussMarkov tropo_wet;
   GaussMarkov dgps_tropo;
-  std::map<int, SatProcesses> sats;
-  std::map<int, double> receivable_since;  // PRN -> time its signal became receivable, s
-  std::map<int, std::pair<double, double>> scene_phase;  // PRN -> (t s, carrier multipath m)
+  PrnTable<SatProcesses> sats;
+  PrnTable<double> receivable_since;  // time the PRN's signal became receivable, s
+  PrnTable<std::pair<double, double>> scene_phase;  // (t s, carrier multipath m)
   std::optional<GpsTime> last;
   std::vector<int> prns;
 };
@@ -139,6 +140,13 @@ MeasurementGenerator::~MeasurementGenerator() = default;
 
 EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx,
                                                  const Vec3& v_rx) {
+  EpochMeasurements out;
+  generate(t_receiver, p_rx, v_rx, out);
+  return out;
+}
+
+void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const Vec3& v_rx,
+                                    EpochMeasurements& out) {
   State& st = *state_;
   const ErrorSwitches& on = cfg_.errors;
   const double dt = st.last ? seconds_between(t_receiver, *st.last) : 0.0;
@@ -154,7 +162,7 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
     st.dgps_tropo.step(dt, st.dgps_tropo_rng);
   }
 
-  EpochMeasurements out;
+  out.sats.clear();
   out.t_receiver = t_receiver;
   out.rx_clock_bias_s = on.receiver_clock ? st.clock.bias_s() : 0.0;
   out.rx_clock_drift_sps = on.receiver_clock ? st.clock.drift_sps() : 0.0;
@@ -180,19 +188,18 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
     // threshold) is re-acquired only after the receiver's re-acquisition time.
     const bool receivable = g.dir.el_rad > 0.0 && env.received &&
                             cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
-    auto [since, fresh] = st.receivable_since.try_emplace(prn, t_s);
+    bool tracked = false;
     if (!receivable) {
-      st.receivable_since.erase(since);
-    } else if (fresh && first) {
-      since->second = t_s - cfg_.tracking.reacquisition_s;  // in track when the run starts
+      st.receivable_since.erase(prn);
+    } else {
+      auto [since, fresh] = st.receivable_since.try_emplace(prn, t_s);
+      if (fresh && first) since = t_s - cfg_.tracking.reacquisition_s;  // in track at the start
+      tracked = t_s - since >= cfg_.tracking.reacquisition_s - 1e-9;
     }
-    const bool tracked =
-        receivable && t_s - since->second >= cfg_.tracking.reacquisition_s - 1e-9;
     const CarrierArcs::Arc arc = st.arcs.update(prn, t_s, tracked);
     if (!tracked) continue;
 
-    auto [it, inserted] = st.sats.try_emplace(prn, cfg_.seed, prn, cfg_, t_s);
-    SatProcesses& sp = it->second;
+    auto [sp, inserted] = st.sats.try_emplace(prn, cfg_.seed, prn, cfg_, t_s);
     if (!inserted) sp.advance(t_s);
 
     SatMeasurement m;
@@ -242,14 +249,14 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
       m.multipath_m = env.code_error_m;
       m.nlos = env.nlos;
       phase_mp_m = env.phase_error_m;
-      const auto [prev, fresh_phase] = st.scene_phase.try_emplace(prn, t_s, phase_mp_m);
+      auto [prev, fresh_phase] = st.scene_phase.try_emplace(prn, t_s, phase_mp_m);
       // A jump of half a wavelength or more (the dominant path changed) is a cycle slip, not
       // a Doppler: no rate across it.
-      const double step_m = phase_mp_m - prev->second.second;
-      if (!fresh_phase && t_s > prev->second.first && !arc.new_arc &&
+      const double step_m = phase_mp_m - prev.second;
+      if (!fresh_phase && t_s > prev.first && !arc.new_arc &&
           std::abs(step_m) < 0.5 * kL1WavelengthM)
-        doppler_mp_mps = step_m / (t_s - prev->second.first);
-      prev->second = {t_s, phase_mp_m};
+        doppler_mp_mps = step_m / (t_s - prev.first);
+      prev = {t_s, phase_mp_m};
     } else if (on.multipath) {
       m.multipath_m = cfg_.multipath_zenith_sigma_m / std::max(sin_el, 0.05) * sp.multipath.value();
     }
@@ -321,7 +328,6 @@ EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3&
     }
     out.sats.push_back(std::move(m));
   }
-  return out;
 }
 
 SolverOptions MeasurementGenerator::solver_options() const {
@@ -344,11 +350,16 @@ SolverOptions MeasurementGenerator::solver_options() const {
 
 std::vector<RangeMeasurement> MeasurementGenerator::solver_input(const EpochMeasurements& e) const {
   std::vector<RangeMeasurement> out;
-  out.reserve(e.sats.size());
+  solver_input(e, out);
+  return out;
+}
+
+void MeasurementGenerator::solver_input(const EpochMeasurements& e,
+                                        std::vector<RangeMeasurement>& out) const {
+  out.clear();
   for (const SatMeasurement& m : e.sats)
     out.push_back(make_range_measurement(*m.eph, e.t_receiver, m.engine_pseudorange_m,
                                          m.signals[0]->doppler_hz));
-  return out;
 }
 
 }  // namespace navemu

@@ -162,10 +162,14 @@ class MeasurementGenerator {
   // `v_rx_ecef_mps`. Calls must come in increasing time.
   EpochMeasurements generate(GpsTime t_receiver, const Vec3& p_rx_ecef_m,
                              const Vec3& v_rx_ecef_mps = Vec3::Zero());
+  // The same into `out`, reusing its storage (the real-time loop's form).
+  void generate(GpsTime t_receiver, const Vec3& p_rx_ecef_m, const Vec3& v_rx_ecef_mps,
+                EpochMeasurements& out);
 
   // The measurements the receiver's position engine uses in the configured mode, with the
   // solver options that go with them (which corrections the receiver applies).
   std::vector<RangeMeasurement> solver_input(const EpochMeasurements& e) const;
+  void solver_input(const EpochMeasurements& e, std::vector<RangeMeasurement>& out) const;
   SolverOptions solver_options() const;
 
   const MeasurementConfig& config() const { return cfg_; }

@@ -3,14 +3,23 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/prn_table.hpp"
+#include "models/reuse.hpp"
+
 namespace navemu {
 
 
 Receiver::Receiver(const NavData& nav, const ReceiverParams& p)
-    : p_(p), gen_(nav, p.measurement), ideal_rng_(p.measurement.seed, stream_id("ideal_fix")) {}
+    : p_(p), gen_(nav, p.measurement), ideal_rng_(p.measurement.seed, stream_id("ideal_fix")) {
+  // Room for every PRN: a satellite rising never makes an epoch allocate.
+  meas_.sats.reserve(kMaxPrn);
+  solver_input_.reserve(kMaxPrn);
+  solution_.sats.reserve(kMaxPrn);
+  fix_.satellites.reserve(kMaxPrn);
+}
 
-ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
-  ReceiverFix out;
+const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
+  ReceiverFix& out = reset_keeping_storage(fix_, &ReceiverFix::satellites);
   out.t = t;
   meas_.sats.clear();
   // The generator's processes need increasing times; a repeated epoch reports no fix.
@@ -19,25 +28,25 @@ ReceiverFix Receiver::update(GpsTime t, const ImuTruth* truth) {
 
   const Vec3 p_ecef = ecef_from_geodetic(truth->position);
   const Vec3 v_ecef = R_ned_from_ecef(truth->position).transpose() * truth->v_ned_mps;
-  EpochMeasurements e = gen_.generate(t, p_ecef, v_ecef);
+  EpochMeasurements& e = meas_;
+  gen_.generate(t, p_ecef, v_ecef, e);
 
   // Channels: the highest satellites when more are in view than the receiver can track.
   if (static_cast<int>(e.sats.size()) > p_.max_channels) {
-    std::vector<SatMeasurement> by_el = e.sats;
-    std::nth_element(by_el.begin(), by_el.begin() + p_.max_channels - 1, by_el.end(),
+    std::nth_element(e.sats.begin(), e.sats.begin() + p_.max_channels - 1, e.sats.end(),
                      [](const SatMeasurement& a, const SatMeasurement& b) {
                        return a.dir.el_rad > b.dir.el_rad;
                      });
-    by_el.resize(static_cast<std::size_t>(p_.max_channels));
-    std::sort(by_el.begin(), by_el.end(),
+    e.sats.resize(static_cast<std::size_t>(p_.max_channels));
+    std::sort(e.sats.begin(), e.sats.end(),
               [](const SatMeasurement& a, const SatMeasurement& b) { return a.prn < b.prn; });
-    e.sats = std::move(by_el);
   }
 
-  meas_ = e;
   SolverOptions opt = gen_.solver_options();
   opt.initial_p_ecef_m = last_fix_ecef_m_;
-  const Solution sol = solve(gen_.solver_input(e), e.t_receiver, opt);
+  gen_.solver_input(e, solver_input_);
+  solve(solver_input_, e.t_receiver, opt, solution_);
+  const Solution& sol = solution_;
 
   double sum_sq = 0.0;
   for (const SatMeasurement& m : e.sats) {

@@ -49,8 +49,10 @@ class Receiver {
   // `nav` must outlive the receiver.
   Receiver(const NavData& nav, const ReceiverParams& p);
   // The fix at epoch t for a receiver at `truth` (position and velocity); without truth (its
-  // stream was lost) the receiver reports no fix and keeps no satellites.
-  ReceiverFix update(GpsTime t, const ImuTruth* truth);
+  // stream was lost) the receiver reports no fix and keeps no satellites. The reference stays
+  // valid until the next update; the receiver reuses its storage, so a steady run allocates
+  // nothing per epoch.
+  const ReceiverFix& update(GpsTime t, const ImuTruth* truth);
   const ReceiverParams& params() const { return p_; }
   // The raw measurements of the last update (tracked satellites), for raw-data output.
   const EpochMeasurements& measurements() const { return meas_; }
@@ -61,6 +63,9 @@ class Receiver {
   std::optional<GpsTime> last_t_;
   Vec3 last_fix_ecef_m_ = Vec3::Zero();
   EpochMeasurements meas_;
+  std::vector<RangeMeasurement> solver_input_;
+  Solution solution_;
+  ReceiverFix fix_;
   RandomStream ideal_rng_;
 };
 

@@ -32,8 +32,8 @@ SatErrors::SatErrors(const SatErrorParams& p, std::uint64_t seed) : p_(p), seed_
 
 double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
                                 const Vec3& sat_v_ecef_mps, const Vec3& los_unit_ecef) {
-  auto it = sats_.find(prn);
-  if (it == sats_.end()) {
+  Sat* found = sats_.find(prn);
+  if (found == nullptr) {
     // One stream per PRN; the four processes draw from it in a fixed order (radial, along,
     // cross, clock) so a PRN's errors do not depend on which other PRNs were seen.
     RandomStream rng(seed_, stream_id("sat_errors", prn));
@@ -41,9 +41,9 @@ double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
     GaussMarkov along(p_.along_sigma_m, p_.tau_s, rng);
     GaussMarkov cross(p_.cross_sigma_m, p_.tau_s, rng);
     GaussMarkov clock(p_.clock_sigma_m, p_.tau_s, rng);
-    it = sats_.emplace(prn, Sat{t_s, radial, along, cross, clock, rng}).first;
+    found = &sats_.try_emplace(prn, Sat{t_s, radial, along, cross, clock, rng}).first;
   } else {
-    Sat& s = it->second;
+    Sat& s = *found;
     const double dt = t_s - s.t_s;
     if (dt > 0.0) {
       s.radial.step(dt, s.rng);
@@ -53,7 +53,7 @@ double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
       s.t_s = t_s;
     }
   }
-  const Sat& s = it->second;
+  const Sat& s = *found;
 
   // Orbit error of the broadcast position (broadcast - true) in ECEF: the radial / along /
   // cross components on the frame's unit vectors (rows of R_rac_from_ecef).
@@ -64,9 +64,9 @@ double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
 }
 
 SatErrors::Terms SatErrors::terms(int prn) const {
-  const auto it = sats_.find(prn);
-  if (it == sats_.end()) return {};
-  const Sat& s = it->second;
+  const Sat* found = sats_.find(prn);
+  if (found == nullptr) return {};
+  const Sat& s = *found;
   return {s.radial.value(), s.along.value(), s.cross.value(), s.clock.value()};
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // Errors of the broadcast satellite orbit and clock as the user sees them.
 
-#include <map>
 
 #include "models/geodesy.hpp"
+#include "models/prn_table.hpp"
 #include "models/random.hpp"
 
 namespace navemu {
@@ -78,7 +78,7 @@ class SatErrors {
   };
   SatErrorParams p_;
   std::uint64_t seed_;
-  std::map<int, Sat> sats_;
+  PrnTable<Sat> sats_;
 };
 
 }  // namespace navemu

@@ -2,17 +2,22 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "models/orbit.hpp"
+#include "models/reuse.hpp"
 
 namespace navemu {
 
 namespace {
 
 using Mat4 = Eigen::Matrix4d;
-using MatX = Eigen::MatrixXd;
-using VecX = Eigen::VectorXd;
+// Row-bounded matrices: Eigen keeps them on the stack (no allocation per epoch).
+constexpr int kMaxRows = static_cast<int>(kMaxSolverSatellites) + 1;  // + the height constraint
+using MatN4 = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, kMaxRows, 4>;
+using VecN = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxRows, 1>;
 
 // An ECEF position is taken as known once it is away from the Earth's centre.
 bool position_known(const Vec3& p) { return p.norm() > 1e3; }
@@ -43,10 +48,11 @@ double ura_upper_bound_m(double ura_m) {
 
 }  // namespace
 
-Dops dops_from_directions(const std::vector<AzEl>& dirs) {
+Dops dops_from_directions(std::span<const AzEl> all) {
   Dops d;
+  const std::span<const AzEl> dirs = all.first(std::min<std::size_t>(all.size(), kMaxRows));
   if (dirs.size() < 4) return d;
-  MatX h(dirs.size(), 4);
+  MatN4 h(static_cast<Eigen::Index>(dirs.size()), 4);
   for (std::size_t i = 0; i < dirs.size(); ++i) {
     const double ce = std::cos(dirs[i].el_rad);
     const auto r = static_cast<Eigen::Index>(i);
@@ -88,7 +94,15 @@ RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_recei
 
 Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const SolverOptions& opt) {
   Solution sol;
-  sol.sats.resize(meas.size());
+  solve(meas, t, opt, sol);
+  return sol;
+}
+
+void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions& opt,
+           Solution& sol) {
+  const std::span<const RangeMeasurement> meas =
+      all.first(std::min(all.size(), kMaxSolverSatellites));
+  reset_keeping_storage(sol, &Solution::sats).sats.resize(meas.size());
   Vec3 p = opt.initial_p_ecef_m;
   double clk = 0.0;
   const bool prior_known = position_known(p);
@@ -97,8 +111,8 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
   const double sa2 = opt.sigma_a_m * opt.sigma_a_m;
   const double sb2 = opt.sigma_b_m * opt.sigma_b_m;
 
-  std::vector<Row> rows;
-  rows.reserve(meas.size());
+  std::array<Row, kMaxSolverSatellites> row_store;
+  std::size_t n_sat_rows = 0;
   bool converged = false;
   Mat3 cov = Mat3::Zero();  // of the last iteration's normal equations
   bool hold_height = false;
@@ -110,7 +124,7 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
   // Iterated weighted least squares on the linearised pseudorange equations
   // P = |R(w tau) p_sat - p| + c dt_rx - c dt_sat + I + T  (RTKLIB pntpos / ESA GNSS Book I, 6.1).
   for (int iter = 0; iter < opt.max_iterations; ++iter) {
-    rows.clear();
+    n_sat_rows = 0;
     const bool known = position_known(p);
     const Geodetic geo = known ? geodetic_from_ecef(p) : Geodetic{};
     for (std::size_t i = 0; i < meas.size(); ++i) {
@@ -140,27 +154,27 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
       double var = sa2 + sb2 / sin_el + m.sat_variance_m2;
       if (known && opt.klobuchar) var += 0.25 * out.iono_m * out.iono_m;
       if (known && opt.saastamoinen) var += tropo_variance_m2(dir.el_rad);
-      rows.push_back(Row{los / range, out.residual_m, var, i});
+      row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i};
     }
 
-    hold_height = rows.size() == 3 && opt.allow_2d && prior_known;
-    const std::size_t n_rows = rows.size() + (hold_height ? 1 : 0);
-    if (rows.size() < 3 || n_rows < 4) break;
+    hold_height = n_sat_rows == 3 && opt.allow_2d && prior_known;
+    const std::size_t n_rows = n_sat_rows + (hold_height ? 1 : 0);
+    if (n_sat_rows < 3 || n_rows < 4) break;
 
-    MatX h(static_cast<Eigen::Index>(n_rows), 4);
-    VecX v(static_cast<Eigen::Index>(n_rows));
-    VecX w(static_cast<Eigen::Index>(n_rows));
-    for (std::size_t k = 0; k < rows.size(); ++k) {
+    MatN4 h(static_cast<Eigen::Index>(n_rows), 4);
+    VecN v(static_cast<Eigen::Index>(n_rows));
+    VecN w(static_cast<Eigen::Index>(n_rows));
+    for (std::size_t k = 0; k < n_sat_rows; ++k) {
       const auto r = static_cast<Eigen::Index>(k);
-      h.row(r) << -rows[k].u.transpose(), 1.0;
-      v(r) = rows[k].residual_m;
-      w(r) = 1.0 / rows[k].variance_m2;
+      h.row(r) << -row_store[k].u.transpose(), 1.0;
+      v(r) = row_store[k].residual_m;
+      w(r) = 1.0 / row_store[k].variance_m2;
     }
     if (hold_height) {
       // Pseudo-observation: the height stays at the prior height (1 cm sigma).
       const Geodetic g = geodetic_from_ecef(p);
       const Vec3 up = R_enu_from_ecef(g).row(2).transpose();
-      const auto r = static_cast<Eigen::Index>(rows.size());
+      const auto r = static_cast<Eigen::Index>(n_sat_rows);
       h.row(r) << up.transpose(), 0.0;
       v(r) = h_hold_m - g.h_m;
       w(r) = 1e4;
@@ -169,7 +183,8 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
     Eigen::FullPivLU<Mat4> lu(n);
     if (!lu.isInvertible()) break;
     cov = lu.inverse().topLeftCorner<3, 3>();
-    const Eigen::Vector4d dx = lu.solve(h.transpose() * (w.asDiagonal() * v));
+    const Eigen::Vector4d hwv = h.transpose() * (w.asDiagonal() * v);
+    const Eigen::Vector4d dx = lu.solve(hwv);
     p += dx.head<3>();
     clk += dx(3);
     settled = settled || dx.head<3>().norm() < 1e4;
@@ -180,34 +195,36 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
     }
   }
 
-  if (!converged) return sol;
+  if (!converged) return;
 
   // Residuals against the final estimate were computed in the last pass before the update;
   // the update is below the convergence threshold, so they stand.
   sol.p_ecef_m = p;
   sol.clock_m = clk;
   sol.cov_ecef_m2 = cov;
-  sol.num_used = static_cast<int>(rows.size());
+  sol.num_used = static_cast<int>(n_sat_rows);
   sol.fix = hold_height ? FixType::k2D : FixType::k3D;
-  std::vector<AzEl> dirs;
-  dirs.reserve(rows.size());
-  for (const Row& r : rows)
-    dirs.push_back({sol.sats[r.index].az_deg * kDegToRad, sol.sats[r.index].el_deg * kDegToRad});
-  sol.dops = dops_from_directions(dirs);
+  std::array<AzEl, kMaxSolverSatellites> dirs;
+  for (std::size_t k = 0; k < n_sat_rows; ++k) {
+    const SatResidual& r = sol.sats[row_store[k].index];
+    dirs[k] = {r.az_deg * kDegToRad, r.el_deg * kDegToRad};
+  }
+  sol.dops = dops_from_directions(std::span<const AzEl>(dirs.data(), n_sat_rows));
 
   // Velocity and clock drift from range rates (-lambda * Doppler), least squares. With the
   // satellite state rotated into the ECEF frame at reception (which accounts for the Earth's
   // rotation during the flight), the geometric range rate satisfies
   //   rr (1 + u.v_sat,inertial / c) = u.(R v_sat - v_rx),
   // the factor being the light-time derivative; the clocks add c (d(dt_rx)/dt - d(dt_sat)/dt).
-  std::vector<std::size_t> with_rate;
-  for (const Row& r : rows)
-    if (meas[r.index].range_rate_mps) with_rate.push_back(r.index);
-  if (with_rate.size() >= 4) {
-    MatX hv(static_cast<Eigen::Index>(with_rate.size()), 4);
-    VecX vv(static_cast<Eigen::Index>(with_rate.size()));
+  std::array<std::size_t, kMaxSolverSatellites> with_rate;
+  std::size_t n_rate = 0;
+  for (std::size_t k = 0; k < n_sat_rows; ++k)
+    if (meas[row_store[k].index].range_rate_mps) with_rate[n_rate++] = row_store[k].index;
+  if (n_rate >= 4) {
+    MatN4 hv(static_cast<Eigen::Index>(n_rate), 4);
+    VecN vv(static_cast<Eigen::Index>(n_rate));
     const Vec3 w(0.0, 0.0, kOmegaEarth_radps);
-    for (std::size_t k = 0; k < with_rate.size(); ++k) {
+    for (std::size_t k = 0; k < n_rate; ++k) {
       const RangeMeasurement& m = meas[with_rate[k]];
       const double tau_s = (m.sat_p_ecef_m - p).norm() / kSpeedOfLight_mps;
       const Vec3 ps = rotate_earth(m.sat_p_ecef_m, tau_s);
@@ -218,11 +235,10 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
       hv.row(r) << -u.transpose() / light_time, 1.0;
       vv(r) = *m.range_rate_mps - (u.dot(vs) / light_time - m.sat_clock_drift_mps);
     }
-    const Eigen::Vector4d x = hv.colPivHouseholderQr().solve(vv);
+    const Eigen::Vector4d x = Eigen::ColPivHouseholderQR<MatN4>(hv).solve(vv);
     sol.v_ecef_mps = x.head<3>();
     sol.clock_drift_mps = x(3);
   }
-  return sol;
 }
 
 }  // namespace navemu

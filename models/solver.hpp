@@ -4,6 +4,7 @@
 // This same solver is the emulator's receiver: DOP enters the output through it.
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "models/atmosphere.hpp"
@@ -82,10 +83,18 @@ RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_recei
                                         double pseudorange_m,
                                         std::optional<double> doppler_l1_hz = {});
 
+// The solver's matrices live on the stack up to this many satellites (no allocation per epoch);
+// measurements beyond it are not used.
+inline constexpr std::size_t kMaxSolverSatellites = 127;
+
 Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const SolverOptions& opt);
+// The same into `sol`, reusing its storage: the real-time loop's form (no allocation once
+// sol.sats has grown to the satellites in view).
+void solve(std::span<const RangeMeasurement> meas, GpsTime t, const SolverOptions& opt,
+           Solution& sol);
 
 // DOPs of a satellite set seen from a receiver (unit weights), from the line-of-sight unit
 // vectors in ENU. Needs at least 4 directions; all zero otherwise.
-Dops dops_from_directions(const std::vector<AzEl>& dirs);
+Dops dops_from_directions(std::span<const AzEl> dirs);
 
 }  // namespace navemu

@@ -60,7 +60,7 @@ double cn0_dbhz(const Cn0Model& m, double el_rad) {
 }
 
 CarrierArcs::Arc CarrierArcs::update(int prn, double t_s, bool tracked) {
-  State& s = state_[prn];
+  State& s = state_.try_emplace(prn).first;
   if (!tracked) {
     s.active = false;
     s.last_s = t_s;

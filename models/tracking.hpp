@@ -3,10 +3,10 @@
 // the code (DLL), carrier phase (PLL) and Doppler (FLL) loops, and carrier-phase arcs with an
 // integer ambiguity and cycle slips.
 
-#include <map>
 #include <utility>
 #include <vector>
 
+#include "models/prn_table.hpp"
 #include "models/random.hpp"
 
 namespace navemu {
@@ -80,7 +80,7 @@ class CarrierArcs {
   };
   std::uint64_t seed_;
   double max_gap_s_ = 10.0;
-  std::map<int, State> state_;
+  PrnTable<State> state_;
 };
 
 }  // namespace navemu

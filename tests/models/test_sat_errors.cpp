@@ -107,9 +107,9 @@ TEST(SatErrors, StationarySigmasAndCorrelationTimeWithinSigmaBounds) {
 
   double s_r = 0, s_a = 0, s_c = 0, s_k = 0, s_range = 0, s_r1 = 0, s_r01 = 0, s_range1 = 0;
   int n = 0;
-  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 100; ++seed) {  // 100 seeds x PRN 1..99
     SatErrors e(p, seed);
-    for (int prn = 1; prn <= 1000; ++prn, ++n) {
+    for (int prn = 1; prn <= kMaxPrn; ++prn, ++n) {
       const double r0 = e.range_error_m(prn, 1000.0, sat_p, sat_v, los);
       const SatErrors::Terms t0 = e.terms(prn);
       const double r1 = e.range_error_m(prn, 1000.0 + p.tau_s, sat_p, sat_v, los);

@@ -30,7 +30,8 @@ TEST(SolverDops, AnalyticZenithPlusThreeOnTheHorizon) {
 }
 
 TEST(SolverDops, DegenerateAndTooFew) {
-  EXPECT_EQ(dops_from_directions({{0, 1}, {1, 1}, {2, 1}}).pdop, 0.0);
+  const std::vector<AzEl> three = {{0, 1}, {1, 1}, {2, 1}};
+  EXPECT_EQ(dops_from_directions(three).pdop, 0.0);
   // Four satellites on one cone around the zenith: clock and height inseparable.
   const std::vector<AzEl> cone = {{0, 0.5}, {kPi / 2, 0.5}, {kPi, 0.5}, {3 * kPi / 2, 0.5}};
   EXPECT_EQ(dops_from_directions(cone).pdop, 0.0);

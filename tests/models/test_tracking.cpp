@@ -163,10 +163,14 @@ TEST(CarrierArcs, SameSeedSameArcsIndependentOfOtherPrns) {
 // ((2e6 + 1)^2 - 1) / 12 = 3.3333e11, within five standard errors.
 TEST(CarrierArcs, AmbiguityIsUniformOverPlusMinusOneMillion) {
   CarrierArcs arcs(2024);
-  const int n = 20'000;
+  const int arcs_per_prn = 202;
+  const int n = arcs_per_prn * kMaxPrn;  // 19998 arcs, each drawing from its own stream
   double sum = 0, sum2 = 0, lo = 0, hi = 0;
-  for (int prn = 0; prn < n; ++prn) {
-    const double x = arcs.update(prn, 0.0, true).ambiguity_cycles;
+  for (int i = 0; i < n; ++i) {
+    const int prn = 1 + i % kMaxPrn;
+    const double t = static_cast<double>(i / kMaxPrn);
+    const double x = arcs.update(prn, t, true).ambiguity_cycles;
+    arcs.update(prn, t + 0.5, false);  // lost: the next epoch of this PRN starts a new arc
     ASSERT_EQ(x, std::floor(x));
     sum += x;
     sum2 += x * x;
