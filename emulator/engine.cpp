@@ -162,6 +162,16 @@ void try_realtime_hardening(const RunConfig& cfg, std::ostream& log) {
   if (cfg.lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
     fmt::print(log, "navemu: realtime.lock_memory: mlockall failed ({}); continuing unlocked\n",
                std::strerror(errno));
+  if (cfg.cpu) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(static_cast<std::size_t>(*cfg.cpu), &set);
+    if (sched_setaffinity(0, sizeof set, &set) != 0)
+      fmt::print(log, "navemu: realtime.cpu: cannot pin to CPU {} ({}); continuing unpinned\n",
+                 *cfg.cpu, std::strerror(errno));
+    else
+      fmt::print(log, "navemu: realtime.cpu: loop pinned to CPU {}\n", *cfg.cpu);
+  }
   if (cfg.sched_fifo) {
     sched_param sp{};
     sp.sched_priority = 50;

@@ -1,6 +1,7 @@
 #include "emulator/run_config.hpp"
 
 #include <fmt/format.h>
+#include <sched.h>
 
 #include <algorithm>
 
@@ -379,6 +380,7 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   YamlMap rt = root.map("realtime");
   c.sched_fifo = rt.boolean("sched_fifo").value_or(false);
   c.lock_memory = rt.boolean("lock_memory").value_or(false);
+  if (const auto cpu = rt.integer("cpu", 0, CPU_SETSIZE - 1)) c.cpu = static_cast<int>(*cpu);
   rt.reject_unknown_keys();
   root.reject_unknown_keys();
   return c;

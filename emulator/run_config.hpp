@@ -154,6 +154,7 @@ struct RunConfig {
 
   bool sched_fifo = false;   // SCHED_FIFO for the loop (needs CAP_SYS_NICE; falls back)
   bool lock_memory = false;  // mlockall (falls back with a message)
+  std::optional<int> cpu;    // pin the loop to this CPU (sched_setaffinity); unset: any
 };
 
 // The file's configuration; relative paths inside it are relative to the file's folder.

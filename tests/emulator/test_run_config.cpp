@@ -54,6 +54,18 @@ TEST(RunConfig, DefaultConfigIsThePapersCircleWithTheGarminReceiverOnAPty) {
   EXPECT_EQ(c.imu_can.base_id, 0x500u);
 }
 
+TEST(RunConfig, RealtimeHardening) {
+  EXPECT_FALSE(load_run_config(default_run_config()).cpu);
+  const RunConfig c = load_run_config(
+      write_temp("rt.yaml", "realtime: {sched_fifo: true, lock_memory: true, cpu: 1}\n"));
+  EXPECT_TRUE(c.sched_fifo);
+  EXPECT_TRUE(c.lock_memory);
+  EXPECT_EQ(c.cpu, 1);
+  const std::string e = load_error("realtime:\n  cpu: -1\n");
+  EXPECT_NE(e.find("bad.yaml:2"), std::string::npos) << e;
+  EXPECT_NE(e.find("cpu"), std::string::npos) << e;
+}
+
 TEST(RunConfig, CanOutputsAndLayouts) {
   const RunConfig c = load_run_config(write_temp(
       "can.yaml",
