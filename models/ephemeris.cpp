@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <ranges>
 
 namespace navemu {
 
@@ -27,21 +28,34 @@ std::int64_t transmission_ns(const GpsEphemeris& e) {
 // is nearest to t: the curve fit interval is centred on toe (IS-GPS-200 20.3.4.5), so the
 // nearest toe gives the smallest fit error. When t precedes every toe that is the earliest
 // one. Equal distances go to the record transmitted later, then to the later one in the file.
-const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t) {
+namespace {
+// The selection rule over any sequence of record pointers.
+template <class Records>
+const GpsEphemeris* select_among(const Records& records, int prn, GpsTime t) {
   const GpsEphemeris* best = nullptr;
   std::int64_t best_dt = 0;
   std::int64_t best_tx = 0;
-  for (const GpsEphemeris& e : nav.gps) {
-    if (e.prn != prn || e.health != 0) continue;
-    const std::int64_t dt = t.ns >= e.toe.ns ? t.ns - e.toe.ns : e.toe.ns - t.ns;
-    const std::int64_t tx = transmission_ns(e);
+  for (const GpsEphemeris* e : records) {
+    if (e->prn != prn || e->health != 0) continue;
+    const std::int64_t dt = t.ns >= e->toe.ns ? t.ns - e->toe.ns : e->toe.ns - t.ns;
+    const std::int64_t tx = transmission_ns(*e);
     if (best == nullptr || dt < best_dt || (dt == best_dt && tx >= best_tx)) {
-      best = &e;
+      best = e;
       best_dt = dt;
       best_tx = tx;
     }
   }
   return best;
+}
+}  // namespace
+
+const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t) {
+  return select_among(nav.gps | std::views::transform([](const GpsEphemeris& e) { return &e; }),
+                      prn, t);
+}
+
+const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records, GpsTime t) {
+  return records.empty() ? nullptr : select_among(records, records.front()->prn, t);
 }
 
 }  // namespace navemu

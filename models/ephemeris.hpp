@@ -3,6 +3,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -71,5 +72,9 @@ inline constexpr double kMaxEphemerisAge_s = 4.0 * 3600.0;
 // nearest to t (IS-GPS-200 20.3.4.5 curve fit interval centred on toe); when t precedes every
 // toe, the first one. Ties go to the later transmitted record. nullptr when the file has none.
 const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t);
+// The same among one PRN's records, indexed once (nav.gps scanned per satellite and epoch
+// would cost as much as the orbit).
+const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records_of_one_prn,
+                                     GpsTime t);
 
 }  // namespace navemu

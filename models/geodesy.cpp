@@ -86,7 +86,12 @@ AzEl azimuth_elevation(const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m) {
 }
 
 AzEl azimuth_elevation(const Geodetic& rx, const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m) {
-  const Vec3 enu = R_enu_from_ecef(rx) * (p_target_ecef_m - p_rx_ecef_m);
+  return azimuth_elevation(R_enu_from_ecef(rx), p_rx_ecef_m, p_target_ecef_m);
+}
+
+AzEl azimuth_elevation(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m,
+                       const Vec3& p_target_ecef_m) {
+  const Vec3 enu = R_enu_from_ecef_rx * (p_target_ecef_m - p_rx_ecef_m);
   AzEl out;
   out.el_rad = std::atan2(enu.z(), std::hypot(enu.x(), enu.y()));
   double az = std::atan2(enu.x(), enu.y());

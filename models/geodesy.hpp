@@ -42,6 +42,9 @@ struct AzEl {
 // Direction from a receiver to a target (e.g. a satellite), both in ECEF.
 AzEl azimuth_elevation(const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m);
 AzEl azimuth_elevation(const Geodetic& rx, const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m);
+// The same with the receiver's R_enu_from_ecef computed once for many targets.
+AzEl azimuth_elevation(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m,
+                       const Vec3& p_target_ecef_m);
 
 // Geoid undulation N (MSL height = h - N). Uses GeographicLib::Geoid ("egm96-5" by
 // default, searched in GEOGRAPHICLIB_GEOID_PATH / GEOGRAPHICLIB_DATA) when the data is

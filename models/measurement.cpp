@@ -122,8 +122,15 @@ struct MeasurementGenerator::State {
   PrnTable<SatProcesses> sats;
   PrnTable<double> receivable_since;  // time the PRN's signal became receivable, s
   PrnTable<std::pair<double, double>> scene_phase;  // (t s, carrier multipath m)
+  // The last light-time solution (t s, flight time s, its rate): the next one starts from its
+  // extrapolation and converges in one or two orbit evaluations.
+  struct FlightTime {
+    double t_s, tau_s, rate;
+  };
+  PrnTable<FlightTime> flight_time;
   std::optional<GpsTime> last;
   std::vector<int> prns;
+  PrnTable<std::vector<const GpsEphemeris*>> records;  // each PRN's broadcast records
 };
 
 MeasurementGenerator::MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg)
@@ -132,7 +139,10 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
   if (cfg_.iono_model == IonoModel::kKlobuchar && !nav_.klobuchar)
     cfg_.iono_model = IonoModel::kPaperVtec;
   std::set<int> prns;
-  for (const GpsEphemeris& e : nav_.gps) prns.insert(e.prn);
+  for (const GpsEphemeris& e : nav_.gps) {
+    prns.insert(e.prn);
+    state_->records.try_emplace(e.prn).first.push_back(&e);
+  }
   state_->prns.assign(prns.begin(), prns.end());
 }
 
@@ -171,14 +181,18 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   const double t_s = out.t_true.seconds();
 
   const Geodetic geo = geodetic_from_ecef(p_rx);
+  const ReceiverPlace rx{p_rx, v_rx, R_enu_from_ecef(geo)};
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
   const double c = kSpeedOfLight_mps;
 
   for (int prn : st.prns) {
-    const GpsEphemeris* eph = select_ephemeris(nav_, prn, out.t_true);
+    const GpsEphemeris* eph = select_ephemeris(*st.records.find(prn), out.t_true);
     if (eph == nullptr || std::abs(seconds_between(out.t_true, eph->toe)) > kMaxEphemerisAge_s)
       continue;
-    const SatGeometry g = gps_sat_geometry(*eph, out.t_true, p_rx, v_rx);
+    State::FlightTime& flight = st.flight_time.try_emplace(prn, State::FlightTime{t_s, 0.075, 0.0}).first;
+    const SatGeometry g =
+        gps_sat_geometry(*eph, out.t_true, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
+    flight = {t_s, g.flight_time_s, g.range_rate_mps / c};
     // The scene: blocked, reflected, attenuated signals (open sky without one).
     SignalEnvironment env;
     if (cfg_.environment && g.dir.el_rad > 0.0)

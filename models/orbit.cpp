@@ -97,29 +97,37 @@ Vec3 rotate_earth(const Vec3& v_ecef, double dt_s) {
   return Vec3(c * v_ecef.x() + s * v_ecef.y(), -s * v_ecef.x() + c * v_ecef.y(), v_ecef.z());
 }
 
+ReceiverPlace receiver_place(const Vec3& p_rx_ecef_m, const Vec3& v_rx_ecef_mps) {
+  return {p_rx_ecef_m, v_rx_ecef_mps, R_enu_from_ecef(geodetic_from_ecef(p_rx_ecef_m))};
+}
+
 SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const Vec3& p_rx_ecef_m,
                              const Vec3& v_rx_ecef_mps) {
-  // Light-time equation, solved by fixed-point iteration on the flight time tau (converges by
-  // ~1e-5 per step since |v_sat| / c ~ 1e-5).
-  double tau_s = 0.075;
+  return gps_sat_geometry(eph, t_receive, receiver_place(p_rx_ecef_m, v_rx_ecef_mps));
+}
+
+SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const ReceiverPlace& rx,
+                             double tau_guess_s) {
+  // Light-time equation, solved by fixed-point iteration on the flight time tau (the error
+  // shrinks by |v_sat| / c ~ 1e-5 per step). Once a step changes tau by less than 1e-14 s
+  // (the satellite moves 40 nm in that time) the state just evaluated is the answer.
+  double tau_s = tau_guess_s;
   SatState s;
-  Vec3 p_sat = Vec3::Zero();
   for (int i = 0; i < 10; ++i) {
     s = gps_sat_state(eph, t_receive.plus_s(-tau_s));
-    p_sat = rotate_earth(s.p_ecef_m, tau_s);
-    const double next = (p_sat - p_rx_ecef_m).norm() / kSpeedOfLight_mps;
+    const double next = (rotate_earth(s.p_ecef_m, tau_s) - rx.p_ecef_m).norm() / kSpeedOfLight_mps;
     const bool done = std::abs(next - tau_s) < 1e-14;
-    tau_s = next;
     if (done) break;
+    tau_s = next;
   }
-  s = gps_sat_state(eph, t_receive.plus_s(-tau_s));
 
   SatGeometry g;
   g.t_transmit = t_receive.plus_s(-tau_s);
+  g.flight_time_s = tau_s;
   g.sat = s;
   g.sat.p_ecef_m = rotate_earth(s.p_ecef_m, tau_s);
   g.sat.v_ecef_mps = rotate_earth(s.v_ecef_mps, tau_s);
-  const Vec3 los = g.sat.p_ecef_m - p_rx_ecef_m;
+  const Vec3 los = g.sat.p_ecef_m - rx.p_ecef_m;
   g.range_m = los.norm();
   const Vec3 u = los / g.range_m;
 
@@ -127,10 +135,10 @@ SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const V
   // d(rho)/dt (1 + u.v_sat/c) = u.(v_sat - v_rx), both velocities inertial.
   const Vec3 w(0.0, 0.0, kOmegaEarth_radps);
   const Vec3 v_sat_inertial = g.sat.v_ecef_mps + w.cross(g.sat.p_ecef_m);
-  const Vec3 v_rx_inertial = v_rx_ecef_mps + w.cross(p_rx_ecef_m);
+  const Vec3 v_rx_inertial = rx.v_ecef_mps + w.cross(rx.p_ecef_m);
   g.range_rate_mps =
       u.dot(v_sat_inertial - v_rx_inertial) / (1.0 + u.dot(v_sat_inertial) / kSpeedOfLight_mps);
-  g.dir = azimuth_elevation(p_rx_ecef_m, g.sat.p_ecef_m);
+  g.dir = azimuth_elevation(rx.R_enu_from_ecef, rx.p_ecef_m, g.sat.p_ecef_m);
   return g;
 }
 

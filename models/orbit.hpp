@@ -31,14 +31,26 @@ Vec3 rotate_earth(const Vec3& v_ecef, double dt_s);
 // Geometry of one satellite seen by a receiver at a reception time.
 struct SatGeometry {
   GpsTime t_transmit;            // GPS system time of transmission
+  double flight_time_s = 0.0;    // t_receive - t_transmit before rounding to the nanosecond
   SatState sat;                  // state at t_transmit, rotated into the ECEF frame at reception
   double range_m = 0.0;          // |p_sat - p_rx| in the reception frame (includes Sagnac)
   double range_rate_mps = 0.0;   // d(range)/dt seen by the receiver
   AzEl dir;                      // azimuth/elevation on the geodetic normal
 };
 
+// The receiver as every satellite's geometry needs it, computed once per epoch.
+struct ReceiverPlace {
+  Vec3 p_ecef_m = Vec3::Zero();
+  Vec3 v_ecef_mps = Vec3::Zero();
+  Mat3 R_enu_from_ecef = Mat3::Identity();
+};
+ReceiverPlace receiver_place(const Vec3& p_rx_ecef_m, const Vec3& v_rx_ecef_mps = Vec3::Zero());
+
 // Light-time iteration: finds the transmit time t_tx with |p_sat(t_tx) rotated to the frame
-// at t_rx - p_rx| = c (t_rx - t_tx), then evaluates the geometry.
+// at t_rx - p_rx| = c (t_rx - t_tx), then evaluates the geometry. `tau_guess_s`: where the
+// iteration starts (the flight time of the satellite's previous epoch saves an evaluation).
+SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const ReceiverPlace& rx,
+                             double tau_guess_s = 0.075);
 SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const Vec3& p_rx_ecef_m,
                              const Vec3& v_rx_ecef_mps = Vec3::Zero());
 

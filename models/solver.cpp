@@ -123,37 +123,54 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
 
   // Iterated weighted least squares on the linearised pseudorange equations
   // P = |R(w tau) p_sat - p| + c dt_rx - c dt_sat + I + T  (RTKLIB pntpos / ESA GNSS Book I, 6.1).
+  // Directions and atmospheric corrections change by far less than a millimetre while the
+  // estimate moves less than kReuseCorrections_m (the troposphere by ~0.3 mm per metre of
+  // height), so they are recomputed only when it has moved further.
+  constexpr double kReuseCorrections_m = 1.0;
+  Vec3 corrections_at = Vec3::Zero();  // where they were computed; zero: not yet
   for (int iter = 0; iter < opt.max_iterations; ++iter) {
     n_sat_rows = 0;
     const bool known = position_known(p);
-    const Geodetic geo = known ? geodetic_from_ecef(p) : Geodetic{};
+    const bool recompute = !known || !position_known(corrections_at) ||
+                           (p - corrections_at).norm() > kReuseCorrections_m;
+    Geodetic geo;
+    Mat3 r_enu = Mat3::Identity();
+    Meteo meteo;
+    if (known && recompute) {
+      geo = geodetic_from_ecef(p);
+      r_enu = R_enu_from_ecef(geo);
+      if (opt.saastamoinen) meteo = standard_atmosphere(geo.h_m, opt.relative_humidity);
+    }
+    if (recompute) corrections_at = known ? p : Vec3::Zero();
     for (std::size_t i = 0; i < meas.size(); ++i) {
       const RangeMeasurement& m = meas[i];
       SatResidual& out = sol.sats[i];
-      out = SatResidual{};
-      out.prn = m.prn;
       // Earth rotation during the signal's flight (Sagnac).
       const double tau_s = (m.sat_p_ecef_m - p).norm() / kSpeedOfLight_mps;
       const Vec3 p_sat = rotate_earth(m.sat_p_ecef_m, tau_s);
       const Vec3 los = p_sat - p;
       const double range = los.norm();
-      AzEl dir{0.0, kPi / 2.0};
-      if (known) dir = azimuth_elevation(geo, p, p_sat);
-      out.az_deg = dir.az_rad * kRadToDeg;
-      out.el_deg = dir.el_rad * kRadToDeg;
-      if (settled && dir.el_rad < mask_rad) continue;
-      if (known && opt.klobuchar)
-        out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, t);
-      if (known && opt.saastamoinen)
-        out.tropo_m = saastamoinen_delay(geo, dir.el_rad,
-                                         standard_atmosphere(geo.h_m, opt.relative_humidity))
-                          .total_m();
+      if (recompute) {
+        out = SatResidual{};
+        out.prn = m.prn;
+        AzEl dir{0.0, kPi / 2.0};
+        if (known) dir = azimuth_elevation(r_enu, p, p_sat);
+        out.az_deg = dir.az_rad * kRadToDeg;
+        out.el_deg = dir.el_rad * kRadToDeg;
+        if (known && opt.klobuchar)
+          out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, t);
+        if (known && opt.saastamoinen)
+          out.tropo_m = saastamoinen_delay(geo, dir.el_rad, meteo).total_m();
+      }
+      out.residual_m = 0.0;
+      out.used = false;
+      const double el_rad = out.el_deg * kDegToRad;
+      if (settled && el_rad < mask_rad) continue;
       out.residual_m = m.pseudorange_m - (range + clk - m.sat_clock_m + out.iono_m + out.tropo_m);
       out.used = true;
-      const double sin_el = std::sin(dir.el_rad);
-      double var = sa2 + sb2 / sin_el + m.sat_variance_m2;
+      double var = sa2 + sb2 / std::sin(el_rad) + m.sat_variance_m2;
       if (known && opt.klobuchar) var += 0.25 * out.iono_m * out.iono_m;
-      if (known && opt.saastamoinen) var += tropo_variance_m2(dir.el_rad);
+      if (known && opt.saastamoinen) var += tropo_variance_m2(el_rad);
       row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i};
     }
 
