@@ -1,5 +1,6 @@
 #include "emulator/engine.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 #include <poll.h>
@@ -613,7 +614,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         }
         if (b) {
           fmt::format_to(std::back_inserter(*b),
-                         "{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.4g},{},{},{}\n",
+                         FMT_COMPILE("{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.4g},{},{},{}\n"),
                          t_rel(sample.t), sample.f_body_mps2.x(), sample.f_body_mps2.y(),
                          sample.f_body_mps2.z(), sample.w_body_radps.x(), sample.w_body_radps.y(),
                          sample.w_body_radps.z(), sample.temperature_c, valid ? 1 : 0, t_meas.ns,

@@ -145,18 +145,24 @@ int leap_at_utc_ns(std::int64_t utc_uniform_ns, bool in_leap_second, std::option
 }
 
 // UTC broken down from a GPS instant, showing 23:59:60.x during an inserted second.
-CalNs utc_cal_ns_from_gps(GpsTime t, std::optional<int> after_table_s) {
-  const int leap = leap_seconds_at_gps(t, after_table_s);
+// Whether t lies in an inserted leap second (UTC 23:59:60.x).
+bool in_inserted_second(GpsTime t) {
   for (const LeapEntry& e : kLeapTable) {
     const std::int64_t start = entry_gps_ns(e);
-    if (t.ns >= start - kNsPerS && t.ns < start) {
-      // Inside the inserted second: read the previous second and label it 60.
-      CalNs c = cal_ns_from_ns(t.ns - static_cast<std::int64_t>(leap) * kNsPerS - kNsPerS);
-      c.second += 1;
-      return c;
-    }
+    if (t.ns >= start - kNsPerS && t.ns < start) return true;
   }
-  return cal_ns_from_ns(t.ns - static_cast<std::int64_t>(leap) * kNsPerS);
+  return false;
+}
+
+CalNs utc_cal_ns_from_gps(GpsTime t, std::optional<int> after_table_s) {
+  const std::int64_t utc_ns = t.ns - static_cast<std::int64_t>(leap_seconds_at_gps(t, after_table_s)) * kNsPerS;
+  if (in_inserted_second(t)) {
+    // Read the previous second and label it 60.
+    CalNs c = cal_ns_from_ns(utc_ns - kNsPerS);
+    c.second += 1;
+    return c;
+  }
+  return cal_ns_from_ns(utc_ns);
 }
 
 bool is_leap_second_day(std::int64_t y, int m, int d) {
@@ -351,12 +357,10 @@ GpsTime gps_from_unix_ns(std::int64_t unix_ns) {
 }
 
 std::int64_t unix_ns_from_gps(GpsTime t) {
-  const CalNs c = utc_cal_ns_from_gps(t, std::nullopt);
-  // 23:59:60.x reads as 23:59:59.x.
-  const std::int64_t seconds = c.second == 60 ? 59 : c.second;
-  const std::int64_t days = days_from_civil(c.year, c.month, c.day) - kGpsEpochDays;
-  return kGpsEpochUnix_s * kNsPerS + (days * 86'400 + c.hour * 3600 + c.minute * 60 + seconds) * kNsPerS +
-         c.nano;
+  // UTC since the GPS epoch, without a calendar; 23:59:60.x reads as 23:59:59.x (POSIX).
+  std::int64_t utc_ns = t.ns - static_cast<std::int64_t>(leap_seconds_at_gps(t, std::nullopt)) * kNsPerS;
+  if (in_inserted_second(t)) utc_ns -= kNsPerS;
+  return kGpsEpochUnix_s * kNsPerS + utc_ns;
 }
 
 CalendarTime utc_from_gps(GpsTime t, std::optional<int> after_table_s) {

@@ -3,6 +3,7 @@
 // III#DD.. (standard), IIIIIIII#DD.. (extended) or ID##FDD.. (CAN FD, F = flags nibble with
 // CANFD_BRS 1 and CANFD_ESI 2 of linux/can.h). Written through open_log_file's buffer.
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <iterator>
@@ -66,7 +67,9 @@ void format_candump_line(const CanFrameView& frame, std::int64_t unix_time_ns,
     usec += 1000000;
     sec -= 1;
   }
-  it = fmt::format_to(it, "({:010d}.{:06d}) {} ", sec, usec, interface_name);
+  it = fmt::format_to(it, FMT_COMPILE("({:010d}.{:06d}) "), sec, usec);
+  out.append(interface_name);
+  out.push_back(' ');
   if (frame.extended)
     it = fmt::format_to(it, "{:08X}", frame.id);
   else
@@ -75,7 +78,11 @@ void format_candump_line(const CanFrameView& frame, std::int64_t unix_time_ns,
     it = fmt::format_to(it, "##{:X}", frame.brs ? 1 : 0);
   else
     *it++ = '#';
-  for (const std::uint8_t b : frame.data) it = fmt::format_to(it, "{:02X}", b);
+  static constexpr char kHex[] = "0123456789ABCDEF";  // the payload, the bulk of the line
+  for (const std::uint8_t b : frame.data) {
+    out.push_back(kHex[b >> 4]);
+    out.push_back(kHex[b & 0x0F]);
+  }
   out.push_back('\n');
 }
 
