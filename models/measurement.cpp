@@ -128,6 +128,8 @@ struct MeasurementGenerator::State {
     double t_s, tau_s, rate;
   };
   PrnTable<FlightTime> flight_time;
+  PrnTable<double> below_horizon_until_s;  // no orbit evaluation before then
+  Vec3 below_horizon_from = Vec3::Zero();  // the receiver's place when those were decided
   std::optional<GpsTime> last;
   std::vector<int> prns;
   PrnTable<std::vector<const GpsEphemeris*>> records;  // each PRN's broadcast records
@@ -185,7 +187,17 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
   const double c = kSpeedOfLight_mps;
 
+  // A satellite 5 deg or more below the horizon cannot rise within a minute (seen from the
+  // ground GPS elevations change by less than 1 deg/min), so its orbit is not evaluated for
+  // that long: nothing about it is reported or drawn meanwhile.
+  constexpr double kFarBelow_rad = -5.0 * kDegToRad;
+  constexpr double kFarBelowSkip_s = 60.0;
+  if ((p_rx - st.below_horizon_from).norm() > 10e3) {  // another horizon (a jump, a fast ride)
+    st.below_horizon_until_s.clear();
+    st.below_horizon_from = p_rx;
+  }
   for (int prn : st.prns) {
+    if (const double* until = st.below_horizon_until_s.find(prn); until && t_s < *until) continue;
     const GpsEphemeris* eph = select_ephemeris(*st.records.find(prn), out.t_true);
     if (eph == nullptr || std::abs(seconds_between(out.t_true, eph->toe)) > kMaxEphemerisAge_s)
       continue;
@@ -193,6 +205,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     const SatGeometry g =
         gps_sat_geometry(*eph, out.t_true, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
     flight = {t_s, g.flight_time_s, g.range_rate_mps / c};
+    if (g.dir.el_rad < kFarBelow_rad) st.below_horizon_until_s.try_emplace(prn).first = t_s + kFarBelowSkip_s;
     // The scene: blocked, reflected, attenuated signals (open sky without one).
     SignalEnvironment env;
     if (cfg_.environment && g.dir.el_rad > 0.0)

@@ -33,6 +33,9 @@ class PrnTable {
   void erase(int prn) {
     if (valid(prn)) slots_[idx(prn)].reset();
   }
+  void clear() {
+    for (std::optional<T>& s : slots_) s.reset();
+  }
 
  private:
   static bool valid(int prn) { return prn >= 1 && prn <= kMaxPrn; }
