@@ -449,12 +449,15 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     if (gnss_due) next = std::min(next, gnss_compute_time(gnss_k));
     if (imu_due) next = std::min(next, imu_event(imu_j));
     next = std::min(next, next_status);
-    if (device && !offline) next = std::min(next, next_service);
+    if ((device || can_out) && !offline) next = std::min(next, next_service);
     if (!clock.wait_until(next)) break;
     truth->poll();
-    if (can_out && !offline) can_out->service();  // slcan commands, bus errors
-    // Commands from the clients: answered on the port they came from, at once.
-    if (device && !offline) {
+    // The ports' input (clients' commands, slcan commands, bus errors) at the service tick,
+    // not at every wake-up: at 1 kHz each read is a system call per millisecond for nothing.
+    const bool service_due = !offline && next_service <= next;
+    if (can_out && service_due) can_out->service();
+    // Commands from the clients: answered on the port they came from.
+    if (device && service_due) {
       for (auto& p : ports) {
         for (int n = 0; n < 16; ++n) {  // bounded: a flooding client cannot hold the loop
           const std::size_t len = p->read(input);
