@@ -34,15 +34,14 @@ template <class Records>
 const GpsEphemeris* select_among(const Records& records, int prn, GpsTime t) {
   const GpsEphemeris* best = nullptr;
   std::int64_t best_dt = 0;
-  std::int64_t best_tx = 0;
   for (const GpsEphemeris* e : records) {
     if (e->prn != prn || e->health != 0) continue;
     const std::int64_t dt = t.ns >= e->toe.ns ? t.ns - e->toe.ns : e->toe.ns - t.ns;
-    const std::int64_t tx = transmission_ns(*e);
-    if (best == nullptr || dt < best_dt || (dt == best_dt && tx >= best_tx)) {
+    // The transmission times only matter for a tie (they cost as much as the rest).
+    if (best == nullptr || dt < best_dt ||
+        (dt == best_dt && transmission_ns(*e) >= transmission_ns(*best))) {
       best = e;
       best_dt = dt;
-      best_tx = tx;
     }
   }
   return best;

@@ -185,6 +185,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   const Geodetic geo = geodetic_from_ecef(p_rx);
   const ReceiverPlace rx{p_rx, v_rx, R_enu_from_ecef(geo)};
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
+  const TropoDelay tropo_zenith = tropo_zenith_delay(geo, meteo);
   const double c = kSpeedOfLight_mps;
 
   // A satellite 5 deg or more below the horizon cannot rise within a minute (seen from the
@@ -253,11 +254,11 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     }
     // Troposphere: Saastamoinen zenith delays from the meteorology, Niell mapping, plus the
     // wet delay's unmodelled variability.
+    // (tropo_slant_delay's product, with the zenith delays of the epoch computed once.)
     if (on.troposphere) {
-      const TropoDelay td = tropo_slant_delay(geo, g.dir.el_rad, out.t_true, meteo);
       const NiellMapping nm = niell_mapping(geo, g.dir.el_rad, out.t_true);
-      m.tropo_hydro_m = td.hydrostatic_m;
-      m.tropo_wet_m = std::max(0.0, td.wet_m + nm.wet * st.tropo_wet.value());
+      m.tropo_hydro_m = tropo_zenith.hydrostatic_m * nm.hydrostatic;
+      m.tropo_wet_m = std::max(0.0, tropo_zenith.wet_m * nm.wet + nm.wet * st.tropo_wet.value());
     }
     // Broadcast orbit and clock errors on the line of sight.
     if (on.satellite) {

@@ -54,8 +54,12 @@ GaussMarkov::GaussMarkov(double sigma, double tau_s, RandomStream& rng)
     : sigma_(sigma), tau_s_(tau_s), x_(sigma * rng.normal()) {}
 
 double GaussMarkov::step(double dt_s, RandomStream& rng) {
-  const double phi = std::exp(-dt_s / tau_s_);
-  x_ = phi * x_ + sigma_ * std::sqrt(1.0 - phi * phi) * rng.normal();
+  if (dt_s != dt_s_) {
+    dt_s_ = dt_s;
+    phi_ = std::exp(-dt_s / tau_s_);
+    noise_scale_ = sigma_ * std::sqrt(1.0 - phi_ * phi_);
+  }
+  x_ = phi_ * x_ + noise_scale_ * rng.normal();
   return x_;
 }
 

@@ -48,6 +48,8 @@ class GaussMarkov {
   double sigma_ = 0.0;
   double tau_s_ = 1.0;
   double x_ = 0.0;
+  // The transition and noise scale of the last step length (steps usually repeat it).
+  double dt_s_ = -1.0, phi_ = 0.0, noise_scale_ = 0.0;
 };
 
 }  // namespace navemu
