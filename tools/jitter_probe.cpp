@@ -73,16 +73,6 @@ std::int64_t now_ns(clockid_t id) {
   return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
 }
 
-// Days since 1970-01-01 of a Gregorian date (H. Hinnant's days_from_civil).
-std::int64_t days_from_civil(std::int64_t y, unsigned m, unsigned d) {
-  y -= m <= 2 ? 1 : 0;
-  const std::int64_t era = (y >= 0 ? y : y - 399) / 400;
-  const auto yoe = static_cast<unsigned>(y - era * 400);
-  const unsigned doy = (153 * (m > 2 ? m - 3 : m + 9) + 2) / 5 + d - 1;
-  const unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-  return era * 146097 + static_cast<std::int64_t>(doe) - 719468;
-}
-
 // The UTC of a sentence's time field "hhmmss.ss", in ns since the Unix epoch. RMC carries its
 // date (field 9, ddmmyy); other sentences take the day that puts the time nearest `arrival_ns`.
 std::optional<std::int64_t> sentence_utc_ns(const std::vector<std::string>& f,
@@ -97,10 +87,10 @@ std::optional<std::int64_t> sentence_utc_ns(const std::vector<std::string>& f,
       (std::stoll(t.substr(0, 2)) * 3600 + std::stoll(t.substr(2, 2)) * 60) * kNsPerS +
       std::llround(sec * 1e9);
   if (type == "RMC" && f.size() > 9 && f[9].size() == 6) {
-    const std::int64_t days = days_from_civil(2000 + std::stoll(f[9].substr(4, 2)),
-                                              static_cast<unsigned>(std::stoul(f[9].substr(2, 2))),
-                                              static_cast<unsigned>(std::stoul(f[9].substr(0, 2))));
-    return days * 86400 * kNsPerS + tod_ns;
+    const navemu::CalendarTime midnight{2000 + std::stoi(f[9].substr(4, 2)),
+                                        std::stoi(f[9].substr(2, 2)), std::stoi(f[9].substr(0, 2)),
+                                        0, 0, 0.0};
+    return navemu::unix_ns_from_gps(navemu::gps_from_utc(midnight)) + tod_ns;
   }
   const std::int64_t day_ns = 86400 * kNsPerS;
   std::int64_t base = arrival_ns / day_ns * day_ns + tod_ns;

@@ -81,14 +81,18 @@ RunConfig config(const char* name) {
   return load_run_config(std::filesystem::path(NAVEMU_SOURCE_DIR) / "configs" / name);
 }
 
-TEST(SteadyStateAllocation, OfflineDefaultConfiguration) {
-  const RunConfig cfg = config("default.yaml");
-  const auto dir = std::filesystem::temp_directory_path() / "navemu_alloc_default";
+// Offline runs of 600 s and 1800 s (after a warm-up run) allocate the same.
+void expect_offline_steady_state(const RunConfig& cfg, const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("navemu_alloc_" + name);
   allocations_of_run(cfg, false, 10.0, dir / "warm-up");
   const long long a = allocations_of_run(cfg, false, 600.0, dir / "a");
   const long long b = allocations_of_run(cfg, false, 1800.0, dir / "b");
-  std::printf("default: %lld allocations for 600 s, %lld for 1800 s\n", a, b);
+  std::printf("%s: %lld allocations for 600 s, %lld for 1800 s\n", name.c_str(), a, b);
   EXPECT_EQ(b - a, 0);
+}
+
+TEST(SteadyStateAllocation, OfflineDefaultConfiguration) {
+  expect_offline_steady_state(config("default.yaml"), "default");
 }
 
 TEST(SteadyStateAllocation, OfflineUbxEveryMessage) {
@@ -96,12 +100,7 @@ TEST(SteadyStateAllocation, OfflineUbxEveryMessage) {
   ASSERT_TRUE(cfg.gnss.ubx);
   cfg.gnss.ubx->messages.clear();
   for (const std::string& m : known_ubx_outputs()) cfg.gnss.ubx->messages.emplace_back(m, 1);
-  const auto dir = std::filesystem::temp_directory_path() / "navemu_alloc_ubx";
-  allocations_of_run(cfg, false, 10.0, dir / "warm-up");
-  const long long a = allocations_of_run(cfg, false, 600.0, dir / "a");
-  const long long b = allocations_of_run(cfg, false, 1800.0, dir / "b");
-  std::printf("ublox-f9p: %lld allocations for 600 s, %lld for 1800 s\n", a, b);
-  EXPECT_EQ(b - a, 0);
+  expect_offline_steady_state(cfg, "ublox-f9p");
 }
 
 // The truth stream (UDP datagrams) at 1 kHz through its buffer: once the 10 s window is full,
