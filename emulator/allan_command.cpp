@@ -2,23 +2,26 @@
 // navemu imu), the IEEE-Std-952 noise terms read from each curve, and an optional log-log plot
 // drawn by gnuplot.
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
-#include <unistd.h>
 #include <vector>
 
 #include "emulator/commands.hpp"
@@ -208,10 +211,37 @@ std::string gnuplot_quote(const std::string& s) {
   return q + "'";
 }
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+// Runs `argv` without a shell (posix_spawn), its stdout and stderr into `output`; the exit
+// status as waitpid gives it, -1 when it could not be started.
+int run_capturing(const std::vector<std::string>& argv, std::string& output) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) return -1;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[1]);
+  if (rc != 0) {
+    ::close(fds[0]);
+    output = std::strerror(rc);
+    return -1;
+  }
+  std::array<char, 4096> buf{};
+  for (ssize_t n; (n = ::read(fds[0], buf.data(), buf.size())) != 0;) {
+    if (n > 0) output.append(buf.data(), static_cast<std::size_t>(n));
+    else if (errno != EINTR) break;
+  }
+  ::close(fds[0]);
+  int status = -1;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return status;
 }
 
 std::atomic<int> script_counter{0};
@@ -278,17 +308,8 @@ void plot_png(const std::string& png, const std::string& title,
     f << script;
     if (!f) throw std::runtime_error("cannot write the gnuplot script " + script_file.string());
   }
-  const std::string command =
-      shell_quote(gnuplot.string()) + " " + shell_quote(script_file.string()) + " 2>&1";
   std::string output;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  int status = -1;
-  if (pipe != nullptr) {
-    std::array<char, 4096> buf{};
-    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0;)
-      output.append(buf.data(), n);
-    status = ::pclose(pipe);
-  }
+  const int status = run_capturing({gnuplot.string(), script_file.string()}, output);
   std::error_code ec;
   std::filesystem::remove(script_file, ec);
   std::error_code size_ec;
