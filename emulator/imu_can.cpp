@@ -4,6 +4,7 @@
 #include <fmt/ostream.h>
 
 #include <algorithm>
+#include <array>
 #include <ostream>
 #include <stdexcept>
 
@@ -69,7 +70,10 @@ void ImuCanOutputs::send(const can::ImuSample& sample, std::int64_t unix_time_ns
           layout == CanLayout::kJ1939     ? std::span<const can::CanFrame>(j1939_frames_)
           : layout == CanLayout::kHighRes ? std::span<const can::CanFrame>(highres_frames_)
                                           : std::span<const can::CanFrame>(&fd_frame_, 1);
-      for (const can::CanFrame& f : frames) out.port->write(view(f), unix_time_ns);
+      std::array<transport::CanFrameView, can::highres::kClassicFrameCount> views;  // the most
+      const std::size_t n = std::min(frames.size(), views.size());
+      for (std::size_t i = 0; i < n; ++i) views[i] = view(frames[i]);
+      out.port->write_burst(std::span<const transport::CanFrameView>(views.data(), n), unix_time_ns);
     }
   }
 }

@@ -38,6 +38,13 @@ class FramePort {
   // Sends one frame; never blocks. `unix_time_ns` (nanoseconds since 1970-01-01 UTC) stamps
   // the frame in logs; live ports ignore it. False when the frame was dropped.
   virtual bool write(const CanFrameView& frame, std::int64_t unix_time_ns) = 0;
+  // Frames sent back to back (one IMU sample's); never blocks. How many were sent. By default
+  // one write() each; SocketCAN hands them to the kernel in one call.
+  virtual std::size_t write_burst(std::span<const CanFrameView> frames, std::int64_t unix_time_ns) {
+    std::size_t sent = 0;
+    for (const CanFrameView& f : frames) sent += write(f, unix_time_ns) ? 1u : 0u;
+    return sent;
+  }
   // Housekeeping between frames: read error frames or client commands, flush buffers.
   virtual void service() {}
   // One line for the user: "socketcan vcan0", "slcan pty /tmp/navemu-imu -> /dev/pts/4".
