@@ -365,6 +365,11 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
              format_week_tow(start), cfg.seed,
              offline ? "offline" : lockstep ? "lockstep" : "real time");
   fmt::print(log, "navemu: truth: {}\n", truth->describe());
+  if (cfg.truth.kind == TruthSourceKind::kUdp && !transport::is_loopback_address(cfg.truth.udp_address))
+    fmt::print(log,
+               "navemu: warning: truth datagrams are accepted on {}, not loopback: any host that "
+               "reaches it can move the emulated vehicle\n",
+               cfg.truth.udp_address);
   if (receiver) {
     std::set<int> prns;
     for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
@@ -374,6 +379,13 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     for (const auto& p : ports)
       fmt::print(log, "navemu: GNSS {} on {}\n", prof.ubx ? "UBX/NMEA" : "NMEA", p->describe());
     if (!offline && ports.empty()) fmt::print(log, "navemu: GNSS has no output (gnss.outputs)\n");
+    if (!offline)
+      for (const OutputSpec& o : cfg.gnss_outputs)
+        if (o.type == "tcp" && !transport::is_loopback_address(o.address))
+          fmt::print(log,
+                     "navemu: warning: the GNSS tcp output listens on {}, not loopback: any host "
+                     "that reaches it receives the receiver's output and can configure it\n",
+                     o.address);
     if (capture_out)
       fmt::print(log, "navemu: GNSS capture: sent bytes to {0}, received bytes to {0}.in\n",
                  cfg.gnss_capture);

@@ -122,6 +122,11 @@ std::unique_ptr<BytePort> open_udp_sender(const UdpSenderOptions& opt);
 // are counted, reported once on stderr, and never stop the caller.
 std::unique_ptr<BytePort> open_log_file(const std::string& path);
 
+// Whether a numeric address (or "localhost", or empty: the default) is a loopback address:
+// 127.0.0.0/8, ::1 or ::ffff:127.x.x.x. Anything else (0.0.0.0, ::, a LAN address) can be
+// reached from other hosts.
+bool is_loopback_address(const std::string& address);
+
 // Datagrams coming in (truth input). Binds to loopback unless told otherwise (an empty
 // bind_address means 127.0.0.1).
 class UdpReceiver {

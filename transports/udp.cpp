@@ -1,5 +1,6 @@
 // UDP sender port and receiver: udp(7), sendto(2), recv(2) with MSG_TRUNC.
 
+#include <arpa/inet.h>
 #include <fmt/format.h>
 #include <netdb.h>
 #include <netinet/in.h>
@@ -147,6 +148,16 @@ std::size_t UdpReceiver::receive(std::span<std::uint8_t> buf) {
     if (n > 0) return static_cast<std::size_t>(n);
   }
   return 0;
+}
+
+bool is_loopback_address(const std::string& address) {
+  if (address.empty() || address == "localhost") return true;
+  in_addr v4{};
+  if (::inet_pton(AF_INET, address.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) == 127;
+  in6_addr v6{};
+  if (::inet_pton(AF_INET6, address.c_str(), &v6) != 1) return false;
+  if (IN6_IS_ADDR_LOOPBACK(&v6)) return true;
+  return IN6_IS_ADDR_V4MAPPED(&v6) && v6.s6_addr[12] == 127;
 }
 
 }  // namespace navemu::transport

@@ -31,6 +31,31 @@ std::filesystem::path write_temp(const std::string& name, const std::string& con
   return p;
 }
 
+// Listening beyond loopback is allowed but said, once per socket. The run happens in a network
+// namespace of its own (unshare -n: nothing but a down loopback inside), so nothing it opens
+// is reachable from anywhere.
+TEST(Cli, ListenersBeyondLoopbackAreWarnedAbout) {
+  if (test::run_command("unshare -n true 2>/dev/null").exit_code != 0)
+    GTEST_SKIP() << "unshare -n (a network namespace) is not permitted here";
+  const auto run = [](const std::string& address) {
+    const auto cfg = write_temp("listen-" + std::to_string(address.size()) + ".yaml",
+                                "truth: {source: udp, udp: {address: '" + address + "', port: 0}}\n"
+                                "gnss:\n  outputs:\n    - {type: tcp, address: '" + address +
+                                    "', port: 0}\nimu: {enabled: false}\n");
+    return test::run_command("unshare -n " + test::shell_quote(test::navemu_binary().string()) +
+                             " run " + test::shell_quote(cfg.string()) + " --duration 0.3 2>&1");
+  };
+  const test::CommandResult open = run("0.0.0.0");
+  EXPECT_EQ(open.exit_code, 0) << open.out;
+  EXPECT_NE(open.out.find("warning: truth datagrams are accepted on 0.0.0.0, not loopback"),
+            std::string::npos) << open.out;
+  EXPECT_NE(open.out.find("warning: the GNSS tcp output listens on 0.0.0.0, not loopback"),
+            std::string::npos) << open.out;
+  const test::CommandResult closed = run("127.0.0.1");
+  EXPECT_EQ(closed.exit_code, 0) << closed.out;
+  EXPECT_EQ(closed.out.find("warning"), std::string::npos) << closed.out;
+}
+
 TEST(Cli, HelpAndVersion) {
   const CliRun help = navemu({"--help"});
   EXPECT_EQ(help.code, 0);

@@ -29,6 +29,14 @@ std::string receive_one(UdpReceiver& rx, std::size_t size = 2048) {
   return {};
 }
 
+TEST(Udp, LoopbackAddresses) {
+  for (const char* a : {"", "localhost", "127.0.0.1", "127.1.2.3", "::1", "::ffff:127.0.0.1"})
+    EXPECT_TRUE(is_loopback_address(a)) << a;
+  for (const char* a : {"0.0.0.0", "::", "192.168.1.10", "10.0.0.1", "::ffff:10.0.0.1", "fe80::1",
+                        "128.0.0.1", "not an address"})
+    EXPECT_FALSE(is_loopback_address(a)) << a;
+}
+
 TEST(Udp, SenderToReceiverRoundTrip) {
   UdpReceiver rx("127.0.0.1", 0);
   ASSERT_GT(rx.port(), 0);
