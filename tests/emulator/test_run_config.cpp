@@ -12,8 +12,10 @@
 namespace navemu {
 namespace {
 
+// One folder per test: ctest runs the tests of this file in parallel, and they reuse names.
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "navemu_run_config_test";
+  const auto dir = std::filesystem::temp_directory_path() / "navemu_run_config_test" /
+                   ::testing::UnitTest::GetInstance()->current_test_info()->name();
   std::filesystem::create_directories(dir);
   const auto p = dir / name;
   std::ofstream(p) << text;
