@@ -417,6 +417,12 @@ class PtyReader {
     return total;
   }
 
+  // Drops what was queued before this client came (it would arrive in one burst).
+  void discard_queued() {
+    std::vector<Received> stale;
+    drain(stale);
+  }
+
  private:
   std::size_t read_once(std::vector<Received>& out, std::size_t max_read, std::string* raw = nullptr) {
     char buf[4096];

@@ -37,9 +37,8 @@ TEST(PtyTiming, SixtySecondsAt5HzGive300EpochsOnA200msPeriod) {
   ASSERT_TRUE(reader.open(link));
   // What was queued before this client opened the pty would arrive in one burst: drop it, then
   // start the window at the next RMC.
+  reader.discard_queued();
   std::vector<Received> lines;
-  reader.drain(lines);
-  lines.clear();
   const double wait_end = mono_s() + 5.0;
   while (mono_s() < wait_end &&
          std::none_of(lines.begin(), lines.end(), [](const Received& r) { return r.is("RMC"); }))
@@ -108,9 +107,7 @@ TEST(PtyTiming, AfterAnOverrunTheLoopReturnsToItsGridWithoutDrift) {
   ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
   PtyReader reader;
   ASSERT_TRUE(reader.open(link));
-  std::vector<Received> lines;
-  reader.drain(lines);
-  lines.clear();
+  reader.discard_queued();
   // RMC arrivals as (label ms since 1970, lateness ms = arrival - label on the system clock).
   struct Epoch {
     std::int64_t label_ms;
