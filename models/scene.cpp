@@ -164,6 +164,14 @@ void set_ray(RTCRay& ray, const Vec3& o, const Vec3& d, float tfar) {
   ray.flags = 0;
 }
 
+// A ray for rtcIntersect1, with no hit yet.
+void set_ray_hit(RTCRayHit& rh, const Vec3& o, const Vec3& d, float tfar) {
+  set_ray(rh.ray, o, d, tfar);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
 struct FoliageHit {
   std::uint32_t component;
   double t_m;
@@ -649,10 +657,7 @@ std::uint32_t Scene::Impl::first_face(const Vec3& o, const Vec3& d, float tfar,
   QueryContext ctx;
   init_context(ctx, ignore);
   RTCRayHit rh;
-  set_ray(rh.ray, o, d, tfar);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  set_ray_hit(rh, o, d, tfar);
   rtcIntersect1(opaque, &ctx.base, &rh);
   rays.fetch_add(1, std::memory_order_relaxed);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return kNone;
@@ -692,10 +697,7 @@ double Scene::Impl::foliage_loss_db(const Vec3& o, const Vec3& d, double length_
   ctx.base.filter = collect_all_filter;
   ctx.collected = &s.foliage_prims;
   RTCRayHit rh;
-  set_ray(rh.ray, o, d, kInfF);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  set_ray_hit(rh, o, d, kInfF);
   rtcIntersect1(foliage, &ctx.base, &rh);
   rays.fetch_add(1, std::memory_order_relaxed);
   if (s.foliage_prims.empty()) return 0.0;
