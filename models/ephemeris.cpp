@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <ranges>
 
 namespace navemu {
 
@@ -29,12 +28,16 @@ std::int64_t transmission_ns(const GpsEphemeris& e) {
 // nearest toe gives the smallest fit error. When t precedes every toe that is the earliest
 // one. Equal distances go to the record transmitted later, then to the later one in the file.
 namespace {
-// The selection rule over any sequence of record pointers.
+const GpsEphemeris* as_pointer(const GpsEphemeris& e) { return &e; }
+const GpsEphemeris* as_pointer(const GpsEphemeris* e) { return e; }
+
+// The selection rule over any sequence of records or record pointers.
 template <class Records>
 const GpsEphemeris* select_among(const Records& records, int prn, GpsTime t) {
   const GpsEphemeris* best = nullptr;
   std::int64_t best_dt = 0;
-  for (const GpsEphemeris* e : records) {
+  for (const auto& record : records) {
+    const GpsEphemeris* e = as_pointer(record);
     if (e->prn != prn || e->health != 0) continue;
     const std::int64_t dt = t.ns >= e->toe.ns ? t.ns - e->toe.ns : e->toe.ns - t.ns;
     // The transmission times only matter for a tie (they cost as much as the rest).
@@ -49,8 +52,7 @@ const GpsEphemeris* select_among(const Records& records, int prn, GpsTime t) {
 }  // namespace
 
 const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t) {
-  return select_among(nav.gps | std::views::transform([](const GpsEphemeris& e) { return &e; }),
-                      prn, t);
+  return select_among(nav.gps, prn, t);
 }
 
 const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records, GpsTime t) {

@@ -198,9 +198,9 @@ std::uint16_t crc16_ccitt_false(std::span<const std::uint8_t> bytes) {
   // alias CRC-16/CCITT-FALSE).
   std::uint16_t crc = 0xFFFF;
   for (const std::uint8_t b : bytes) {
-    crc = static_cast<std::uint16_t>(crc ^ (b << 8));
+    crc = static_cast<std::uint16_t>(crc ^ (static_cast<unsigned>(b) << 8u));
     for (int i = 0; i < 8; ++i) {
-      crc = (crc & 0x8000u) != 0 ? static_cast<std::uint16_t>((crc << 1) ^ 0x1021u)
+      crc = (crc & 0x8000u) != 0 ? static_cast<std::uint16_t>((static_cast<unsigned>(crc) << 1u) ^ 0x1021u)
                                  : static_cast<std::uint16_t>(crc << 1);
     }
   }
