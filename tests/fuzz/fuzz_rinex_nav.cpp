@@ -1,0 +1,32 @@
+// The RINEX navigation reader (models/rinex.hpp, RINEX 2.11 / 3.0x): the file is parsed or
+// refused with an InputError naming file, line and field; then each GPS record it accepts is
+// selected and evaluated at its toe and two hours on (IS-GPS-200 20.3.3.4.3), as the emulator
+// would use it, which must not crash or hang whatever the orbit's numbers.
+
+#include <cstdint>
+#include <sstream>
+#include <string>
+
+#include "models/errors.hpp"
+#include "models/orbit.hpp"
+#include "models/rinex.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  std::istringstream in(std::string(navemu::fuzz::text_of(data, size)));
+  navemu::NavData nav;
+  try {
+    nav = navemu::parse_rinex_nav(in, "fuzz.nav");
+  } catch (const navemu::InputError&) {
+    return 0;
+  }
+  for (const navemu::GpsEphemeris& eph : nav.gps) {
+    for (const double dt_s : {0.0, 7200.0}) {
+      const navemu::GpsTime t = eph.toe.plus_s(dt_s);
+      if (const navemu::GpsEphemeris* chosen = navemu::select_ephemeris(nav, eph.prn, t))
+        (void)navemu::gps_sat_state(*chosen, t);
+      (void)navemu::gps_sat_clock_poly_s(eph, t);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,56 @@
+#pragma once
+// Shared pieces of the fuzz targets (tests/fuzz/README.md): each target defines
+// LLVMFuzzerTestOneInput, the libFuzzer entry point, and holds the one property every input must
+// keep: the reader either accepts it or rejects it with the error it documents (navemu's
+// InputError naming file and line, or a decode result). Any other exception escaping, a crash,
+// a hang or a sanitizer report is a finding.
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <unistd.h>
+
+namespace navemu::fuzz {
+
+inline std::span<const std::uint8_t> bytes_of(const std::uint8_t* data, std::size_t size) {
+  return {data, size};
+}
+inline std::string_view text_of(const std::uint8_t* data, std::size_t size) {
+  return {reinterpret_cast<const char*>(data), size};
+}
+
+// The readers that take a path get the input through a file of this process's own, in a
+// folder of its own (a configuration's relative paths resolve there), rewritten per input.
+inline const std::filesystem::path& scratch_dir() {
+  static const std::filesystem::path dir = [] {
+    const char* tmp = std::getenv("TMPDIR");
+    std::filesystem::path d = std::filesystem::path(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") /
+                              ("navemu-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+inline std::filesystem::path write_scratch(const std::string& name, std::string_view text) {
+  const std::filesystem::path file = scratch_dir() / name;
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  return file;
+}
+
+// A finding that is not a crash by itself (a broken round trip): report and abort, so that
+// libFuzzer saves the input.
+[[noreturn]] inline void fail(const char* what) {
+  std::fprintf(stderr, "navemu fuzz: %s\n", what);
+  std::abort();
+}
+
+}  // namespace navemu::fuzz

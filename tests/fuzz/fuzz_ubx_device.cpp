@@ -1,0 +1,46 @@
+// The u-blox device's command side (emulator/ubx_device.hpp): the bytes a client sends (UBX
+// frames, NMEA, noise, in any pieces) go through ubx::Parser and the CFG/poll handlers, and the
+// configuration they leave must still encode an epoch. Byte 0 picks the profile (M8 or F9P) and
+// where the input is cut in two; an epoch is encoded after each piece.
+
+#include <cstdint>
+#include <string>
+
+#include "emulator/run_config.hpp"
+#include "emulator/ubx_device.hpp"
+#include "models/time.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
+
+namespace {
+
+navemu::ReceiverFix a_fix(std::int64_t epoch) {
+  navemu::ReceiverFix f;
+  f.t = navemu::gps_from_utc(navemu::CalendarTime{2020, 6, 25, 12, 0, 0.0}).plus_s(0.2 * static_cast<double>(epoch));
+  f.fix = navemu::FixType::k3D;
+  f.position = navemu::Geodetic{55.7, 12.5, 40.0};
+  f.p_ecef_m = navemu::ecef_from_geodetic(f.position);
+  f.num_used = 2;
+  f.satellites = {{5, 120.0, 45.0, 44.0, true}, {12, 300.0, 10.0, 31.0, true}};
+  return f;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const navemu::GnssProfile m8 = navemu::load_gnss_profile("ublox-m8");
+  static const navemu::GnssProfile f9p = navemu::load_gnss_profile("ublox-f9p");
+  static const navemu::NavData nav;
+  static const navemu::EpochMeasurements meas;
+  if (size == 0) return 0;
+  navemu::UbxDevice device((data[0] & 1) != 0 ? f9p : m8, navemu::ReceiverMode::kStandalone, nav);
+  const auto input = navemu::fuzz::bytes_of(data + 1, size - 1);
+  const std::size_t cut = input.empty() ? 0 : data[0] % (input.size() + 1);
+  std::string out;
+  device.receive(input.first(cut), out);
+  device.encode_epoch(a_fix(0), meas, 0, out);
+  (void)device.take_baud_change();
+  device.receive(input.subspan(cut), out);
+  device.encode_epoch(a_fix(1), meas, 1, out);
+  if (device.period_ns() <= 0) navemu::fuzz::fail("the navigation period is not positive");
+  return 0;
+}

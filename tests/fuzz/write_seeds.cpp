@@ -1,0 +1,187 @@
+// Writes the seed inputs of the binary fuzz targets, built with navemu's own encoders:
+// `navemu-fuzz-seeds DIR` fills DIR/ubx_device (the configuration handshake gpsd, ubxtool and
+// u-center send: polls, CFG-PRT/MSG/RATE/NAV5/GNSS/CFG/RST, CFG-VALSET/VALGET/VALDEL, NMEA
+// in between), DIR/slcan (python-can's opening sequence, every command letter, frames of each
+// kind) and DIR/truth_datagram (binary and JSON truth datagrams of every form). The text
+// targets' seeds are files of the project and of ../shared (tools/fuzz).
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "protocols/truth_datagram.hpp"
+#include "protocols/ubx.hpp"
+#include "protocols/ubx_messages.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+void write(const fs::path& dir, const std::string& name, std::string_view bytes) {
+  fs::create_directories(dir);
+  std::ofstream(dir / name, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+void write(const fs::path& dir, const std::string& name, const std::vector<std::uint8_t>& bytes) {
+  write(dir, name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+template <typename Msg>
+std::vector<std::uint8_t> frame(const Msg& m) {
+  std::vector<std::uint8_t> out;
+  navemu::ubx::append(m, out);
+  return out;
+}
+
+// Byte 0 of a ubx_device input picks the profile (bit 0) and the cut; the rest is the stream.
+void write_ubx(const fs::path& dir, const std::string& name, std::vector<std::uint8_t> stream) {
+  for (const std::uint8_t selector : {std::uint8_t{0x10}, std::uint8_t{0x11}}) {
+    std::vector<std::uint8_t> input{selector};
+    input.insert(input.end(), stream.begin(), stream.end());
+    write(dir, name + ((selector & 1) != 0 ? "-f9p" : "-m8"), input);
+  }
+}
+
+void ubx_seeds(const fs::path& dir) {
+  namespace ubx = navemu::ubx;
+  std::vector<std::uint8_t> handshake;
+  for (const ubx::MsgId id : {ubx::kMonVer, ubx::kCfgPrt, ubx::kCfgRate, ubx::kCfgNav5, ubx::kCfgGnss,
+                              ubx::kMonHw, ubx::kNavPvt, ubx::kNavSat, ubx::kSecUniqid})
+    ubx::append_poll(id, handshake);
+  write_ubx(dir, "polls", handshake);
+
+  ubx::CfgPrt prt;
+  prt.port_id = ubx::kPortUart1;
+  prt.mode = ubx::CfgPrt::kMode8N1;
+  prt.baud_rate = 115200;
+  prt.in_proto_mask = ubx::kProtoUbx;
+  prt.out_proto_mask = ubx::kProtoUbx | ubx::kProtoNmea;
+  write_ubx(dir, "cfg-prt", frame(prt));
+
+  std::vector<std::uint8_t> rates;
+  for (const ubx::MsgId id : {ubx::kNavPvt, ubx::kNavSat, ubx::kRxmRawx, ubx::kRxmSfrbx, ubx::kNavEoe}) {
+    ubx::CfgMsg m;
+    m.msg_class = id.cls;
+    m.msg_id = id.id;
+    m.rate[ubx::kPortUart1] = 1;
+    ubx::append(m, rates);
+  }
+  ubx::CfgMsgCurrentPort current;
+  current.msg_class = ubx::kNavDop.cls;
+  current.msg_id = ubx::kNavDop.id;
+  current.rate = 2;
+  ubx::append(current, rates);
+  ubx::CfgMsgPoll msg_poll;
+  msg_poll.msg_class = ubx::kNavPvt.cls;
+  msg_poll.msg_id = ubx::kNavPvt.id;
+  ubx::append(msg_poll, rates);
+  write_ubx(dir, "cfg-msg", rates);
+
+  ubx::CfgRate rate;
+  rate.meas_rate_ms = 200;
+  write_ubx(dir, "cfg-rate", frame(rate));
+
+  ubx::CfgNav5 nav5;
+  nav5.mask = ubx::CfgNav5::kMaskDyn | ubx::CfgNav5::kMaskMinEl;
+  nav5.dyn_model = 4;
+  nav5.min_elev_deg = 10;
+  write_ubx(dir, "cfg-nav5", frame(nav5));
+
+  ubx::CfgGnss gnss;
+  gnss.num_trk_ch_use = 32;
+  gnss.blocks = {{0, 8, 16, 0, ubx::CfgGnssBlock::kEnable | (1u << ubx::CfgGnssBlock::kSigCfgMaskShift)},
+                 {6, 4, 8, 0, 0}};
+  write_ubx(dir, "cfg-gnss", frame(gnss));
+
+  ubx::CfgCfg cfg;
+  cfg.save_mask = 0x1F1F;
+  cfg.has_device_mask = true;
+  cfg.device_mask = 0x17;
+  write_ubx(dir, "cfg-cfg", frame(cfg));
+
+  ubx::CfgRst rst;
+  rst.nav_bbr_mask = ubx::CfgRst::kColdStart;
+  rst.reset_mode = ubx::CfgRst::kControlledSoftwareResetGnss;
+  write_ubx(dir, "cfg-rst", frame(rst));
+
+  namespace key = ubx::cfgkey;
+  ubx::CfgValset valset;
+  valset.values = {{key::kRateMeas, 100}, {key::kUart1Baudrate, 230400}, {key::kUart1outprotUbx, 1},
+                   {key::kMsgoutUbxNavDopUart1, 1}, {key::kNavspgDynmodel, 2}};
+  ubx::CfgValgetRequest valget;
+  valget.keys = {key::kRateMeas, key::kRateNav, key::kUart1Baudrate, 0x0FFF0000};
+  ubx::CfgValdel valdel;
+  valdel.keys = {key::kRateMeas};
+  std::vector<std::uint8_t> keys = frame(valset);
+  ubx::append(valget, keys);
+  ubx::append(valdel, keys);
+  write_ubx(dir, "cfg-val", keys);
+
+  // NMEA commands and noise between frames, and a frame cut short.
+  std::vector<std::uint8_t> mixed;
+  for (const char c : std::string_view("$PUBX,40,GSV,0,0,0,0,0,0*59\r\n$GPGGA,,*56\r\n\xB5\x62\x06"))
+    mixed.push_back(static_cast<std::uint8_t>(c));
+  ubx::append_poll(ubx::kMonVer, mixed);
+  mixed.resize(mixed.size() - 3);
+  write_ubx(dir, "mixed", mixed);
+}
+
+void slcan_seeds(const fs::path& dir) {
+  // Byte 0: bit 7 opens the channel from the start, bits 0..5 set the piece size.
+  const std::vector<std::pair<std::string, std::string>> seeds = {
+      {"python-can-open", "\x05\r\r\rC\rS6\rO\r"},
+      {"queries", "\x3F" "V\rv\rN\rF\rZ1\rZ0\rM00000000\rm00000000\rX1\rW2\rQ0\r"},
+      {"bitrates", "\x02" "S0\rS8\rS9\rs031C\rs03\rO\rS4\rC\r"},
+      {"frames", "\x80" "t1238112233445566778\rT1234567811A\rr1230\rR123456780\rt7FF0\r"},
+      {"fd-frames", "\x80" "d123F" + std::string(128, 'A') + "\rB12345678C" + std::string(48, '0') + "\rb1239" +
+                        std::string(24, 'F') + "\r"},
+      {"errors", "\x01" "O\rO\rt800\rT2000000010\rt12390011223344556677\rd12310\rx\r\n\r" + std::string(150, 't') +
+                     "\r"},
+  };
+  for (const auto& [name, bytes] : seeds) write(dir, name, bytes);
+}
+
+void truth_seeds(const fs::path& dir) {
+  namespace td = navemu::truth_datagram;
+  td::Message m;
+  m.sequence = 7;
+  m.time_ns = 1'277'000'000'000'000'000;
+  m.position = {55.7, 12.5, 40.0};
+  m.velocity_mps = {10.0, -2.0, 0.1};
+  m.attitude = {0.96, 0.0, 0.0, 0.28};
+  write(dir, "geodetic-quaternion.bin", std::string_view(reinterpret_cast<const char*>(td::encode_binary(m).data()),
+                                                          td::kBinarySize));
+  write(dir, "geodetic-quaternion.json", td::encode_json(m));
+
+  m.time_base = td::TimeBase::kHostUtc;
+  m.position_frame = td::PositionFrame::kEcef;
+  m.position = {3'513'649.6, 778'954.5, 5'248'201.8};
+  m.velocity_frame = td::VelocityFrame::kEcef;
+  m.attitude_form = td::AttitudeForm::kRollPitchYaw;
+  m.attitude = {1.0, -2.0, 135.0, 0.0};
+  m.has_rates = true;
+  m.f_body_mps2 = {0.1, 0.2, -9.8};
+  m.w_body_radps = {0.01, 0.0, 0.3};
+  m.has_temperature = true;
+  m.temperature_c = 31.5;
+  write(dir, "ecef-rpy-rates.bin", std::string_view(reinterpret_cast<const char*>(td::encode_binary(m).data()),
+                                                     td::kBinarySize));
+  write(dir, "ecef-rpy-rates.json", td::encode_json(m));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: navemu-fuzz-seeds DIR\n");
+    return 2;
+  }
+  const fs::path dir(argv[1]);
+  ubx_seeds(dir / "ubx_device");
+  slcan_seeds(dir / "slcan");
+  truth_seeds(dir / "truth_datagram");
+  std::printf("seeds written to %s\n", dir.c_str());
+  return 0;
+}
