@@ -165,7 +165,9 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
     fail(src, n + 2, "e", fmt::format("eccentricity must be in [0, 1), got {}", eph.e));
   if (!(toe_s >= 0.0 && toe_s < static_cast<double>(kSecondsPerWeek)))
     fail(src, n + 3, "Toe", fmt::format("must be in [0, 604800) s of week, got {}", toe_s));
-  if (week < 0) fail(src, n + 5, "GPS week", fmt::format("must not be negative, got {}", week));
+  // Week 10000 is in the year 2171; beyond about 15000 the time no longer fits in int64 ns.
+  if (week < 0 || week > 10'000)
+    fail(src, n + 5, "GPS week", fmt::format("must be in 0..10000, got {}", week));
 
   // toe = continuous GPS week (RINEX 2.10+: "no roll-over") + Toe seconds. A week that puts
   // toe more than half a week from toc (a modulo-1024 week, or the week of transmission

@@ -466,6 +466,13 @@ TEST(RinexNavErrors, ImplausibleOrbit) {
                        replace(kNavV2Record, " 1.400000000000D+02", " 1.405000000000D+02"));
       },
       7, "IODE");
+  // A week so far out that toe in nanoseconds would overflow (found by tools/fuzz).
+  expect_input_error(
+      [&] {
+        (void)nav_from(nav_v2_header() +
+                       replace(kNavV2Record, " 1.316000000000D+03", " 2.244000000000D+07"));
+      },
+      11, "GPS week");
 }
 
 TEST(RinexNavErrors, Rinex3OtherSystemTruncated) {
