@@ -33,7 +33,7 @@ NumericCsvReader::NumericCsvReader(std::string path, std::vector<std::string> co
   if (!in_) throw InputError(path_, 0, "", "cannot open for reading");
   std::string header;
   bool found = false;
-  while (std::getline(in_, header)) {
+  while (read_line(header)) {
     ++line_;
     if (!skippable(header)) {
       found = true;
@@ -80,12 +80,25 @@ NumericCsvReader::NumericCsvReader(std::string path, std::vector<std::string> co
   }
 }
 
+// As std::getline, but a line over kMaxLineBytes is an error rather than an unbounded read.
+bool NumericCsvReader::read_line(std::string& line) {
+  line.clear();
+  std::streambuf& in = *in_.rdbuf();
+  for (int c = in.sbumpc(); c != std::char_traits<char>::eof(); c = in.sbumpc()) {
+    if (c == '\n') return true;
+    if (line.size() == kMaxLineBytes)
+      throw InputError(path_, line_ + 1, "", fmt::format("line longer than {} bytes", kMaxLineBytes));
+    line.push_back(static_cast<char>(c));
+  }
+  return !line.empty();
+}
+
 bool NumericCsvReader::has(const std::string& optional_column) const {
   return std::find(names_.begin(), names_.end(), optional_column) != names_.end();
 }
 
 bool NumericCsvReader::next(std::vector<double>& values) {
-  while (std::getline(in_, row_)) {
+  while (read_line(row_)) {
     ++line_;
     if (skippable(row_)) continue;
     // Split only as far as the last field needed.

@@ -1,7 +1,8 @@
 #pragma once
 // A streaming reader of numeric CSV files with a header row (IMU sample files, truth files).
 // Columns are found by name in any order and extra columns are ignored; blank lines and lines
-// starting with '#' are skipped; every value must be a finite number. Errors are InputError
+// starting with '#' are skipped; every value must be a finite number; a line may hold at most
+// kMaxLineBytes (a file without line ends is refused, not read whole). Errors are InputError
 // naming file, line and column.
 
 #include <fstream>
@@ -13,6 +14,8 @@ namespace navemu {
 
 class NumericCsvReader {
  public:
+  static constexpr std::size_t kMaxLineBytes = 64 * 1024;
+
   // `columns`: required names; `optional_columns`: read when the header has them. When
   // `increasing` names a time column (seconds), its values must increase from row to row.
   NumericCsvReader(std::string path, std::vector<std::string> columns,
@@ -29,6 +32,8 @@ class NumericCsvReader {
 
  private:
   std::string path_;
+  bool read_line(std::string& line);  // the next line, bounded; false at the end of the file
+
   std::ifstream in_;
   int line_ = 0;
   std::vector<std::string> names_;      // the columns read, in output order

@@ -344,6 +344,10 @@ SceneMesh load_scene_mesh(const std::filesystem::path& obj,
     in.seekg(0, std::ios::end);
     const std::streamoff size = in.tellg();
     in.seekg(0, std::ios::beg);
+    // Read whole: a bound, so that a wrong file is an error rather than memory exhausted. A
+    // 1-million-triangle city is about 60 MB of OBJ text.
+    constexpr std::streamoff kMaxBytes = std::streamoff{1} << 30;
+    if (size > kMaxBytes) fail(0, "", fmt::format("{} bytes: over the 1 GiB a scene may have", size));
     text.resize(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)));
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (!in) fail(0, "", "read failed");

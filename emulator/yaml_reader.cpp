@@ -174,6 +174,13 @@ void YamlMap::reject_unknown_keys() const {
 YAML::Node parse_yaml_file(const std::filesystem::path& file, const char* what) {
   if (!std::filesystem::is_regular_file(file))
     throw InputError(file.string(), 0, "", fmt::format("no such {} file", what));
+  // yaml-cpp builds the whole document as nodes (about 100 bytes per scalar): a bound, so that
+  // a wrong file is an error rather than memory exhausted. Configurations are a few kB.
+  constexpr std::uintmax_t kMaxBytes = 16u << 20;
+  std::error_code ec;
+  if (const std::uintmax_t size = std::filesystem::file_size(file, ec); !ec && size > kMaxBytes)
+    throw InputError(file.string(), 0, "",
+                     fmt::format("{} bytes: over the 16 MiB a {} file may have", size, what));
   try {
     return YAML::LoadFile(file.string());
   } catch (const YAML::ParserException& e) {

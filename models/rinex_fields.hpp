@@ -81,6 +81,11 @@ inline std::string read_file(const std::filesystem::path& file) {
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   in.seekg(0, std::ios::beg);
+  // Read whole: a bound, so that a wrong file is an error rather than memory exhausted. A day
+  // of 1 Hz multi-GNSS observations is about 0.5 GB.
+  constexpr std::streamoff kMaxBytes = std::streamoff{2} << 30;
+  if (size > kMaxBytes)
+    fail(name, 0, "", fmt::format("{} bytes: over the 2 GiB a RINEX file may have here", size));
   std::string text;
   if (size > 0) {
     text.resize(static_cast<std::size_t>(size));
