@@ -436,6 +436,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   last_fix.satellites.reserve(kMaxPrn);  // copied every epoch: no allocation
   std::optional<ImuTruth> last_fix_truth;
   std::int64_t interval_epochs = 0;
+  // Some GNSS epoch of the status interval had no truth: the status line says "truth LOST" even
+  // when the truth is back by the interval's end, so a loss shorter than the interval (the
+  // stream stopped for timeout_s + less than a second) is never left unreported.
+  bool interval_truth_lost = false;
   std::optional<ImuTruth> imu_before, imu_now, imu_after;
   std::int64_t window_n = -2;  // the internal step imu_now belongs to
   fmt::memory_buffer imu_line, status_line;
@@ -525,6 +529,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       }
       ++sum.gnss_epochs;
       ++interval_epochs;
+      if (!tr) interval_truth_lost = true;
       if (fix.fix != FixType::kNone) ++sum.gnss_fixes;
       last_fix = fix;
       last_fix_truth = tr;
@@ -646,6 +651,11 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     // --- Status line (real time only), formatted into one reused buffer: no allocation.
     if (next_status <= next) {
       if (!offline) {
+        // The live logs (IMU samples, the capture mirrors) are written out once per status
+        // interval as well as when their buffer fills, so they can be followed (tail -f) and a
+        // write error (disk full) is reported within a second, not only after 64 KB.
+        for (transport::BytePort* l : {imu_log.get(), capture_out.get(), capture_in.get()})
+          if (l != nullptr) l->service();
         status_line.clear();
         const auto out = std::back_inserter(status_line);
         const CalendarTime c = utc_from_gps(next_status);
@@ -671,10 +681,13 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         lateness.summary_and_reset(status_line);
         std::uint64_t dropped = 0;
         for (const auto& p : ports) dropped += p->counters().chunks_dropped;
-        if (can_out) dropped += can_out->totals().frames_dropped;
+        if (can_out) {
+          const CanOutputTotals t = can_out->totals();
+          dropped += t.frames_dropped + t.frames_failed;
+        }
         fmt::format_to(out, " | late {} skipped {} dropped {} | truth {}", sum.gnss_late,
                        sum.gnss_skipped + sum.imu_skipped, dropped,
-                       last_fix_truth || !receiver ? "ok" : "LOST");
+                       !receiver || (last_fix_truth && !interval_truth_lost) ? "ok" : "LOST");
         if (const TruthCounters* tc = truth->counters())
           fmt::format_to(out, " (accepted {}, rejected {})", tc->accepted, tc->rejected());
         status_line.push_back('\n');
@@ -682,6 +695,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         log.flush();
       }
       interval_epochs = 0;
+      interval_truth_lost = false;
       next_status = GpsTime{next_status.ns + status_ns};
     }
   }
@@ -694,7 +708,12 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     const CanOutputTotals t = can_out->totals();
     sum.can_frames_written = t.frames_written;
     sum.can_frames_dropped = t.frames_dropped;
+    sum.can_frames_failed = t.frames_failed;
     sum.can_bus_errors = t.bus_errors;
+  }
+  for (const auto& p : ports) {
+    sum.client_bytes_read += p->counters().bytes_read;
+    sum.stale_bytes_flushed += p->counters().stale_bytes_flushed;
   }
   if (const TruthCounters* tc = truth->counters()) {
     sum.truth_accepted = tc->accepted;

@@ -46,7 +46,11 @@ struct EngineSummary {
   std::int64_t gnss_epochs = 0, gnss_fixes = 0, gnss_skipped = 0, gnss_late = 0;
   std::int64_t imu_samples = 0, imu_flagged = 0, imu_skipped = 0;
   std::uint64_t output_chunks_dropped = 0;
-  std::uint64_t can_frames_written = 0, can_frames_dropped = 0, can_bus_errors = 0;
+  // Summed over the GNSS ports (transport::PortCounters): bytes the clients sent (commands, or
+  // whatever a client floods in), and unread output discarded as stale (a lower bound, pty).
+  std::uint64_t client_bytes_read = 0, stale_bytes_flushed = 0;
+  // CAN: written + dropped (queue full, ENOBUFS) + failed (interface down, ...) = every frame.
+  std::uint64_t can_frames_written = 0, can_frames_dropped = 0, can_frames_failed = 0, can_bus_errors = 0;
   std::uint64_t truth_accepted = 0, truth_rejected = 0;
   double wall_s = 0.0, scenario_s = 0.0;
 };

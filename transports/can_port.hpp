@@ -27,8 +27,11 @@ struct CanFrameView {
 struct CanCounters {
   std::uint64_t frames_written = 0;
   std::uint64_t frames_dropped = 0;  // queue full (ENOBUFS/EAGAIN), channel closed, no reader
+  std::uint64_t frames_failed = 0;   // not sent for another reason: invalid, interface down, ...
+                                     // (written + dropped + failed = every frame offered)
   std::uint64_t bus_errors = 0;      // error frames received from the interface
-  std::uint64_t errors = 0;          // other I/O errors (interface went down, ...)
+  std::uint64_t errors = 0;          // I/O errors (interface went down, ...); slcan: commands
+                                     // answered with BEL
   std::uint64_t commands = 0;        // slcan: commands received from the client
 };
 

@@ -26,7 +26,7 @@ class CandumpLog final : public FramePort {
 
   bool write(const CanFrameView& frame, std::int64_t unix_time_ns) override {
     if (!valid_can_frame(frame)) {
-      counters_.errors++;
+      counters_.frames_failed++;
       return false;
     }
     format_candump_line(frame, unix_time_ns, interface_, line_);

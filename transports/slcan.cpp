@@ -60,7 +60,7 @@ class SlcanPort final : public FramePort {
 
   bool write(const CanFrameView& frame, std::int64_t) override {
     if (!valid_can_frame(frame)) {
-      counters_.errors++;
+      counters_.frames_failed++;
       return false;
     }
     if (!open_) {

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <system_error>
@@ -76,7 +77,7 @@ class SocketCanPort final : public FramePort {
     std::size_t n = 0;
     for (const CanFrameView& frame : frames) {
       if (!valid_can_frame(frame)) {
-        counters_.errors++;
+        counters_.frames_failed++;
         continue;
       }
       if (frame.fd && !fd_frames_) {
@@ -102,11 +103,26 @@ class SocketCanPort final : public FramePort {
     while (sent < 0 && errno == EINTR);
     const std::size_t ok = sent > 0 ? static_cast<std::size_t>(sent) : 0;
     counters_.frames_written += ok;
+    if (ok > 0 && failing_) {
+      failing_ = false;
+      std::fputs(fmt::format("navemu: socketcan {}: sending again\n", name_).c_str(), stderr);
+    }
     if (ok < n) {
       // The first unsent frame failed (sendmmsg reports its errno only when none was sent).
       // ENOBUFS: the interface's transmit queue is full; EAGAIN: the socket send buffer is.
       const bool full = sent > 0 || errno == ENOBUFS || errno == EAGAIN || errno == EWOULDBLOCK;
-      (full ? counters_.frames_dropped : counters_.errors) += n - ok;  // else ENETDOWN and the like
+      if (full) {
+        counters_.frames_dropped += n - ok;
+      } else {  // ENETDOWN and the like: said once, until frames go out again
+        counters_.frames_failed += n - ok;
+        counters_.errors++;
+        if (!failing_)
+          std::fputs(fmt::format("navemu: socketcan {}: {}; frames fail until it is back\n", name_,
+                                 errno_text(errno))
+                         .c_str(),
+                     stderr);
+        failing_ = true;
+      }
     }
     return ok;
   }
@@ -182,6 +198,7 @@ class SocketCanPort final : public FramePort {
 
   std::string name_;
   bool fd_frames_;
+  bool failing_ = false;  // the last send failed with an error (said on stderr)
   int sock_ = -1;
 };
 

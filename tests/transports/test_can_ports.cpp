@@ -283,7 +283,8 @@ TEST(SlcanPort, InvalidFramesAreDroppedAndCounted) {
   EXPECT_FALSE(rig.port->write(frame(0x123, counting_bytes(65), false, true), 0));  // FD, 65
   EXPECT_FALSE(rig.port->write(frame(0x800, {1}), 0));             // 12-bit standard id
   EXPECT_FALSE(rig.port->write(frame(0x20000000, {1}, true), 0));  // 30-bit extended id
-  EXPECT_EQ(rig.port->counters().errors, 5u);
+  EXPECT_EQ(rig.port->counters().frames_failed, 5u);
+  EXPECT_EQ(rig.port->counters().errors, 0u);  // no command was refused
   EXPECT_EQ(rig.port->counters().frames_written, 0u);
   EXPECT_EQ(rig.receive(), "");
 }
@@ -340,7 +341,7 @@ TEST(CandumpLog, WrittenLogIsReadByLog2asc) {
     ASSERT_TRUE(port->write(frame(0x1ABCDEF, counting_bytes(12), true, true), t += 10000000));
     EXPECT_FALSE(port->write(frame(0x123, counting_bytes(9)), t));  // invalid: not logged
     EXPECT_EQ(port->counters().frames_written, 5u);
-    EXPECT_EQ(port->counters().errors, 1u);
+    EXPECT_EQ(port->counters().frames_failed, 1u);
     port->service();
     EXPECT_EQ(slurp(log).substr(0, 38), "(1700000000.010000) can0 123#DEADBEEF\n");
   }

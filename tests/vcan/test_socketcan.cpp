@@ -121,7 +121,7 @@ TEST(SocketCanVcan, ClassicFramesArriveIdentically) {
   const std::vector<std::uint8_t> d9 = counting_bytes(9);
   EXPECT_FALSE(port->write(frame(0x123, d9), 0));
   EXPECT_FALSE(port->write(frame(0x800, d4), 0));
-  EXPECT_EQ(port->counters().errors, 2u);
+  EXPECT_EQ(port->counters().frames_failed, 2u);
   canfd_frame none{};
   EXPECT_EQ(listener.next(none, 100), 0u) << "a dropped frame went out";
   port->service();
@@ -152,7 +152,7 @@ TEST(SocketCanVcan, FdFramesArriveIdentically) {
   }
   const std::vector<std::uint8_t> d10 = counting_bytes(10);
   EXPECT_FALSE(port->write(frame(0x123, d10, false, true), 0));
-  EXPECT_EQ(port->counters().errors, 1u);
+  EXPECT_EQ(port->counters().frames_failed, 1u);
   EXPECT_EQ(port->counters().frames_written, frames.size());
 }
 

@@ -1,0 +1,179 @@
+// The IMU on SocketCAN under the faults a bench meets: the interface goes down and comes back
+// up mid-run, and the interface's transmit queue is full (ENOBUFS: a bus slower than the
+// frames offered). navemu runs on, the GNSS output beside it keeps its 5 Hz cadence, every
+// frame is accounted for (written + dropped + failed = one per sample with the CAN FD
+// high-resolution layout, whose GPS time stamp matches each frame to its row of navemu's own
+// IMU log however many are missing), and what reaches the bus decodes to that row. Needs kernel CAN (tools/run-in-uml;
+// ctest -L vcan); scratch interfaces, so vcan0 stays as the other tests expect it.
+
+#include <gtest/gtest.h>
+#include <net/if.h>
+
+#include <fmt/format.h>
+
+#include <regex>
+
+#include "protocols/nmea.hpp"
+#include "tests/can_capture.hpp"
+#include "tests/clients/client_support.hpp"
+#include "transports/can_port.hpp"
+
+namespace navemu::test::clients {
+namespace {
+
+// A CAN FD vcan interface of the test's own, removed at the end.
+class ScratchVcan {
+ public:
+  explicit ScratchVcan(std::string name) : name_(std::move(name)) {
+    [[maybe_unused]] const int old = std::system(("ip link del dev " + name_ + " 2>/dev/null").c_str());
+    created_ = std::system(("ip link add dev " + name_ + " type vcan && ip link set dev " + name_ +
+                            " mtu 72 up").c_str()) == 0;
+  }
+  ~ScratchVcan() {
+    if (created_ && std::system(("ip link del dev " + name_).c_str()) != 0) ADD_FAILURE() << name_ << " left behind";
+  }
+  bool created() const { return created_; }
+  bool run(const std::string& ip_args) const {
+    return std::system(fmt::format(fmt::runtime(ip_args), name_).c_str()) == 0;
+  }
+
+ private:
+  std::string name_;
+  bool created_ = false;
+};
+
+std::string run_config(const TempDir& dir, const std::string& interface) {
+  return fmt::format("gnss:\n  outputs:\n    - {{type: pty, link: '{}'}}\n"
+                     "imu:\n  log: '{}'\n  outputs:\n"
+                     "    - {{type: socketcan, interface: {}, layouts: [highres-fd]}}\n",
+                     (dir / "gnss").string(), (dir / "imu.log").string(), interface);
+}
+
+// The summary's IMU and CAN counts.
+struct CanSummary {
+  long samples = 0, written = 0, dropped = 0, failed = 0;
+};
+std::optional<CanSummary> can_summary(const std::string& err) {
+  static const std::regex re(R"((\d+) IMU samples .*, (\d+) CAN frames \((\d+) dropped, (\d+) failed,)");
+  std::smatch m;
+  if (!std::regex_search(err, m, re)) return std::nullopt;
+  return CanSummary{std::stol(m[1]), std::stol(m[2]), std::stol(m[3]), std::stol(m[4])};
+}
+
+// Every RMC 200 ms after the one before (5 Hz), over the whole run.
+void expect_gnss_cadence(const std::vector<Received>& lines) {
+  std::int64_t last = -1;
+  int rmc = 0;
+  for (const Received& r : lines) {
+    const auto f = nmea::parse(r.text);
+    if (!f || (*f)[0].substr(2) != "RMC") continue;
+    const std::int64_t ms = rmc_unix_ms(*f);
+    if (last >= 0) {
+      EXPECT_EQ(ms - last, 200) << r.text;
+    }
+    last = ms;
+    ++rmc;
+  }
+  EXPECT_GE(rmc, 25);
+}
+
+#define NAVEMU_REQUIRE_KERNEL_CAN()                                                       \
+  do {                                                                                    \
+    if (!transport::socketcan_available())                                                \
+      GTEST_SKIP() << "no kernel CAN here: run through tools/run-in-uml (ctest -L vcan)"; \
+  } while (0)
+
+// Down for 2 s in the middle of 8 s: the frames of those samples fail (ENETDOWN) and are
+// counted, navemu says so once and again when frames flow, the GNSS output does not notice,
+// and frames flow again once the interface is up.
+TEST(CanFaults, InterfaceDownAndUpMidRun) {
+  NAVEMU_REQUIRE_KERNEL_CAN();
+  const std::string candump = find_program("candump");
+  if (candump.empty()) GTEST_SKIP() << "can-utils is not installed (tools/install-deps)";
+  ScratchVcan vcan("navemu-flap");
+  if (!vcan.created()) GTEST_SKIP() << "cannot create an interface (ip link add needs CAP_NET_ADMIN)";
+  TempDir dir("can-flap");
+  NavemuRun nav(dir, "navemu", run_config(dir, "navemu-flap"), 8.0);
+  ASSERT_TRUE(nav.wait_for_pty(dir / "gnss", 5.0)) << nav.diagnostics();
+  PtyReader reader;
+  ASSERT_TRUE(reader.open(dir / "gnss"));
+  std::vector<Received> lines;
+  const double t0 = mono_s();
+  reader.read_until(t0 + 2.0, lines);
+  ASSERT_TRUE(vcan.run("ip link set dev {} down"));
+  reader.read_until(t0 + 4.0, lines);
+  ASSERT_TRUE(vcan.run("ip link set dev {} up"));
+  Child dump({candump, "-L", "navemu-flap"}, dir / "candump.log", dir / "candump.stderr");
+  reader.read_until(t0 + 7.5, lines);
+  const auto st = nav.child().wait_exit(20.0);
+  ASSERT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st) << nav.diagnostics();
+  dump.signal(SIGINT);
+  ASSERT_TRUE(dump.wait_exit(5.0));
+
+  const auto s = can_summary(nav.err());
+  ASSERT_TRUE(s) << nav.diagnostics();
+  EXPECT_EQ(s->written + s->dropped + s->failed, s->samples) << nav.diagnostics();
+  // 2 s down at 125 Hz: about 250 frames failed (the commands take some time).
+  EXPECT_GT(s->failed, 150) << nav.diagnostics();
+  EXPECT_LT(s->failed, 500) << nav.diagnostics();
+  const std::vector<LoggedFrame> frames = read_candump_log(dir / "candump.log");
+  const CanCheck c = check_frames_against_log(frames, read_imu_rows(dir / "imu.log"));
+  EXPECT_GT(c.highres_fd, 100u) << "frames did not resume after the interface came back up";
+  // Said once each way, not per frame.
+  const std::string down = "socketcan navemu-flap: Network is down; frames fail until it is back";
+  const std::string again = "socketcan navemu-flap: sending again";
+  EXPECT_NE(nav.err().find(down), std::string::npos) << nav.diagnostics();
+  EXPECT_EQ(nav.err().find(down), nav.err().rfind(down)) << nav.diagnostics();
+  EXPECT_NE(nav.err().find(again), std::string::npos) << nav.diagnostics();
+  EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
+  expect_gnss_cadence(lines);
+  std::printf("interface down 2 s: %ld samples, %ld frames written, %ld dropped, %ld failed; %zu "
+              "frames seen after it came back\n",
+              s->samples, s->written, s->dropped, s->failed, frames.size());
+}
+
+// A token bucket of 40 kbit/s (5000 B/s, about 69 CAN FD frames a second) in front of an
+// interface offered 125 frames a second: the queue overflows, the kernel answers ENOBUFS, and
+// navemu drops and counts those frames without blocking.
+TEST(CanFaults, FullTransmitQueueDropsAndCounts) {
+  NAVEMU_REQUIRE_KERNEL_CAN();
+  const std::string candump = find_program("candump");
+  if (candump.empty()) GTEST_SKIP() << "can-utils is not installed (tools/install-deps)";
+  ScratchVcan vcan("navemu-slow");
+  if (!vcan.created()) GTEST_SKIP() << "cannot create an interface (ip link add needs CAP_NET_ADMIN)";
+  if (!vcan.run("tc qdisc add dev {} root tbf rate 40kbit burst 3600 limit 720"))
+    GTEST_SKIP() << "no tbf queueing discipline here (Debian package iproute2, module sch_tbf)";
+  TempDir dir("can-slow");
+  Child dump({candump, "-L", "navemu-slow"}, dir / "candump.log", dir / "candump.stderr");
+  sleep_s(0.5);
+  NavemuRun nav(dir, "navemu", run_config(dir, "navemu-slow"), 6.0);
+  ASSERT_TRUE(nav.wait_for_pty(dir / "gnss", 5.0)) << nav.diagnostics();
+  PtyReader reader;
+  ASSERT_TRUE(reader.open(dir / "gnss"));
+  std::vector<Received> lines;
+  reader.read_until(mono_s() + 5.5, lines);
+  const auto st = nav.child().wait_exit(20.0);
+  ASSERT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st) << nav.diagnostics();
+  sleep_s(0.5);
+  dump.signal(SIGINT);
+  ASSERT_TRUE(dump.wait_exit(5.0));
+
+  const auto s = can_summary(nav.err());
+  ASSERT_TRUE(s) << nav.diagnostics();
+  EXPECT_EQ(s->written + s->dropped + s->failed, s->samples) << nav.diagnostics();
+  EXPECT_EQ(s->failed, 0) << nav.diagnostics();
+  // 6 s: about 750 frames offered, about 50 + 6 * 69 = 460 through the bucket.
+  EXPECT_GT(s->dropped, s->samples / 10) << nav.diagnostics();
+  const std::vector<LoggedFrame> frames = read_candump_log(dir / "candump.log");
+  EXPECT_LE(static_cast<long>(frames.size()), s->written);
+  EXPECT_GT(frames.size(), 100u);
+  const CanCheck c = check_frames_against_log(frames, read_imu_rows(dir / "imu.log"));
+  EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
+  expect_gnss_cadence(lines);
+  std::printf("token bucket 40 kbit/s: %ld samples, %ld frames written, %ld dropped (ENOBUFS); "
+              "%zu on the bus\n",
+              s->samples, s->written, s->dropped, frames.size());
+}
+
+}  // namespace
+}  // namespace navemu::test::clients
