@@ -718,6 +718,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   if (const TruthCounters* tc = truth->counters()) {
     sum.truth_accepted = tc->accepted;
     sum.truth_rejected = tc->rejected();
+    sum.truth_lost = tc->lost;
   }
   sum.wall_s = static_cast<double>(monotonic_ns() - wall0) * 1e-9;
   sum.scenario_s = receiver ? static_cast<double>(sum.gnss_epochs) / prof.rate_hz

@@ -51,7 +51,7 @@ struct EngineSummary {
   std::uint64_t client_bytes_read = 0, stale_bytes_flushed = 0;
   // CAN: written + dropped (queue full, ENOBUFS) + failed (interface down, ...) = every frame.
   std::uint64_t can_frames_written = 0, can_frames_dropped = 0, can_frames_failed = 0, can_bus_errors = 0;
-  std::uint64_t truth_accepted = 0, truth_rejected = 0;
+  std::uint64_t truth_accepted = 0, truth_rejected = 0, truth_lost = 0;
   double wall_s = 0.0, scenario_s = 0.0;
 };
 

@@ -141,11 +141,11 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
                "navemu run: stopped after {:.1f} s: {} GNSS epochs ({} with a fix, {} late, {} "
                "skipped), {} IMU samples ({} skipped), {} output chunks dropped, {} stale bytes "
                "flushed, {} bytes from clients, {} CAN frames ({} dropped, {} failed, {} bus "
-               "errors), truth {} accepted / {} rejected\n",
+               "errors), truth {} accepted / {} rejected / {} lost unread\n",
                s.wall_s, s.gnss_epochs, s.gnss_fixes, s.gnss_late, s.gnss_skipped, s.imu_samples,
                s.imu_skipped, s.output_chunks_dropped, s.stale_bytes_flushed, s.client_bytes_read,
                s.can_frames_written, s.can_frames_dropped, s.can_frames_failed, s.can_bus_errors,
-               s.truth_accepted, s.truth_rejected);
+               s.truth_accepted, s.truth_rejected, s.truth_lost);
   }
   return 0;
 }

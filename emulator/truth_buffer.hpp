@@ -34,6 +34,8 @@ struct TruthCounters {
   std::uint64_t backwards = 0;
   std::uint64_t bad_framing = 0;  // datagrams that did not decode (CRC, magic, JSON); counted by
                                   // the source that decodes them
+  std::uint64_t lost = 0;  // datagrams the kernel dropped unread (queue full; neither accepted
+                           // nor rejected)
   std::uint64_t rejected() const {
     return not_finite + out_of_range + duplicate + backwards + bad_framing;
   }

@@ -88,6 +88,7 @@ class UdpSource final : public TruthSource {
       }
       buffer_.push(*s);
     }
+    buffer_.counters().lost = rx_.kernel_dropped();
   }
   std::optional<ImuTruth> at(GpsTime t) override { return buffer_.at(t); }
   std::optional<GpsTime> newest() const override { return buffer_.newest_time(); }

@@ -142,11 +142,15 @@ class UdpReceiver {
   int port() const { return port_; }
   int fd() const { return fd_; }
   std::uint64_t truncated() const { return truncated_; }
+  // Datagrams the kernel dropped before they could be read (the socket's queue was full), as
+  // of the last one received (socket(7) SO_RXQ_OVFL).
+  std::uint64_t kernel_dropped() const { return kernel_dropped_; }
 
  private:
   int fd_ = -1;
   int port_ = 0;
   std::uint64_t truncated_ = 0;
+  std::uint64_t kernel_dropped_ = 0;
 };
 
 // Opening errors (missing or busy device, address in use, symlink path taken) throw

@@ -7,6 +7,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -116,6 +117,11 @@ UdpReceiver::UdpReceiver(const std::string& bind_address, int port) {
   const Endpoint ep = resolve(address, port, true, what);
   const int fd = ::socket(ep.family, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd < 0) throw std::runtime_error(what + ": " + errno_text(errno));
+  // A deeper queue for bursts (the kernel caps it at net.core.rmem_max), and the count of
+  // datagrams the kernel dropped because the queue was full anyway (socket(7) SO_RXQ_OVFL).
+  const int rcvbuf_bytes = 4 << 20, on = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf_bytes, sizeof rcvbuf_bytes);
+  ::setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&ep.addr), ep.len) != 0) {
     const int e = errno;
     ::close(fd);
@@ -139,8 +145,22 @@ std::size_t UdpReceiver::receive(std::span<std::uint8_t> buf) {
   // is how truncation is noticed; truncated and empty datagrams are skipped (bounded, so a
   // flood of them cannot hold the caller).
   for (int k = 0; k < 64; ++k) {
-    const ssize_t n = ::recv(fd_, buf.data(), buf.size(), MSG_DONTWAIT | MSG_TRUNC);
+    iovec iov{buf.data(), buf.size()};
+    alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t))> control;
+    msghdr msg{};
+    msg.msg_iov = &iov;
+    msg.msg_iovlen = 1;
+    msg.msg_control = control.data();
+    msg.msg_controllen = control.size();
+    const ssize_t n = ::recvmsg(fd_, &msg, MSG_DONTWAIT | MSG_TRUNC);
     if (n < 0) return 0;  // EAGAIN: nothing waiting (errors on a UDP socket are transient)
+    // SO_RXQ_OVFL: the socket's drop count so far, on datagrams that follow a drop.
+    for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c))
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+        std::uint32_t dropped = 0;
+        std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
+        kernel_dropped_ = dropped;
+      }
     if (static_cast<std::size_t>(n) > buf.size()) {
       truncated_++;
       continue;

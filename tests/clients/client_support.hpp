@@ -281,14 +281,13 @@ inline std::vector<StatusLine> status_lines(const std::string& err) {
 struct RunSummary {
   double wall_s = 0;
   long epochs = 0, fixes = 0, late = 0, skipped = 0, chunks_dropped = 0;
-  long truth_accepted = 0, truth_rejected = 0;
-  // Summed over the GNSS ports; -1 when the line lacks them (an older navemu).
-  long stale_bytes_flushed = -1, client_bytes = -1;
+  long truth_accepted = 0, truth_rejected = 0, truth_lost = 0;
+  long stale_bytes_flushed = 0, client_bytes = 0;  // summed over the GNSS ports
 };
 
 inline std::optional<RunSummary> run_summary(const std::string& err) {
   static const std::regex re(
-      R"(navemu run: stopped after ([0-9.]+) s: (\d+) GNSS epochs \((\d+) with a fix, (\d+) late, (\d+) skipped\).* (\d+) output chunks dropped, (?:(\d+) stale bytes flushed, (\d+) bytes from clients, )?.*truth (\d+) accepted / (\d+) rejected)");
+      R"(navemu run: stopped after ([0-9.]+) s: (\d+) GNSS epochs \((\d+) with a fix, (\d+) late, (\d+) skipped\).* (\d+) output chunks dropped, (\d+) stale bytes flushed, (\d+) bytes from clients, .*truth (\d+) accepted / (\d+) rejected / (\d+) lost unread)");
   std::smatch m;
   if (!std::regex_search(err, m, re)) return std::nullopt;
   RunSummary s;
@@ -298,10 +297,11 @@ inline std::optional<RunSummary> run_summary(const std::string& err) {
   s.late = std::stol(m[4]);
   s.skipped = std::stol(m[5]);
   s.chunks_dropped = std::stol(m[6]);
-  if (m[7].matched) s.stale_bytes_flushed = std::stol(m[7]);
-  if (m[8].matched) s.client_bytes = std::stol(m[8]);
+  s.stale_bytes_flushed = std::stol(m[7]);
+  s.client_bytes = std::stol(m[8]);
   s.truth_accepted = std::stol(m[9]);
   s.truth_rejected = std::stol(m[10]);
+  s.truth_lost = std::stol(m[11]);
   return s;
 }
 

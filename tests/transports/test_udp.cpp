@@ -1,7 +1,8 @@
-// UDP sender and receiver on loopback: round trip, truncation, opening errors.
+// UDP sender and receiver on loopback: round trip, truncation, kernel drops, opening errors.
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/socket.h>
 
 #include <chrono>
 #include <stdexcept>
@@ -73,6 +74,26 @@ TEST(Udp, TruncatedDatagramsAreCountedAndSkipped) {
   std::this_thread::sleep_for(milliseconds(5));
   EXPECT_EQ(receive_one(rx, 10), "ccccc");
   EXPECT_EQ(rx.truncated(), 2u);
+}
+
+// A queue too small for a burst: the kernel drops what does not fit, and the count it reports
+// with the next datagram (SO_RXQ_OVFL) makes received + dropped = sent, exactly.
+TEST(Udp, DatagramsTheKernelDroppedAreCounted) {
+  UdpReceiver rx("127.0.0.1", 0);
+  const int small_bytes = 4096;  // the kernel doubles it and keeps a floor: a few datagrams
+  ASSERT_EQ(::setsockopt(rx.fd(), SOL_SOCKET, SO_RCVBUF, &small_bytes, sizeof small_bytes), 0);
+  auto tx = open_udp_sender({"127.0.0.1", rx.port()});
+  constexpr int kBurst = 500;
+  for (int i = 0; i < kBurst; ++i) ASSERT_TRUE(tx->write(std::string(100, 'x')));
+  std::vector<std::uint8_t> buf(2048);
+  int received = 0;
+  while (rx.receive(buf) > 0) ++received;
+  // The drops after the last queued datagram are reported with the next one.
+  ASSERT_TRUE(tx->write(std::string("last")));
+  EXPECT_EQ(receive_one(rx), "last");
+  ++received;
+  EXPECT_GT(rx.kernel_dropped(), 0u) << received << " received";
+  EXPECT_EQ(static_cast<std::uint64_t>(received) + rx.kernel_dropped(), kBurst + 1u);
 }
 
 TEST(Udp, Ipv6Loopback) {
