@@ -11,11 +11,13 @@ namespace {
 
 // Time of transmission of a record in ns since the GPS epoch. The RINEX "transmission time of
 // message" is seconds of week (RINEX 2.11 section 6.8; it may be given relative to the week of
-// toe, hence outside [0, 604800)); it is taken in the week that puts it nearest to toe.
+// toe, hence outside [0, 604800)); it is taken in the week that puts it nearest to toe. Any
+// finite value is reduced modulo a week first (a file may hold anything there).
 std::int64_t transmission_ns(const GpsEphemeris& e) {
   const std::int64_t week_ns = kSecondsPerWeek * kNsPerS;
   const std::int64_t toe_week_start = e.toe.ns - (((e.toe.ns % week_ns) + week_ns) % week_ns);
-  std::int64_t t = toe_week_start + GpsTime::from_seconds(e.transmission_tow_s).ns;
+  const double tow_s = std::fmod(e.transmission_tow_s, static_cast<double>(kSecondsPerWeek));
+  std::int64_t t = toe_week_start + GpsTime::from_seconds(tow_s).ns;
   while (t - e.toe.ns > week_ns / 2) t -= week_ns;
   while (e.toe.ns - t > week_ns / 2) t += week_ns;
   return t;
