@@ -2,7 +2,8 @@
 // `navemu-fuzz-seeds DIR` fills DIR/ubx_device (the configuration handshake gpsd, ubxtool and
 // u-center send: polls, CFG-PRT/MSG/RATE/NAV5/GNSS/CFG/RST, CFG-VALSET/VALGET/VALDEL, NMEA
 // in between), DIR/slcan (python-can's opening sequence, every command letter, frames of each
-// kind) and DIR/truth_datagram (binary and JSON truth datagrams of every form). The text
+// kind), DIR/truth_datagram (binary and JSON truth datagrams of every form) and DIR/scene (a
+// building on a ground sheet, since the mission city is generated, not kept). The other text
 // targets' seeds are files of the project and of ../shared (tools/fuzz).
 
 #include <cstdio>
@@ -171,6 +172,17 @@ void truth_seeds(const fs::path& dir) {
   write(dir, "ecef-rpy-rates.json", td::encode_json(m));
 }
 
+// A building on a ground sheet, as `navemu scene` writes them (emulator/scene_loader.hpp).
+void scene_seeds(const fs::path& dir) {
+  write(dir, "building.obj",
+        "# ground and a 10 m cube\nmtllib materials.mtl\n"
+        "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\n"
+        "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 0 0 10\nv 10 0 10\nv 10 10 10\nv 0 10 10\n"
+        "g ground\nusemtl ground\nf 1 2 3 4\n"
+        "g building\nusemtl concrete\nf 5 6 10 9\nf 6 7 11 10\nf 7 8 12 11\nf 8 5 9 12\n"
+        "usemtl glass\nf 9 10 11 12\nf 5 8 7 6\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -182,6 +194,7 @@ int main(int argc, char** argv) {
   ubx_seeds(dir / "ubx_device");
   slcan_seeds(dir / "slcan");
   truth_seeds(dir / "truth_datagram");
+  scene_seeds(dir / "scene");
   std::printf("seeds written to %s\n", dir.c_str());
   return 0;
 }

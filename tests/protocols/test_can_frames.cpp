@@ -294,7 +294,7 @@ std::uint64_t extract_raw(const CanFrame& f, const DbcSignal& s) {
   std::uint64_t raw = 0;
   for (unsigned i = 0; i < s.length; ++i) {
     const unsigned bit = s.start + i;
-    if (((f.data[bit / 8] >> (bit % 8)) & 1u) != 0) raw |= std::uint64_t{1} << i;
+    if (((static_cast<unsigned>(f.data[bit / 8]) >> (bit % 8)) & 1u) != 0) raw |= std::uint64_t{1} << i;
   }
   return raw;
 }
