@@ -244,6 +244,14 @@ inline std::string describe_status(std::optional<int> st) {
   return "status " + std::to_string(*st);
 }
 
+// Resident memory of a process, kB (VmRSS of /proc/PID/status); 0 when unknown.
+inline long rss_kb(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return 0;
+}
+
 // --- navemu run.
 
 // One status line: "navemu: 12:48:13 UTC gnss 80 ep (3D 10/11 sv PDOP ...) imu 0 smp | jitter

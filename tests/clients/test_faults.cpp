@@ -502,6 +502,7 @@ TEST(Faults, TcpClientDisconnectsAndReconnects) {
 // NMEA at 1 Hz after power-up), no epoch is skipped, and navemu exits 0. Counters exact: after
 // the flood navemu gets 0.5 s (50 ticks, far more than the ~21 KB the pty can hold needs) to
 // read what is left, and then its summary's "bytes from clients" equals what the flooder wrote.
+// Resident memory grows by less than 1 MB over the flood.
 TEST(Faults, GarbageFloodIntoTheUbloxPortKeepsTheCadence) {
   constexpr double kFlood_s = 3.0;
   TempDir dir("flood");
@@ -522,6 +523,8 @@ TEST(Faults, GarbageFloodIntoTheUbloxPortKeepsTheCadence) {
   std::vector<Received> lines;
   std::uint64_t written_bytes = 0, write_calls = 0;
   int write_errno = 0;
+  reader.read_until(mono_s() + 1.0, lines);  // warmed up
+  const long rss_before_kb = rss_kb(nav.child().pid());
   const double flood_end = mono_s() + kFlood_s;
   {
     std::jthread flooder([&](std::stop_token stop) {
@@ -553,6 +556,10 @@ TEST(Faults, GarbageFloodIntoTheUbloxPortKeepsTheCadence) {
   reader.read_until(mono_s() + 0.5, lines);
   ::close(wfd);
   ASSERT_TRUE(nav.child().running()) << nav.diagnostics();
+  // Memory bounded: the parser's buffer is fixed, so megabytes of garbage leave no trace.
+  const long rss_growth_kb = rss_kb(nav.child().pid()) - rss_before_kb;
+  EXPECT_GT(rss_before_kb, 0);
+  EXPECT_LT(rss_growth_kb, 1024) << "resident memory grew during the flood";
   const auto st = nav.stop();
   EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
   EXPECT_EQ(write_errno, 0) << std::strerror(write_errno);
@@ -566,11 +573,11 @@ TEST(Faults, GarbageFloodIntoTheUbloxPortKeepsTheCadence) {
   EXPECT_EQ(s->client_bytes, static_cast<long>(written_bytes)) << nav.diagnostics();
   RecordProperty("flood_bytes", std::to_string(written_bytes));
   std::printf("flood: %llu bytes in %llu writes in %.1f s (%.2f MB/s); navemu read %ld; stale "
-              "flushed %ld\n",
+              "flushed %ld; resident memory %+ld kB\n",
               static_cast<unsigned long long>(written_bytes),
               static_cast<unsigned long long>(write_calls), kFlood_s,
               static_cast<double>(written_bytes) / kFlood_s * 1e-6, s->client_bytes,
-              s->stale_bytes_flushed);
+              s->stale_bytes_flushed, rss_growth_kb);
 }
 
 // The truth stream of tests (h) and (i): binary datagrams (host UTC time stamps, now) to
