@@ -27,16 +27,22 @@ inline std::string_view text_of(const std::uint8_t* data, std::size_t size) {
 }
 
 // The readers that take a path get the input through a file of this process's own, in a
-// folder of its own (a configuration's relative paths resolve there), rewritten per input.
+// folder of its own (a configuration's relative paths resolve there), rewritten per input and
+// removed when the process exits normally (libFuzzer exits at the end of its time).
 inline const std::filesystem::path& scratch_dir() {
-  static const std::filesystem::path dir = [] {
+  // Never destroyed, so that the exit handler can still use it.
+  static const std::filesystem::path* const dir = [] {
     const char* tmp = std::getenv("TMPDIR");
-    std::filesystem::path d = std::filesystem::path(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") /
-                              ("navemu-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
+    auto* d = new std::filesystem::path(std::filesystem::path(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") /
+                                        ("navemu-fuzz-" + std::to_string(::getpid())));
+    std::filesystem::create_directories(*d);
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(scratch_dir(), ec);
+    });
     return d;
   }();
-  return dir;
+  return *dir;
 }
 
 inline std::filesystem::path write_scratch(const std::string& name, std::string_view text) {
