@@ -315,16 +315,20 @@ inline std::optional<RunSummary> run_summary(const std::string& err) {
 
 // `navemu run CONFIG --duration S` on a configuration written into the test's folder; its
 // standard error (start-up lines, status lines, summary) goes to NAME.stderr there. The
-// duration is only a safety net: tests stop it themselves.
+// duration is only a safety net: tests stop it themselves. `prefix` runs navemu through another
+// program (e.g. setpriv to drop root).
 class NavemuRun {
  public:
   NavemuRun(const TempDir& dir, const std::string& name, const std::string& config_yaml,
-            double duration_s, const std::vector<std::string>& extra = {})
+            double duration_s, const std::vector<std::string>& extra = {},
+            const std::vector<std::string>& prefix = {})
       : err_(dir / (name + ".stderr")) {
     const fs::path cfg = dir / (name + ".yaml");
     std::ofstream(cfg) << config_yaml;
-    std::vector<std::string> argv{navemu_binary().string(), "run", cfg.string(), "--duration",
-                                  std::to_string(duration_s)};
+    std::vector<std::string> argv = prefix;
+    for (const std::string& a : {navemu_binary().string(), std::string("run"), cfg.string(),
+                                 std::string("--duration"), std::to_string(duration_s)})
+      argv.push_back(a);
     argv.insert(argv.end(), extra.begin(), extra.end());
     started_mono_ = mono_s();
     child_.start(argv, dir / (name + ".stdout"), err_);

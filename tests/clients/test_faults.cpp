@@ -4,6 +4,7 @@
 // port, and a truth stream that jumps 1000 km or stops for 2 s.
 
 #include <gtest/gtest.h>
+#include <pwd.h>
 
 #include <fmt/format.h>
 
@@ -924,6 +925,48 @@ TEST(Faults, TruthAt10kHzIsTakenInAndCounted) {
   std::printf("truth at %.0f Hz for %.1f s: %ld sent, %ld accepted, %ld rejected, %ld lost unread\n",
               30'000 / burst_s, burst_s, sender.sent(), s->truth_accepted, s->truth_rejected,
               s->truth_lost);
+}
+
+// (k) navemu needs no root: ptys (and SocketCAN raw sockets on an existing interface) are open
+// to every user. When the tests run as root, navemu runs as user nobody (setpriv, util-linux)
+// in a folder it may write; it opens its pty and sends the 5 Hz output a client reads.
+TEST(Faults, RunsWithoutRoot) {
+  TempDir dir("no-root");
+  std::vector<std::string> prefix;
+  if (::geteuid() == 0) {
+    const std::string setpriv = find_program("setpriv");
+    if (setpriv.empty()) GTEST_SKIP() << "setpriv (util-linux) not found";
+    prefix = {setpriv, "--reuid=nobody", "--regid=nogroup", "--clear-groups"};
+    std::vector<std::string> check = prefix;
+    for (const char* a : {"test", "-x"}) check.emplace_back(a);
+    check.push_back(navemu_binary().string());
+    Child probe(check, dir / "probe.out", dir / "probe.err");
+    const auto st = probe.wait_exit(5.0);
+    if (!st || !WIFEXITED(*st) || WEXITSTATUS(*st) != 0)
+      GTEST_SKIP() << "user nobody cannot run " << navemu_binary() << " (a folder on its path is private)";
+    ASSERT_EQ(::chmod(dir.path().c_str(), 0777), 0);  // for the pty link
+  }
+  const fs::path link = dir / "gnss";
+  NavemuRun nav(dir, "navemu", stationary_config(link, "garmin-18x-5hz"), 60, {}, prefix);
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  // The process that runs is navemu (setpriv execs it), with the user's real and effective ids.
+  std::string uid_line;
+  std::ifstream status("/proc/" + std::to_string(nav.child().pid()) + "/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Uid:", 0) == 0) uid_line = line;
+  const passwd* nobody = ::getpwnam("nobody");
+  ASSERT_NE(nobody, nullptr);
+  const unsigned expected_uid = prefix.empty() ? ::geteuid() : nobody->pw_uid;
+  EXPECT_EQ(uid_line, fmt::format("Uid:\t{0}\t{0}\t{0}\t{0}", expected_uid));
+  PtyReader reader;
+  ASSERT_TRUE(reader.open(link));
+  reader.discard_queued();
+  std::vector<Received> lines;
+  reader.read_until(mono_s() + 2.0, lines);
+  const auto st = nav.stop();
+  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st) << nav.diagnostics();
+  EXPECT_GE(check_session(lines, "as an unprivileged user"), 8) << nav.diagnostics();
+  EXPECT_EQ(fs::symlink_status(link).type(), fs::file_type::not_found) << "pty link left behind";
 }
 
 }  // namespace
