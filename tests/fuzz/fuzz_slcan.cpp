@@ -1,11 +1,13 @@
 // The slcan adapter's command side (transports/can_port.hpp, SlcanPort): the bytes a client
-// sends arrive through a byte port in pieces of up to 61 bytes (byte 0 sets the piece size and
-// whether the channel starts open); each service() answers the complete commands, and a frame
-// goes out between pieces. Every command is answered with CR, BEL or a version line, so the
-// answers never outnumber the input bytes plus one per piece.
+// sends arrive through a byte port in pieces of 1 to 64 bytes (byte 0 sets the piece size and
+// whether the channel starts open); each service() reads its piece whole and answers the
+// complete commands, and a frame goes out between pieces. Every command is answered with at most
+// 7 bytes (CR, BEL or a version line), so the port never carries more than 7 bytes per input
+// byte besides the frames.
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 
