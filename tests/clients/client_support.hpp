@@ -341,13 +341,18 @@ class NavemuRun {
     return "\n--- navemu stderr (" + err_.string() + ") ---\n" + tail(err()) + "\n---";
   }
 
-  // Waits until the pty link exists and navemu has announced it.
+  // Waits until the pty link exists and navemu has announced it ("GNSS NMEA on pty ..." or,
+  // for a u-blox profile, "GNSS UBX/NMEA on pty ..."); false at once if navemu has exited.
   bool wait_for_pty(const fs::path& link, double timeout_s) {
     return wait_until(
-        [&] {
-          return fs::exists(link) && err().find("GNSS NMEA on pty") != std::string::npos;
-        },
-        timeout_s);
+               [&] {
+                 const std::string e = err();
+                 return (fs::exists(link) && (e.find("GNSS NMEA on pty") != std::string::npos ||
+                                              e.find("GNSS UBX/NMEA on pty") != std::string::npos)) ||
+                        !child_.running();
+               },
+               timeout_s) &&
+           child_.running();
   }
 
   // The UDP port of the truth source (configured as port 0: the kernel picks a free one, and

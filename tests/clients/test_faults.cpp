@@ -509,12 +509,7 @@ TEST(Faults, GarbageFloodIntoTheUbloxPortKeepsTheCadence) {
   TempDir dir("flood");
   const fs::path link = dir / "gnss";
   NavemuRun nav(dir, "navemu", stationary_config(link, "ublox-m8"), 60);
-  // A u-blox receiver announces "GNSS UBX/NMEA on pty", which NavemuRun::wait_for_pty (NMEA
-  // profiles) does not look for.
-  ASSERT_TRUE(wait_until(
-      [&] { return fs::exists(link) && nav.err().find("UBX/NMEA on pty") != std::string::npos; },
-      5.0))
-      << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
   PtyReader reader;
   ASSERT_TRUE(reader.open(link));
   reader.discard_queued();

@@ -67,17 +67,6 @@ std::string ubx_config(const fs::path& profile, const fs::path& link, const fs::
       link.string(), log.string());
 }
 
-// The pty link exists and navemu has announced it ("GNSS UBX/NMEA on pty ...").
-bool wait_for_ubx_pty(NavemuRun& nav, const fs::path& link, double timeout_s) {
-  return wait_until(
-      [&] {
-        return (fs::exists(link) && nav.err().find(" on pty ") != std::string::npos) ||
-               !nav.child().running();
-      },
-      timeout_s) &&
-         nav.child().running();
-}
-
 // ---- UBX frames --------------------------------------------------------------------------
 
 struct UbxFrame {
@@ -251,7 +240,7 @@ TEST(UbxGpsd, UbloxDriverFixSkyRawAndSubframes) {
       dir, "ublox-m8", "NAV-PVT: 1, NAV-SAT: 1, NAV-TIMEGPS: 1, NAV-DOP: 1, RXM-RAWX: 1, RXM-SFRBX: 1");
   const fs::path capture = dir / "wire.ubx";
   NavemuRun nav(dir, "navemu", ubx_config(profile, link, log, "now", capture), 60);
-  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
   Gpsd g;
   ASSERT_TRUE(g.start(gpsd, dir, link, 5.0)) << g.diagnostics() << nav.diagnostics();
   const double gpsd_start = mono_s();
@@ -540,7 +529,7 @@ TEST(UbxTool, M8PollsRateChangeAndRefusals) {
   const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
   NavemuRun nav(dir, "navemu",
                 ubx_config(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-m8.yaml", link, log), 90);
-  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
   const double t0 = mono_s();
 
   std::string out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "MON-VER"});
@@ -608,7 +597,7 @@ TEST(UbxTool, F9pValsetValget) {
   const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
   NavemuRun nav(dir, "navemu",
                 ubx_config(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-f9p.yaml", link, log), 60);
-  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
 
   std::string out = run_ubxtool(ubxtool, dir, link, "27", {"-p", "MON-VER"});
   EXPECT_TRUE(has_message(out, "UBX-MON-VER:", "extension PROTVER=27.11")) << out;
@@ -676,7 +665,7 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   const GpsTime start = from_week_tow(wt.week, tow);
   NavemuRun nav(dir, "navemu", ubx_config(profile, link, log, fmt::format("{}:{:.0f}", wt.week, tow)),
                 capture_s + 30.0);
-  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
 
   // RTKLIB prefixes /dev/ to a serial path (TESTING.md).
   const fs::path capture = dir / "capture.ubx";
@@ -813,7 +802,7 @@ TEST(UbxFaults, GarbageFromTheClientNeverStopsTheOutput) {
   const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
   const fs::path profile = write_profile(dir, "ublox-m8", "NAV-PVT: 1");
   NavemuRun nav(dir, "navemu", ubx_config(profile, link, log), 60);
-  ASSERT_TRUE(wait_for_ubx_pty(nav, link, 5.0)) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
   PtyClient pty;
   ASSERT_TRUE(pty.open(link));
   pty.read_until(mono_s() + 2.0);
