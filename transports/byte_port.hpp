@@ -22,7 +22,8 @@ struct PortCounters {
   std::uint64_t bytes_written = 0;
   std::uint64_t chunks_dropped = 0;  // nobody could take them (buffer full, no client)
   std::uint64_t bytes_dropped = 0;
-  std::uint64_t stale_bytes_flushed = 0;    // queued but unread for too long, discarded
+  std::uint64_t stale_flushes = 0;          // times unread output was discarded as stale
+  std::uint64_t stale_bytes_flushed = 0;    // what those discarded, as far as it was counted
   std::uint64_t bytes_read = 0;             // from clients (commands)
   std::uint64_t clients_connected = 0;      // connections accepted / reopenings seen so far
   std::uint64_t errors = 0;                 // I/O errors other than "would block"

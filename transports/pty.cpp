@@ -295,6 +295,7 @@ class PtyPort final : public BytePort {
       return;
     }
     recent_.clear();
+    counters_.stale_flushes++;
     counters_.stale_bytes_flushed += queued + (tail_.size() - tail_off_);
     tail_.clear();
     tail_off_ = 0;

@@ -228,7 +228,7 @@ TEST(Pty, ClientClosesAndReopensMidStream) {
   port->service();
   EXPECT_EQ(port->counters().clients_connected, 2u);
   EXPECT_EQ(port->counters().chunks_dropped, 0u);
-  EXPECT_EQ(port->counters().stale_bytes_flushed, 0u);
+  EXPECT_EQ(port->counters().stale_flushes, 0u);
   ::close(c);
 }
 
@@ -243,7 +243,9 @@ TEST(Pty, NobodyReadingNeverBlocksAndStaleOutputIsBounded) {
   EXPECT_LT(elapsed, milliseconds(500));
   const PortCounters& k = port->counters();
   EXPECT_EQ(k.chunks_written + k.chunks_dropped, 1000u);
-  EXPECT_GT(k.stale_bytes_flushed, 0u);  // (a lower bound: see pty.cpp)
+  // Stale output was discarded. Its byte count is only a lower bound (pty.cpp): while the
+  // kernel's worker lags behind the writes, FIONREAD shows none of it, so count the flushes.
+  EXPECT_GT(k.stale_flushes, 0u);
   EXPECT_GT(k.chunks_written, 900u);     // stale output made room for new chunks
   EXPECT_EQ(k.errors, 0u);
 
@@ -299,7 +301,7 @@ TEST(Pty, ChunkBiggerThanThePtyIsCompletedFromTheTail) {
   reader.join();
   EXPECT_TRUE(received == big + small) << "received " << received.size() << " bytes";
   EXPECT_EQ(port->counters().chunks_written, 2u);
-  EXPECT_EQ(port->counters().stale_bytes_flushed, 0u);
+  EXPECT_EQ(port->counters().stale_flushes, 0u);
   ::close(c);
 }
 
