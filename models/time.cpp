@@ -64,7 +64,7 @@ constexpr int days_in_month(std::int64_t y, int m) {
 
 // Nanoseconds since the GPS epoch of a calendar reading taken as a uniform 86400-s-per-day
 // scale (no leap seconds): the time scale in which the calendar is read.
-std::int64_t ns_from_fields(std::int64_t y, int mo, int d, int h, int mi, std::int64_t sec_ns) {
+constexpr std::int64_t ns_from_fields(std::int64_t y, int mo, int d, int h, int mi, std::int64_t sec_ns) {
   const std::int64_t days = days_from_civil(y, mo, d) - kGpsEpochDays;
   return days * kNsPerDay + (static_cast<std::int64_t>(h) * 3600 + mi * 60) * kNsPerS + sec_ns;
 }
@@ -117,29 +117,30 @@ struct LeapEntry {
   int month;
   int day;
   int gps_minus_utc_s;
+  std::int64_t utc_ns;  // the date's 00:00:00 on the uniform UTC-reading scale (no leap seconds)
+  std::int64_t gps_ns;  // the GPS instant at which UTC reads that 00:00:00
 };
-constexpr std::array<LeapEntry, 18> kLeapTable{{
-    {1981, 7, 1, 1},  {1982, 7, 1, 2},  {1983, 7, 1, 3},  {1985, 7, 1, 4},  {1988, 1, 1, 5},
-    {1990, 1, 1, 6},  {1991, 1, 1, 7},  {1992, 7, 1, 8},  {1993, 7, 1, 9},  {1994, 7, 1, 10},
-    {1996, 1, 1, 11}, {1997, 7, 1, 12}, {1999, 1, 1, 13}, {2006, 1, 1, 14}, {2009, 1, 1, 15},
-    {2012, 7, 1, 16}, {2015, 7, 1, 17}, {2017, 1, 1, 18},
-}};
-
-// Start of an entry on the uniform UTC-reading scale (UTC calendar read without leap seconds).
-std::int64_t entry_utc_ns(const LeapEntry& e) { return ns_from_fields(e.year, e.month, e.day, 0, 0, 0); }
-// The GPS instant at which UTC reads 00:00:00 on the entry's date.
-std::int64_t entry_gps_ns(const LeapEntry& e) {
-  return entry_utc_ns(e) + static_cast<std::int64_t>(e.gps_minus_utc_s) * kNsPerS;
+// The instants are computed at compile time: every conversion of a time stamp looks them up.
+constexpr LeapEntry leap(int year, int month, int day, int gps_minus_utc_s) {
+  const std::int64_t utc_ns = ns_from_fields(year, month, day, 0, 0, 0);
+  return LeapEntry{year, month, day, gps_minus_utc_s, utc_ns, utc_ns + gps_minus_utc_s * kNsPerS};
 }
+constexpr std::array<LeapEntry, 18> kLeapTable{{
+    leap(1981, 7, 1, 1),  leap(1982, 7, 1, 2),  leap(1983, 7, 1, 3),  leap(1985, 7, 1, 4),
+    leap(1988, 1, 1, 5),  leap(1990, 1, 1, 6),  leap(1991, 1, 1, 7),  leap(1992, 7, 1, 8),
+    leap(1993, 7, 1, 9),  leap(1994, 7, 1, 10), leap(1996, 1, 1, 11), leap(1997, 7, 1, 12),
+    leap(1999, 1, 1, 13), leap(2006, 1, 1, 14), leap(2009, 1, 1, 15), leap(2012, 7, 1, 16),
+    leap(2015, 7, 1, 17), leap(2017, 1, 1, 18),
+}};
 
 // GPS - UTC at a UTC reading on the uniform scale; `in_leap_second` for 23:59:60.x, whose
 // uniform reading equals the next day's 00:00:00.x but which still carries the old offset.
 int leap_at_utc_ns(std::int64_t utc_uniform_ns, bool in_leap_second, std::optional<int> after_table_s) {
   const std::int64_t t = in_leap_second ? utc_uniform_ns - kNsPerS : utc_uniform_ns;
-  if (after_table_s && t >= entry_utc_ns(kLeapTable.back())) return *after_table_s;
+  if (after_table_s && t >= kLeapTable.back().utc_ns) return *after_table_s;
   int value = 0;
   for (const LeapEntry& e : kLeapTable) {
-    if (t >= entry_utc_ns(e)) value = e.gps_minus_utc_s;
+    if (t >= e.utc_ns) value = e.gps_minus_utc_s;
   }
   return value;
 }
@@ -148,7 +149,7 @@ int leap_at_utc_ns(std::int64_t utc_uniform_ns, bool in_leap_second, std::option
 // Whether t lies in an inserted leap second (UTC 23:59:60.x).
 bool in_inserted_second(GpsTime t) {
   for (const LeapEntry& e : kLeapTable) {
-    const std::int64_t start = entry_gps_ns(e);
+    const std::int64_t start = e.gps_ns;
     if (t.ns >= start - kNsPerS && t.ns < start) return true;
   }
   return false;
@@ -333,10 +334,10 @@ int leap_seconds_at_utc(const CalendarTime& utc, std::optional<int> after_table_
 }
 
 int leap_seconds_at_gps(GpsTime t, std::optional<int> after_table_s) {
-  if (after_table_s && t.ns >= entry_gps_ns(kLeapTable.back())) return *after_table_s;
+  if (after_table_s && t.ns >= kLeapTable.back().gps_ns) return *after_table_s;
   int value = 0;
   for (const LeapEntry& e : kLeapTable) {
-    if (t.ns >= entry_gps_ns(e)) value = e.gps_minus_utc_s;
+    if (t.ns >= e.gps_ns) value = e.gps_minus_utc_s;
   }
   return value;
 }
