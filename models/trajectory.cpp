@@ -157,7 +157,7 @@ class LocalPlane {
     out.v_ned_mps = Vec3(k_n * v_point.y(), k_e * v_point.x(), -dh_mps);
     // Yaw: the direction in the local north/east plane, measured from north toward east.
     const double yaw = std::atan2(k_e * d_point.x(), k_n * d_point.y());
-    out.q_ned_from_body = quat_from_euler_rpy(Vec3(0.0, 0.0, yaw));
+    out.q_ned_from_body = Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ()));  // level: yaw only
     return out;
   }
 

@@ -71,11 +71,11 @@ void format_candump_line(const CanFrameView& frame, std::int64_t unix_time_ns,
   out.append(interface_name);
   out.push_back(' ');
   if (frame.extended)
-    it = fmt::format_to(it, "{:08X}", frame.id);
+    it = fmt::format_to(it, FMT_COMPILE("{:08X}"), frame.id);
   else
-    it = fmt::format_to(it, "{:03X}", frame.id);
+    it = fmt::format_to(it, FMT_COMPILE("{:03X}"), frame.id);
   if (frame.fd)
-    it = fmt::format_to(it, "##{:X}", frame.brs ? 1 : 0);
+    it = fmt::format_to(it, FMT_COMPILE("##{:X}"), frame.brs ? 1 : 0);
   else
     *it++ = '#';
   static constexpr char kHex[] = "0123456789ABCDEF";  // the payload, the bulk of the line
