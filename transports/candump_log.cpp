@@ -6,7 +6,8 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
-#include <iterator>
+#include <algorithm>
+#include <array>
 
 #include "transports/can_port.hpp"
 #include "transports/can_util.hpp"
@@ -59,7 +60,6 @@ std::unique_ptr<FramePort> open_candump_log(const CandumpLogOptions& opt) {
 void format_candump_line(const CanFrameView& frame, std::int64_t unix_time_ns,
                          std::string_view interface_name, std::string& out) {
   out.clear();
-  auto it = std::back_inserter(out);
   const std::int64_t us = unix_time_ns >= 0 ? unix_time_ns / 1000 : (unix_time_ns - 999) / 1000;
   std::int64_t sec = us / 1000000;
   std::int64_t usec = us % 1000000;
@@ -67,23 +67,29 @@ void format_candump_line(const CanFrameView& frame, std::int64_t unix_time_ns,
     usec += 1000000;
     sec -= 1;
   }
-  it = fmt::format_to(it, FMT_COMPILE("({:010d}.{:06d}) "), sec, usec);
+  // Formatted into local buffers and appended whole: one CAN log line per frame, offline
+  // hundreds of thousands of them.
+  std::array<char, 32> stamp{};
+  out.append(stamp.data(), fmt::format_to(stamp.data(), FMT_COMPILE("({:010d}.{:06d}) "), sec, usec));
   out.append(interface_name);
-  out.push_back(' ');
-  if (frame.extended)
-    it = fmt::format_to(it, FMT_COMPILE("{:08X}"), frame.id);
-  else
-    it = fmt::format_to(it, FMT_COMPILE("{:03X}"), frame.id);
-  if (frame.fd)
-    it = fmt::format_to(it, FMT_COMPILE("##{:X}"), frame.brs ? 1 : 0);
-  else
-    *it++ = '#';
-  static constexpr char kHex[] = "0123456789ABCDEF";  // the payload, the bulk of the line
-  for (const std::uint8_t b : frame.data) {
-    out.push_back(kHex[b >> 4]);
-    out.push_back(kHex[b & 0x0F]);
+  // " IIIIIIII##F" and the payload, 64 bytes at most (CAN FD), as hex.
+  std::array<char, 12 + 2 * 64 + 1> body{};
+  char* p = body.data();
+  *p++ = ' ';
+  p = frame.extended ? fmt::format_to(p, FMT_COMPILE("{:08X}"), frame.id)
+                     : fmt::format_to(p, FMT_COMPILE("{:03X}"), frame.id);
+  *p++ = '#';
+  if (frame.fd) {
+    *p++ = '#';
+    *p++ = frame.brs ? '1' : '0';
   }
-  out.push_back('\n');
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  for (const std::uint8_t b : frame.data.first(std::min<std::size_t>(frame.data.size(), 64))) {
+    *p++ = kHex[b >> 4];
+    *p++ = kHex[b & 0x0F];
+  }
+  *p++ = '\n';
+  out.append(body.data(), p);
 }
 
 }  // namespace navemu::transport
