@@ -317,17 +317,26 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // --- IMU.
   std::unique_ptr<ImuModel> imu;
   ImuParams imu_params;
-  std::int64_t imu_internal_ns = 0, imu_out_ns = 0;
+  // Output sample j is measured at j * imu_out_ns; the internal steps divide each output period
+  // into imu_steps_per_out equal parts, on the nanosecond below when the part is not a whole
+  // number of nanoseconds (600 Hz inside 100 Hz: 1,666,666 or 1,666,667 ns apart).
+  std::int64_t imu_out_ns = 0, imu_steps_per_out = 1;
   if (cfg.imu_enabled) {
     const ImuProfile p = load_imu_profile(cfg.imu_profile);
     imu_params = imu_params_for_run(p, opt.duration_s.value_or(3600.0), 0.0);
-    imu_internal_ns = std::llround(1e9 / imu_params.internal_rate_hz);
     imu_out_ns = std::llround(1e9 / imu_params.output_rate_hz);
-    if (imu_out_ns % imu_internal_ns != 0)
+    imu_steps_per_out = std::llround(imu_params.internal_rate_hz / imu_params.output_rate_hz);
+    if (imu_steps_per_out < 1 ||
+        std::fabs(static_cast<double>(imu_steps_per_out) * imu_params.output_rate_hz -
+                  imu_params.internal_rate_hz) > 1e-9 * imu_params.internal_rate_hz)
       throw InputError(p.file.string(), 0, "internal_rate_hz",
                        "must be a whole multiple of output_rate_hz");
     imu = std::make_unique<ImuModel>(imu_params, cfg.seed);
   }
+  const auto imu_step_time = [&](std::int64_t n) {
+    return GpsTime{n / imu_steps_per_out * imu_out_ns +
+                   n % imu_steps_per_out * imu_out_ns / imu_steps_per_out};
+  };
 
   // --- The IMU's CAN frames: offline into can.log (candump -L), live on the configured ports.
   std::unique_ptr<ImuCanOutputs> can_out;
@@ -419,7 +428,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // --- Event state. Indices count whole periods since the GPS epoch.
   std::int64_t gnss_k = first_index_at_or_after(start, gnss_period_ns);
   std::int64_t imu_j = imu ? first_index_at_or_after(start, imu_out_ns) : 0;
-  std::int64_t imu_n = imu ? imu_j * (imu_out_ns / imu_internal_ns) : 0;  // next internal step
+  std::int64_t imu_n = imu_j * imu_steps_per_out;  // the next internal step
   const std::int64_t status_ns =
       cfg.status_interval_s > 0.0 ? std::llround(cfg.status_interval_s * 1e9) : 0;
   GpsTime next_status = status_ns ? start.plus_s(cfg.status_interval_s) : GpsTime{INT64_MAX};
@@ -580,21 +589,21 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     if (imu_due && imu_event(imu_j) <= next) {
       const GpsTime t_meas{imu_j * imu_out_ns};
       // After skipped samples, resume at this sample's own internal steps.
-      imu_n = std::max(imu_n, t_meas.ns / imu_internal_ns - (imu_out_ns / imu_internal_ns - 1));
+      imu_n = std::max(imu_n, (imu_j - 1) * imu_steps_per_out + 1);
       bool valid = true;
       bool emitted = false;
-      for (; imu_n * imu_internal_ns <= t_meas.ns; ++imu_n) {
-        const GpsTime t{imu_n * imu_internal_ns};
+      for (; imu_n <= imu_j * imu_steps_per_out; ++imu_n) {
+        const GpsTime t = imu_step_time(imu_n);
         // A rolling window of the truth at the instants around t (the kinematic derivation
         // differences its neighbours, models/imu_kinematics.hpp).
         if (window_n == imu_n - 1) {
           imu_before = std::move(imu_now);
           imu_now = std::move(imu_after);
         } else {
-          imu_before = truth->at(GpsTime{t.ns - imu_internal_ns});
+          imu_before = truth->at(imu_step_time(imu_n - 1));
           imu_now = truth->at(t);
         }
-        imu_after = truth->at(GpsTime{t.ns + imu_internal_ns});
+        imu_after = truth->at(imu_step_time(imu_n + 1));
         window_n = imu_n;
         double temperature_c = imu_params.reference_temperature_c;
         if (imu_now && imu_now->f_body_mps2 && imu_now->w_ib_body_radps) {

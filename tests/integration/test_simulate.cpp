@@ -70,6 +70,29 @@ TEST(Simulate, SameSeedGivesIdenticalFilesAndAnotherSeedDoesNot) {
   EXPECT_EQ(slurp(a / "truth.csv"), slurp(c / "truth.csv"));  // the truth has no randomness
 }
 
+// Every IMU profile shipped in configs/imu runs in the engine at its output rate, with its
+// internal steps (600 Hz inside 100 Hz for `tactical` is not a whole number of nanoseconds).
+TEST(Simulate, EveryShippedImuProfileRunsAtItsOutputRate) {
+  int profiles = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "imu")) {
+    const std::string name = entry.path().stem().string();
+    const fs::path d = temp_dir("imu_" + name);
+    const fs::path config = d / "run.yaml";
+    std::ofstream(config) << "gnss: {enabled: false}\nimu: {profile: " << name << "}\n";
+    const auto r = simulate(config, d / "out", 2);
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.out;
+    const auto rows = csv_rows(d / "out" / "imu.csv");
+    ASSERT_GE(rows.size(), 2u) << name;
+    // Consecutive samples one output period apart in GPS time (column gps_time_ns).
+    const std::int64_t period_ns = std::stoll(rows[2][9]) - std::stoll(rows[1][9]);
+    EXPECT_EQ(static_cast<double>(rows.size() - 1), 2e9 / static_cast<double>(period_ns)) << name;
+    for (std::size_t i = 2; i < rows.size(); ++i)
+      ASSERT_EQ(std::stoll(rows[i][9]) - std::stoll(rows[i - 1][9]), period_ns) << name << " row " << i;
+    ++profiles;
+  }
+  EXPECT_GE(profiles, 7);
+}
+
 TEST(Simulate, FilesHoldEveryEpochOnTheGridWithAPlausibleFix) {
   const fs::path d = temp_dir("grid");
   const auto r = simulate(kDefault, d, 60);
