@@ -270,7 +270,14 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     }
     start = *truth->newest();
   }
-  if (offline) std::filesystem::create_directories(opt.out_dir);
+  if (offline) {
+    std::filesystem::create_directories(opt.out_dir);
+    // The byte streams are written through append-only log ports: a folder used before starts
+    // them empty, as the CSVs are, and loses a stream this run does not write (ubx.bin after a
+    // u-blox run, when this one sends NMEA), so every file in it belongs to this run.
+    for (const char* name : {"nmea.log", "ubx.bin", "can.log"})
+      std::filesystem::remove(opt.out_dir / name);
+  }
 
   // --- GNSS receiver and its outputs.
   NavData nav;

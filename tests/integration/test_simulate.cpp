@@ -70,6 +70,19 @@ TEST(Simulate, SameSeedGivesIdenticalFilesAndAnotherSeedDoesNot) {
   EXPECT_EQ(slurp(a / "truth.csv"), slurp(c / "truth.csv"));  // the truth has no randomness
 }
 
+TEST(Simulate, ASecondRunIntoTheSameFolderReplacesEveryFile) {
+  const fs::path once = temp_dir("once"), twice = temp_dir("twice");
+  ASSERT_EQ(simulate(kDefault, once, 10).exit_code, 0);
+  std::ofstream(twice / "ubx.bin") << "from an earlier u-blox run";
+  ASSERT_EQ(simulate(kDefault, twice, 10).exit_code, 0);
+  ASSERT_EQ(simulate(kDefault, twice, 10).exit_code, 0);
+  for (const char* f : {"nmea.log", "truth.csv", "gnss.csv", "imu.csv", "can.log"}) {
+    EXPECT_FALSE(slurp(once / f).empty()) << f;
+    EXPECT_EQ(slurp(twice / f), slurp(once / f)) << f;
+  }
+  EXPECT_FALSE(fs::exists(twice / "ubx.bin"));
+}
+
 // Every IMU profile shipped in configs/imu runs in the engine at its output rate, with its
 // internal steps (600 Hz inside 100 Hz for `tactical` is not a whole number of nanoseconds).
 TEST(Simulate, EveryShippedImuProfileRunsAtItsOutputRate) {
