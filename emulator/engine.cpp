@@ -435,6 +435,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // --- Event state. Indices count whole periods since the GPS epoch.
   std::int64_t gnss_k = first_index_at_or_after(start, gnss_period_ns);
   std::int64_t imu_j = imu ? first_index_at_or_after(start, imu_out_ns) : 0;
+  const std::int64_t imu_j0 = imu_j;  // sample sequence numbers count output periods from here
   std::int64_t imu_n = imu_j * imu_steps_per_out;  // the next internal step
   const std::int64_t status_ns =
       cfg.status_interval_s > 0.0 ? std::llround(cfg.status_interval_s * 1e9) : 0;
@@ -624,7 +625,9 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         if (imu->step(t, last_ideal, temperature_c, sample)) emitted = true;
       }
       if (emitted) {
-        const auto sequence = static_cast<std::uint16_t>(sum.imu_samples);
+        // One per output period, so that a sample skipped after a stall leaves a gap in the
+        // sequence, as a frame lost on the bus does (protocols/can_frames.hpp; wraps).
+        const auto sequence = static_cast<std::uint16_t>(imu_j - imu_j0);
         ++sum.imu_samples;
         if (!valid) ++sum.imu_flagged;
         if (can_out) {

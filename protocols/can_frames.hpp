@@ -103,7 +103,7 @@ struct CanFrame {
 
 struct ImuSample {
   std::int64_t gps_time_ns = 0;   // time of validity, ns since the GPS epoch
-  std::uint16_t sequence = 0;     // increments by one per sample, wraps
+  std::uint16_t sequence = 0;     // increments by one per output period, wraps
   std::array<double, 3> w_body_radps{};  // FRD body angular rate
   std::array<double, 3> f_body_mps2{};   // FRD body specific force
   double latency_s = 0.0;         // measurement to transmission (J1939 latency byte)

@@ -375,6 +375,59 @@ TEST(Faults, DiskFullForTheImuLogIsReportedOnceAndOutputGoesOn) {
   EXPECT_GE(s->epochs, 13) << nav.diagnostics();  // 3 s at 5 Hz, as above
 }
 
+// (e2) navemu itself stalls for 1 s (SIGSTOP, as a loaded host can stop it). IMU samples less
+// than 500 ms late go out at once; older ones are skipped, and the sequence numbers (one per
+// output period, as on the CAN frames) show the gap exactly as the GPS times do, so a driver
+// that checks them sees the loss. The summary counts every skipped sample.
+TEST(Faults, AStalledImuSkipsOldSamplesAndItsSequenceShowsTheGap) {
+  TempDir dir("imu-stall");
+  const fs::path log = dir / "imu.log";
+  NavemuRun nav(dir, "navemu",
+                fmt::format("gnss: {{enabled: false}}\nimu: {{log: '{}', outputs: []}}\n",
+                            log.string()),
+                60);
+  ASSERT_TRUE(wait_until([&] { return fs::exists(log) && fs::file_size(log) > 0; }, 5.0))
+      << nav.diagnostics();  // written out at the first status line
+  sleep_s(0.5);
+  nav.child().signal(SIGSTOP);
+  sleep_s(1.0);
+  nav.child().signal(SIGCONT);
+  sleep_s(1.5);
+  const auto st = nav.stop();
+  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+
+  // imu.log rows: ..., gps_time_ns (column 10), sequence (column 11).
+  std::vector<std::pair<std::int64_t, long>> rows;
+  std::stringstream in(slurp(log));
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    if (f.size() != 11 || f[0] == "time_s") continue;
+    rows.emplace_back(std::stoll(f[9]), std::stol(f[10]));
+  }
+  ASSERT_GE(rows.size(), 300u) << "about 3 s at 125 Hz" << nav.diagnostics();
+  constexpr std::int64_t kPeriodNs = 8'000'000;
+  long skipped = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const std::int64_t dt = rows[i].first - rows[i - 1].first;
+    ASSERT_TRUE(dt > 0 && dt % kPeriodNs == 0) << "row " << i << ": " << dt << " ns";
+    const long periods = static_cast<long>(dt / kPeriodNs);
+    EXPECT_EQ((rows[i].second - rows[i - 1].second) & 0xFFFF, periods & 0xFFFF) << "row " << i;
+    skipped += periods - 1;
+  }
+  // 1 s stopped: about 0.5 s of samples (62) were too late; a loaded host adds to it.
+  EXPECT_GE(skipped, 25);
+  EXPECT_LE(skipped, 125);
+  std::smatch m;
+  const std::string err = nav.err();
+  ASSERT_TRUE(std::regex_search(err, m, std::regex(R"((\d+) IMU samples \((\d+) skipped\))")))
+      << nav.diagnostics();
+  EXPECT_EQ(std::stol(m[1]), static_cast<long>(rows.size()));
+  EXPECT_EQ(std::stol(m[2]), skipped);
+  std::printf("stall 1 s: %zu samples logged, %ld skipped\n", rows.size(), skipped);
+}
+
 // A TCP client of navemu's GNSS output: connect to 127.0.0.1:port, read lines with a deadline.
 class TcpLineReader {
  public:
