@@ -157,17 +157,29 @@ TEST(PtyTiming, AfterAnOverrunTheLoopReturnsToItsGridWithoutDrift) {
   EXPECT_LE(gap_ms, 1000);
   const double pre = median_late(before);
   int late = 0;
-  for (const Epoch& e : after) {
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const Epoch& e = after[i];
     if (e.late_ms > pre + 20.0) ++late;
     EXPECT_LT(e.late_ms, pre + 200.0) << "an epoch more than a period late was sent";
+    // Only the first epoch after the stall goes out late; from the second on the loop is back
+    // on its grid, and no two epochs go out back to back. The bounds are half a period: a
+    // wake-up a few tens of milliseconds late on a loaded host (before the stall too) passes,
+    // epochs sent in a burst to catch up would not.
+    if (i >= 1) {
+      EXPECT_LT(e.late_ms, pre + 100.0) << "epoch " << i << " after the stall is late";
+    }
+    if (i >= 2) {
+      EXPECT_GT(e.t_mono - after[i - 1].t_mono, 0.1)
+          << "epochs " << i - 1 << " and " << i << " went out back to back";
+    }
   }
-  EXPECT_LE(late, 1) << "epochs sent late after the stall";
   // Same lateness afterwards (medians; single wake-ups jitter by milliseconds here).
   const double post = median_late(std::vector<Epoch>(after.begin() + 2, after.end()));
   EXPECT_NEAR(post, pre, 2.0) << "lateness median before " << pre << " ms, after " << post;
-  std::printf("overrun %.0f ms: %zu + %zu epochs, label gap %lld ms, lateness median %.2f -> %.2f ms\n",
+  std::printf("overrun %.0f ms: %zu + %zu epochs, label gap %lld ms, lateness median %.2f -> %.2f ms, "
+              "%d epochs more than 20 ms late after it\n",
               (resumed_at - stopped_at) * 1e3, before.size(), after.size(),
-              static_cast<long long>(gap_ms), pre, post);
+              static_cast<long long>(gap_ms), pre, post, late);
 }
 
 }  // namespace
