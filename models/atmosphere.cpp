@@ -12,6 +12,11 @@ namespace navemu {
 // semicircles; the trigonometric functions take semicircles times pi.
 double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const AzEl& dir,
                             GpsTime t) {
+  return klobuchar_delay_l1_s(k, rx, dir, to_week_tow(t).tow_s);
+}
+
+double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const AzEl& dir,
+                            double gps_tow_s) {
   // No line of sight below the horizon (as RTKLIB's ionmodel: zero delay).
   if (dir.el_rad <= 0.0) return 0.0;
 
@@ -33,7 +38,7 @@ double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, 
   const double phi_m = phi_i + 0.064 * std::cos((lambda_i - 1.617) * kPi);
 
   // Local time at the pierce point, s, in [0, 86400).
-  double t_local = std::fmod(4.32e4 * lambda_i + to_week_tow(t).tow_s, 86400.0);
+  double t_local = std::fmod(4.32e4 * lambda_i + gps_tow_s, 86400.0);
   if (t_local < 0.0) t_local += 86400.0;
 
   // Amplitude (s) and period (s) of the cosine model, cubic in phi_m, with their floors.
@@ -51,8 +56,9 @@ double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, 
   // Phase, radians.
   const double x = 2.0 * kPi * (t_local - 50400.0) / per;
 
-  // Obliquity factor.
-  const double f = 1.0 + 16.0 * std::pow(0.53 - e, 3);
+  // Obliquity factor (the cube by multiplication: within an ulp or two of pow's).
+  const double d = 0.53 - e;
+  const double f = 1.0 + 16.0 * (d * d * d);
 
   if (std::abs(x) < 1.57) {
     const double x2 = x * x;
@@ -82,17 +88,30 @@ Meteo standard_atmosphere(double h_m, double relative_humidity) {
 // RTKLIB's domain is kept so that corrections match rnx2rtkp: zero delay at or below the
 // horizon and for heights outside [-100 m, 10 km]; heights below 0 are taken as 0.
 TropoDelay saastamoinen_delay(const Geodetic& rx, double el_rad, const Meteo& m) {
-  TropoDelay d;
-  if (rx.h_m < -100.0 || rx.h_m > 1.0e4 || el_rad <= 0.0) return d;
+  return saastamoinen_delay(saastamoinen_zenith(rx, m), el_rad);
+}
+
+SaastamoinenZenith saastamoinen_zenith(const Geodetic& rx, const Meteo& m) {
+  SaastamoinenZenith z;
+  z.in_domain = !(rx.h_m < -100.0 || rx.h_m > 1.0e4);
+  if (!z.in_domain) return z;
   const double h = std::max(rx.h_m, 0.0);
   const double t = m.temperature_k;
   const double e = 6.108 * m.relative_humidity * std::exp((17.15 * t - 4684.0) / (t - 38.45));
+  const double lat_rad = rx.lat_deg * kDegToRad;
+  z.hydrostatic_m =
+      0.0022768 * m.pressure_hpa / (1.0 - 0.00266 * std::cos(2.0 * lat_rad) - 0.00028 * h / 1.0e3);
+  z.wet_m = 0.002277 * (1255.0 / t + 0.05) * e;
+  return z;
+}
+
+TropoDelay saastamoinen_delay(const SaastamoinenZenith& zenith, double el_rad) {
+  TropoDelay d;
+  if (!zenith.in_domain || el_rad <= 0.0) return d;
   const double z = kPi / 2.0 - el_rad;
   const double cos_z = std::cos(z);
-  const double lat_rad = rx.lat_deg * kDegToRad;
-  d.hydrostatic_m = 0.0022768 * m.pressure_hpa /
-                    (1.0 - 0.00266 * std::cos(2.0 * lat_rad) - 0.00028 * h / 1.0e3) / cos_z;
-  d.wet_m = 0.002277 * (1255.0 / t + 0.05) * e / cos_z;
+  d.hydrostatic_m = zenith.hydrostatic_m / cos_z;
+  d.wet_m = zenith.wet_m / cos_z;
   return d;
 }
 
@@ -250,8 +269,10 @@ double fractional_day_of_year(GpsTime t) {
 // term is 0.022 per km at 5 deg, so a 50 m geoid separation moves m_h by 1.1e-3, ~2.5 mm of
 // slant delay).
 NiellMapping niell_mapping(const Geodetic& rx, double el_rad, GpsTime t) {
-  const double el = std::clamp(el_rad, kNiellMinElevation_rad, kPi / 2.0);
-  const double s = std::sin(el);
+  return niell_mapping(niell_coefficients(rx, t), el_rad);
+}
+
+NiellCoefficients niell_coefficients(const Geodetic& rx, GpsTime t) {
   const double abs_lat = std::abs(rx.lat_deg);
 
   double doy = fractional_day_of_year(t);
@@ -261,15 +282,26 @@ NiellMapping niell_mapping(const Geodetic& rx, double el_rad, GpsTime t) {
   auto seasonal = [&](const std::array<double, 5>& avg, const std::array<double, 5>& amp) {
     return niell_interp(avg, abs_lat) - niell_interp(amp, abs_lat) * annual;
   };
-  const double a = seasonal(kNiellHydAvgA, kNiellHydAmpA);
-  const double b = seasonal(kNiellHydAvgB, kNiellHydAmpB);
-  const double c = seasonal(kNiellHydAvgC, kNiellHydAmpC);
+  NiellCoefficients k;
+  k.hydrostatic_a = seasonal(kNiellHydAvgA, kNiellHydAmpA);
+  k.hydrostatic_b = seasonal(kNiellHydAvgB, kNiellHydAmpB);
+  k.hydrostatic_c = seasonal(kNiellHydAvgC, kNiellHydAmpC);
+  k.wet_a = niell_interp(kNiellWetA, abs_lat);
+  k.wet_b = niell_interp(kNiellWetB, abs_lat);
+  k.wet_c = niell_interp(kNiellWetC, abs_lat);
+  k.h_m = rx.h_m;
+  return k;
+}
+
+NiellMapping niell_mapping(const NiellCoefficients& k, double el_rad) {
+  const double el = std::clamp(el_rad, kNiellMinElevation_rad, kPi / 2.0);
+  const double s = std::sin(el);
   const double dm_dh_per_km = 1.0 / s - marini_normalised(s, kNiellHtA, kNiellHtB, kNiellHtC);
 
   NiellMapping m;
-  m.hydrostatic = marini_normalised(s, a, b, c) + dm_dh_per_km * rx.h_m / 1.0e3;
-  m.wet = marini_normalised(s, niell_interp(kNiellWetA, abs_lat), niell_interp(kNiellWetB, abs_lat),
-                            niell_interp(kNiellWetC, abs_lat));
+  m.hydrostatic = marini_normalised(s, k.hydrostatic_a, k.hydrostatic_b, k.hydrostatic_c) +
+                  dm_dh_per_km * k.h_m / 1.0e3;
+  m.wet = marini_normalised(s, k.wet_a, k.wet_b, k.wet_c);
   return m;
 }
 

@@ -15,6 +15,10 @@ inline constexpr double kGpsL5_Hz = 1176.45e6;
 // Figure 20-4). Scale by (f_L1/f)^2 for other frequencies.
 double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const AzEl& dir,
                             GpsTime t);
+// The same with the GPS time of week of t (to_week_tow(t).tow_s) computed once for many
+// satellites of an epoch.
+double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const AzEl& dir,
+                            double gps_tow_s);
 
 // Surface meteorology at the receiver.
 struct Meteo {
@@ -35,6 +39,16 @@ struct TropoDelay {
 // Saastamoinen slant delay with the 1/cos(z) mapping (Saastamoinen 1972; the form RTKLIB's
 // tropmodel uses, hydrostatic zenith delay after Davis et al. 1985).
 TropoDelay saastamoinen_delay(const Geodetic& rx, double el_rad, const Meteo& m);
+// The same in two parts, the first depending only on the receiver and the meteorology (once
+// per position for many satellites): the zenith delays (delay = zenith / cos z), and whether
+// the height lies in RTKLIB's domain.
+struct SaastamoinenZenith {
+  bool in_domain = false;
+  double hydrostatic_m = 0.0;
+  double wet_m = 0.0;
+};
+SaastamoinenZenith saastamoinen_zenith(const Geodetic& rx, const Meteo& m);
+TropoDelay saastamoinen_delay(const SaastamoinenZenith& zenith, double el_rad);
 
 // ---- Ionosphere, first-order (issue: GNSS error physics) -----------------------------------
 
@@ -76,6 +90,17 @@ struct NiellMapping {
   double wet = 1.0;
 };
 NiellMapping niell_mapping(const Geodetic& rx, double el_rad, GpsTime t);
+// The same in two parts: the coefficients, which depend only on the receiver's latitude and
+// height and the day of year (once per epoch for every satellite), and the mapping at an
+// elevation.
+struct NiellCoefficients {
+  // Seasonal, at the latitude.
+  double hydrostatic_a = 0.0, hydrostatic_b = 0.0, hydrostatic_c = 0.0;
+  double wet_a = 0.0, wet_b = 0.0, wet_c = 0.0;
+  double h_m = 0.0;  // ellipsoidal height, for the hydrostatic height correction
+};
+NiellCoefficients niell_coefficients(const Geodetic& rx, GpsTime t);
+NiellMapping niell_mapping(const NiellCoefficients& k, double el_rad);
 
 // Slant delay: zenith delays from `m` mapped with Niell. Zero below the horizon.
 TropoDelay tropo_slant_delay(const Geodetic& rx, double el_rad, GpsTime t, const Meteo& m);

@@ -2,8 +2,10 @@
 
 #include "models/ephemeris.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace navemu {
 
@@ -59,6 +61,24 @@ const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t) {
 
 const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records, GpsTime t) {
   return records.empty() ? nullptr : select_among(records, records.front()->prn, t);
+}
+
+EphemerisSelection select_ephemeris_span(std::span<const GpsEphemeris* const> records,
+                                         GpsTime t) {
+  EphemerisSelection out;
+  out.eph = select_ephemeris(records, t);
+  out.after_2ns = std::numeric_limits<std::int64_t>::min();
+  out.before_2ns = std::numeric_limits<std::int64_t>::max();
+  if (out.eph == nullptr) return out;  // no healthy record: none at any time
+  for (const GpsEphemeris* e : records) {
+    if (e->prn != out.eph->prn || e->health != 0 || e->toe == out.eph->toe) continue;
+    const std::int64_t midpoint_2ns = e->toe.ns + out.eph->toe.ns;
+    if (e->toe > out.eph->toe)
+      out.before_2ns = std::min(out.before_2ns, midpoint_2ns);
+    else
+      out.after_2ns = std::max(out.after_2ns, midpoint_2ns);
+  }
+  return out;
 }
 
 }  // namespace navemu

@@ -77,4 +77,18 @@ const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t);
 const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records_of_one_prn,
                                      GpsTime t);
 
+// The record select_ephemeris gives at a time, with the open span of times around it over which
+// it gives the same record: the choice changes only where t passes midway between the toe of
+// the chosen record and another healthy one's (records sharing the chosen toe tie at every t
+// and are decided by their transmission times alone). Bounds in doubled nanoseconds, since
+// midpoints may fall on half a nanosecond.
+struct EphemerisSelection {
+  const GpsEphemeris* eph = nullptr;
+  std::int64_t after_2ns = 0;   // exclusive: 2 t.ns must exceed it
+  std::int64_t before_2ns = 0;  // exclusive: 2 t.ns must stay below it
+  bool covers(GpsTime t) const { return after_2ns < 2 * t.ns && 2 * t.ns < before_2ns; }
+};
+EphemerisSelection select_ephemeris_span(std::span<const GpsEphemeris* const> records_of_one_prn,
+                                         GpsTime t);
+
 }  // namespace navemu

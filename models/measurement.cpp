@@ -38,7 +38,8 @@ PiercePoint iono_pierce_point(const Geodetic& rx, const AzEl& dir) {
   PiercePoint p;
   p.dlat_deg = lat_i - rx.lat_deg;
   p.dlon_deg = psi_deg * std::sin(dir.az_rad) / std::cos(lat_i * kDegToRad);
-  p.obliquity = 1.0 + 16.0 * std::pow(0.53 - e_sc, 3);
+  const double d = 0.53 - e_sc;
+  p.obliquity = 1.0 + 16.0 * (d * d * d);  // the cube by multiplication, as in the Klobuchar model
   return p;
 }
 
@@ -84,9 +85,11 @@ struct SatProcesses {
         iono_fraction(cfg.iono_satellite_error_fraction, cfg.iono_error_tau_s, iono_rng),
         multipath(1.0, cfg.multipath_tau_s, multipath_rng),
         last_t_s(t_s) {}
-  void advance(double t_s) {
-    iono_fraction.step(t_s - last_t_s, iono_rng);
-    multipath.step(t_s - last_t_s, multipath_rng);
+  // `iono_tr` and `multipath_tr`: the transitions every satellite's processes share.
+  void advance(double t_s, GaussMarkovTransition& iono_tr, GaussMarkovTransition& multipath_tr) {
+    const double dt = t_s - last_t_s;
+    iono_fraction.step(iono_tr.at(dt, iono_fraction.tau_s()), iono_rng);
+    multipath.step(multipath_tr.at(dt, multipath.tau_s()), multipath_rng);
     last_t_s = t_s;
   }
 
@@ -120,6 +123,8 @@ struct MeasurementGenerator::State {
   GaussMarkov tropo_wet;
   GaussMarkov dgps_tropo;
   PrnTable<SatProcesses> sats;
+  // The Gauss-Markov transitions shared by processes of one correlation time and step.
+  GaussMarkovTransition iono_common_tr, tropo_tr, sat_iono_tr, sat_multipath_tr;
   PrnTable<double> receivable_since;  // time the PRN's signal became receivable, s
   PrnTable<std::pair<double, double>> scene_phase;  // (t s, carrier multipath m)
   // The last light-time solution (t s, flight time s, its rate): the next one starts from its
@@ -133,6 +138,8 @@ struct MeasurementGenerator::State {
   std::optional<GpsTime> last;
   std::vector<int> prns;
   PrnTable<std::vector<const GpsEphemeris*>> records;  // each PRN's broadcast records
+  // Each PRN's record choice with the span of times it holds for (the records never change).
+  PrnTable<EphemerisSelection> selection;
 };
 
 MeasurementGenerator::MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg)
@@ -167,11 +174,13 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
 
   if (!first) {
     st.clock.step(dt);
-    st.iono_common.step(dt, st.iono_common_rng);
-    st.iono_gradient_north.step(dt, st.iono_gradient_rng);
-    st.iono_gradient_east.step(dt, st.iono_gradient_rng);
-    st.tropo_wet.step(dt, st.tropo_wet_rng);
-    st.dgps_tropo.step(dt, st.dgps_tropo_rng);
+    st.iono_common.step(st.iono_common_tr.at(dt, st.iono_common.tau_s()), st.iono_common_rng);
+    st.iono_gradient_north.step(st.iono_common_tr.at(dt, st.iono_gradient_north.tau_s()),
+                                st.iono_gradient_rng);
+    st.iono_gradient_east.step(st.iono_common_tr.at(dt, st.iono_gradient_east.tau_s()),
+                               st.iono_gradient_rng);
+    st.tropo_wet.step(st.tropo_tr.at(dt, st.tropo_wet.tau_s()), st.tropo_wet_rng);
+    st.dgps_tropo.step(st.tropo_tr.at(dt, st.dgps_tropo.tau_s()), st.dgps_tropo_rng);
   }
 
   out.sats.clear();
@@ -186,6 +195,9 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   const ReceiverPlace rx{p_rx, v_rx, R_enu_from_ecef(geo)};
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
   const TropoDelay tropo_zenith = tropo_zenith_delay(geo, meteo);
+  // What the atmosphere models need of the receiver and the epoch, for every satellite.
+  const NiellCoefficients niell = niell_coefficients(geo, out.t_true);
+  const double tow_s = to_week_tow(out.t_true).tow_s;
   const double c = kSpeedOfLight_mps;
 
   // A satellite 5 deg or more below the horizon cannot rise within a minute (seen from the
@@ -199,7 +211,10 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   }
   for (int prn : st.prns) {
     if (const double* until = st.below_horizon_until_s.find(prn); until && t_s < *until) continue;
-    const GpsEphemeris* eph = select_ephemeris(*st.records.find(prn), out.t_true);
+    EphemerisSelection& chosen = st.selection.try_emplace(prn).first;
+    if (!chosen.covers(out.t_true))
+      chosen = select_ephemeris_span(*st.records.find(prn), out.t_true);
+    const GpsEphemeris* eph = chosen.eph;
     if (eph == nullptr || std::abs(seconds_between(out.t_true, eph->toe)) > kMaxEphemerisAge_s)
       continue;
     State::FlightTime& flight = st.flight_time.try_emplace(prn, State::FlightTime{t_s, 0.075, 0.0}).first;
@@ -228,7 +243,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     if (!tracked) continue;
 
     auto [sp, inserted] = st.sats.try_emplace(prn, cfg_.seed, prn, cfg_, t_s);
-    if (!inserted) sp.advance(t_s);
+    if (!inserted) sp.advance(t_s, st.sat_iono_tr, st.sat_multipath_tr);
 
     SatMeasurement m;
     m.prn = prn;
@@ -242,7 +257,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     if (on.ionosphere) {
       double model_m = 0.0;
       if (cfg_.iono_model == IonoModel::kKlobuchar)
-        model_m = c * klobuchar_delay_l1_s(*nav_.klobuchar, geo, g.dir, out.t_true);
+        model_m = c * klobuchar_delay_l1_s(*nav_.klobuchar, geo, g.dir, tow_s);
       else
         model_m = iono_paper_mapping(g.dir.el_rad) * iono_zenith_delay_m(cfg_.vtec_tecu, kGpsL1_Hz);
       const PiercePoint ipp = iono_pierce_point(geo, g.dir);
@@ -256,7 +271,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     // wet delay's unmodelled variability.
     // (tropo_slant_delay's product, with the zenith delays of the epoch computed once.)
     if (on.troposphere) {
-      const NiellMapping nm = niell_mapping(geo, g.dir.el_rad, out.t_true);
+      const NiellMapping nm = niell_mapping(niell, g.dir.el_rad);
       m.tropo_hydro_m = tropo_zenith.hydrostatic_m * nm.hydrostatic;
       m.tropo_wet_m = std::max(0.0, tropo_zenith.wet_m * nm.wet + nm.wet * st.tropo_wet.value());
     }
@@ -305,9 +320,11 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
       const double lambda = wavelength_m(band);
       SignalObs so;
       so.cn0_dbhz = cn0_l1 + kCn0OffsetDb[static_cast<std::size_t>(b)];
-      const double code_sigma = on.noise ? dll_noise_m(so.cn0_dbhz, cfg_.tracking) : 0.0;
-      const double phase_sigma = on.noise ? pll_noise_cycles(so.cn0_dbhz, cfg_.tracking) : 0.0;
-      const double doppler_sigma = on.noise ? fll_noise_hz(so.cn0_dbhz, cfg_.tracking) : 0.0;
+      const TrackingNoise noise =
+          on.noise ? tracking_noise(so.cn0_dbhz, cfg_.tracking) : TrackingNoise{};
+      const double code_sigma = noise.code_m;
+      const double phase_sigma = noise.phase_cycles;
+      const double doppler_sigma = noise.doppler_hz;
       // Code: TGD scaled by gamma; multipath shared by the bands at this level of modelling.
       const std::size_t bi = static_cast<std::size_t>(b);
       const double code_noise_m = code_sigma * sp.code_rng[bi].normal();
@@ -342,7 +359,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
         // Corrections from a nearby base remove what base and rover share (ionosphere,
         // troposphere, broadcast orbit and clock); the troposphere difference, the rover's
         // multipath and the noise of both receivers remain.
-        const NiellMapping nm = niell_mapping(geo, g.dir.el_rad, out.t_true);
+        const NiellMapping nm = niell_mapping(niell, g.dir.el_rad);
         const double dtropo = on.troposphere ? nm.wet * st.dgps_tropo.value() : 0.0;
         m.engine_pseudorange_m =
             geometric_m + dtropo + m.multipath_m + std::sqrt(2.0) * l1_code_noise_m;

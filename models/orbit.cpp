@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace navemu {
 
@@ -10,18 +12,55 @@ namespace {
 // Relativistic correction constant F = -2 sqrt(mu) / c^2 (IS-GPS-200 20.3.3.3.3.1).
 constexpr double kRelativisticF = -4.442807633e-10;  // s / sqrt(m)
 
+// sin and cos of an angle that is usually tiny (the Earth's rotation during a signal's flight,
+// < 1e-5 rad; the orbit's harmonic correction of the argument of latitude, < 1e-4 rad). Below
+// 1e-4 rad their Taylor series to x^3 and x^2 are used: the first omitted terms, x^5/120 and
+// x^4/24, are under 5e-18 of the value, far below the 1.1e-16 rounding of a double, so the
+// series gives the rounded sin and cos (up to the last bit) without calling them.
+struct SinCos {
+  double sin = 0.0;
+  double cos = 1.0;
+};
+SinCos sin_cos_small(double x_rad) {
+  constexpr double kSeriesMax_rad = 1e-4;
+  if (std::abs(x_rad) >= kSeriesMax_rad) return {std::sin(x_rad), std::cos(x_rad)};
+  const double x2 = x_rad * x_rad;
+  return {x_rad - x_rad * x2 / 6.0, 1.0 - 0.5 * x2};
+}
+
 // Kepler's equation M = E - e sin E by Newton's method; converges for every e < 1 when
-// started at E = pi for high eccentricities.
-double eccentric_anomaly(double mean_anomaly_rad, double e) {
+// started at E = pi for high eccentricities. With sin E and cos E: when the last Newton step
+// left E unchanged (e = 0, or a step below the spacing of doubles) they are the ones the
+// iteration evaluated at that very argument, so they are kept rather than evaluated again.
+struct EccentricAnomaly {
+  double e_rad = 0.0;
+  double sin_e = 0.0;
+  double cos_e = 1.0;
+};
+EccentricAnomaly eccentric_anomaly(double mean_anomaly_rad, double e) {
   const double m = std::remainder(mean_anomaly_rad, 2.0 * kPi);
   double ecc = e < 0.8 ? m : (m < 0 ? -kPi : kPi);
+  double sin_at = 0.0, cos_at = 1.0;
+  double evaluated_at = std::numeric_limits<double>::quiet_NaN();  // argument of sin_at, cos_at
   for (int i = 0; i < 50; ++i) {
-    const double f = ecc - e * std::sin(ecc) - m;
-    const double step = f / (1.0 - e * std::cos(ecc));
+    sin_at = std::sin(ecc);
+    cos_at = std::cos(ecc);
+    evaluated_at = ecc;
+    const double f = ecc - e * sin_at - m;
+    const double step = f / (1.0 - e * cos_at);
     ecc -= step;
     if (std::abs(step) < 1e-15) break;
   }
-  return ecc + (mean_anomaly_rad - m);
+  EccentricAnomaly out;
+  out.e_rad = ecc + (mean_anomaly_rad - m);
+  if (out.e_rad == evaluated_at) {
+    out.sin_e = sin_at;
+    out.cos_e = cos_at;
+  } else {
+    out.sin_e = std::sin(out.e_rad);
+    out.cos_e = std::cos(out.e_rad);
+  }
+  return out;
 }
 
 }  // namespace
@@ -40,25 +79,35 @@ SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
   const double n = n0 + eph.delta_n_radps;
   const double mk = eph.m0_rad + n * tk;
   const double e = eph.e;
-  const double ek = eccentric_anomaly(mk, e);
-  const double sin_e = std::sin(ek);
-  const double cos_e = std::cos(ek);
+  const EccentricAnomaly ek = eccentric_anomaly(mk, e);
+  const double sin_e = ek.sin_e;
+  const double cos_e = ek.cos_e;
   const double one_minus_ecos = 1.0 - e * cos_e;
   const double sqrt_1me2 = std::sqrt(1.0 - e * e);
-  const double nu = std::atan2(sqrt_1me2 * sin_e, cos_e - e);
-  const double phi = nu + eph.omega_rad;
-  const double s2 = std::sin(2.0 * phi);
-  const double c2 = std::cos(2.0 * phi);
+  // True anomaly nu and argument of latitude phi = nu + omega through their sines and
+  // cosines, with no atan2 and no trigonometric call on the sums:
+  //   sin nu = sqrt(1 - e^2) sin E / (1 - e cos E),  cos nu = (cos E - e) / (1 - e cos E)
+  // (the Table's nu = atan2 of these numerators), then the angle sum and the double angle.
+  const double sin_nu = sqrt_1me2 * sin_e / one_minus_ecos;
+  const double cos_nu = (cos_e - e) / one_minus_ecos;
+  const double sin_w = std::sin(eph.omega_rad), cos_w = std::cos(eph.omega_rad);
+  const double sin_phi = sin_nu * cos_w + cos_nu * sin_w;
+  const double cos_phi = cos_nu * cos_w - sin_nu * sin_w;
+  const double s2 = 2.0 * sin_phi * cos_phi;                    // sin 2 phi
+  const double c2 = (cos_phi - sin_phi) * (cos_phi + sin_phi);  // cos 2 phi
 
   const double du = eph.cus_rad * s2 + eph.cuc_rad * c2;
   const double dr = eph.crs_m * s2 + eph.crc_m * c2;
   const double di = eph.cis_rad * s2 + eph.cic_rad * c2;
-  const double u = phi + du;
   const double r = a * one_minus_ecos + dr;
   const double inc = eph.i0_rad + di + eph.idot_radps * tk;
 
-  const double xp = r * std::cos(u);
-  const double yp = r * std::sin(u);
+  // u = phi + du by the angle sum again (du, a harmonic correction of ~1e-5 rad).
+  const SinCos sc_du = sin_cos_small(du);
+  const double sin_u = sin_phi * sc_du.cos + cos_phi * sc_du.sin;
+  const double cos_u = cos_phi * sc_du.cos - sin_phi * sc_du.sin;
+  const double xp = r * cos_u;
+  const double yp = r * sin_u;
   const double omega_dot_k = eph.omega_dot_radps - kOmegaEarth_radps;
   const double node = eph.omega0_rad + omega_dot_k * tk - kOmegaEarth_radps * to_week_tow(eph.toe).tow_s;
   const double cn = std::cos(node), sn = std::sin(node);
@@ -73,8 +122,8 @@ SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
   const double inc_dot = eph.idot_radps + 2.0 * nu_dot * (eph.cis_rad * c2 - eph.cic_rad * s2);
   const double u_dot = nu_dot + 2.0 * nu_dot * (eph.cus_rad * c2 - eph.cuc_rad * s2);
   const double r_dot = e * a * ek_dot * sin_e + 2.0 * nu_dot * (eph.crs_m * c2 - eph.crc_m * s2);
-  const double xp_dot = r_dot * std::cos(u) - r * u_dot * std::sin(u);
-  const double yp_dot = r_dot * std::sin(u) + r * u_dot * std::cos(u);
+  const double xp_dot = r_dot * cos_u - r * u_dot * sin_u;
+  const double yp_dot = r_dot * sin_u + r * u_dot * cos_u;
   s.v_ecef_mps = Vec3(
       xp_dot * cn - xp * sn * omega_dot_k - yp_dot * ci * sn + yp * si * inc_dot * sn -
           yp * ci * cn * omega_dot_k,
@@ -92,8 +141,8 @@ SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
 }
 
 Vec3 rotate_earth(const Vec3& v_ecef, double dt_s) {
-  const double th = kOmegaEarth_radps * dt_s;
-  const double c = std::cos(th), s = std::sin(th);
+  const SinCos th = sin_cos_small(kOmegaEarth_radps * dt_s);
+  const double c = th.cos, s = th.sin;
   return Vec3(c * v_ecef.x() + s * v_ecef.y(), -s * v_ecef.x() + c * v_ecef.y(), v_ecef.z());
 }
 
@@ -111,10 +160,20 @@ SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const R
   // Light-time equation, solved by fixed-point iteration on the flight time tau (the error
   // shrinks by |v_sat| / c ~ 1e-5 per step). Once a step changes tau by less than 1e-14 s
   // (the satellite moves 40 nm in that time) the state just evaluated is the answer.
+  //
+  // The orbit is evaluated at whole nanoseconds (GpsTime), so a step that leaves the transmit
+  // time on the same nanosecond (the usual second step from a good guess) would evaluate the
+  // same state again: it is kept instead (keyed exactly by the transmit time; the record is
+  // the same throughout).
   double tau_s = tau_guess_s;
   SatState s;
+  std::optional<GpsTime> evaluated_at;
   for (int i = 0; i < 10; ++i) {
-    s = gps_sat_state(eph, t_receive.plus_s(-tau_s));
+    const GpsTime t_tx = t_receive.plus_s(-tau_s);
+    if (t_tx != evaluated_at) {
+      s = gps_sat_state(eph, t_tx);
+      evaluated_at = t_tx;
+    }
     const double next = (rotate_earth(s.p_ecef_m, tau_s) - rx.p_ecef_m).norm() / kSpeedOfLight_mps;
     const bool done = std::abs(next - tau_s) < 1e-14;
     if (done) break;

@@ -53,13 +53,22 @@ double RandomStream::normal() {
 GaussMarkov::GaussMarkov(double sigma, double tau_s, RandomStream& rng)
     : sigma_(sigma), tau_s_(tau_s), x_(sigma * rng.normal()) {}
 
-double GaussMarkov::step(double dt_s, RandomStream& rng) {
-  if (dt_s != dt_s_) {
-    dt_s_ = dt_s;
-    phi_ = std::exp(-dt_s / tau_s_);
-    noise_scale_ = sigma_ * std::sqrt(1.0 - phi_ * phi_);
+const GaussMarkovTransition& GaussMarkovTransition::at(double step_dt_s, double step_tau_s) {
+  if (step_dt_s != dt_s || step_tau_s != tau_s) {
+    dt_s = step_dt_s;
+    tau_s = step_tau_s;
+    phi = std::exp(-step_dt_s / step_tau_s);
+    sqrt_one_minus_phi2 = std::sqrt(1.0 - phi * phi);
   }
-  x_ = phi_ * x_ + noise_scale_ * rng.normal();
+  return *this;
+}
+
+double GaussMarkov::step(double dt_s, RandomStream& rng) {
+  return step(last_.at(dt_s, tau_s_), rng);
+}
+
+double GaussMarkov::step(const GaussMarkovTransition& tr, RandomStream& rng) {
+  x_ = tr.phi * x_ + sigma_ * tr.sqrt_one_minus_phi2 * rng.normal();
   return x_;
 }
 

@@ -29,6 +29,18 @@ class RandomStream {
   bool has_spare_ = false;
 };
 
+// The transition of a first-order Gauss-Markov step of length dt_s for a correlation time
+// tau_s: phi = exp(-dt / tau) and sqrt(1 - phi^2). Processes of one correlation time stepped by
+// the same dt (every satellite's processes of a kind, in an epoch) share it; `at` refreshes it
+// only when dt or tau differs from the last (keyed exactly by both).
+struct GaussMarkovTransition {
+  double dt_s = -1.0;
+  double tau_s = 0.0;
+  double phi = 0.0;
+  double sqrt_one_minus_phi2 = 0.0;
+  const GaussMarkovTransition& at(double step_dt_s, double step_tau_s);
+};
+
 // First-order Gauss-Markov process with stationary standard deviation `sigma` and correlation
 // time `tau_s`, advanced with its exact discretisation (e.g. Brown & Hwang, Introduction to
 // Random Signals and Applied Kalman Filtering, 4th ed., 2.9):
@@ -38,8 +50,9 @@ class GaussMarkov {
  public:
   GaussMarkov() = default;
   GaussMarkov(double sigma, double tau_s, RandomStream& rng);
-
   double step(double dt_s, RandomStream& rng);
+  // The same with a transition computed for this process's tau_s (shared by processes).
+  double step(const GaussMarkovTransition& tr, RandomStream& rng);
   double value() const { return x_; }
   double sigma() const { return sigma_; }
   double tau_s() const { return tau_s_; }
@@ -48,8 +61,8 @@ class GaussMarkov {
   double sigma_ = 0.0;
   double tau_s_ = 1.0;
   double x_ = 0.0;
-  // The transition and noise scale of the last step length (steps usually repeat it).
-  double dt_s_ = -1.0, phi_ = 0.0, noise_scale_ = 0.0;
+  // The transition of the last step length (steps usually repeat it).
+  GaussMarkovTransition last_;
 };
 
 }  // namespace navemu

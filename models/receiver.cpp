@@ -80,10 +80,10 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   out.fix = sol.fix;
   out.p_ecef_m = sol.p_ecef_m;
   out.position = geodetic_from_ecef(sol.p_ecef_m);
-  if (sol.v_ecef_mps) out.v_ned_mps = R_ned_from_ecef(out.position) * *sol.v_ecef_mps;
+  const Mat3 r = R_ned_from_ecef(out.position);
+  if (sol.v_ecef_mps) out.v_ned_mps = r * *sol.v_ecef_mps;
   out.dops = sol.dops;
   out.num_used = sol.num_used;
-  const Mat3 r = R_ned_from_ecef(out.position);
   const Mat3 cov_ned = r * sol.cov_ecef_m2 * r.transpose();
   out.sigma_n_m = std::sqrt(std::max(cov_ned(0, 0), 0.0));
   out.sigma_e_m = std::sqrt(std::max(cov_ned(1, 1), 0.0));

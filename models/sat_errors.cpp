@@ -46,10 +46,11 @@ double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
     Sat& s = *found;
     const double dt = t_s - s.t_s;
     if (dt > 0.0) {
-      s.radial.step(dt, s.rng);
-      s.along.step(dt, s.rng);
-      s.cross.step(dt, s.rng);
-      s.clock.step(dt, s.rng);
+      const GaussMarkovTransition& tr = transition_.at(dt, p_.tau_s);
+      s.radial.step(tr, s.rng);
+      s.along.step(tr, s.rng);
+      s.cross.step(tr, s.rng);
+      s.clock.step(tr, s.rng);
       s.t_s = t_s;
     }
   }

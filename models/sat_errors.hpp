@@ -79,6 +79,8 @@ class SatErrors {
   SatErrorParams p_;
   std::uint64_t seed_;
   PrnTable<Sat> sats_;
+  // Every PRN's four processes share tau_s and, in an epoch, the step length.
+  GaussMarkovTransition transition_;
 };
 
 }  // namespace navemu

@@ -24,8 +24,8 @@ bool position_known(const Vec3& p) { return p.norm() > 1e3; }
 
 // Variance of the tropospheric model error (RTKLIB's ERR_SAAS: 0.3 m at zenith, growing
 // toward the horizon) and of the broadcast ionosphere (half the correction, 1-sigma).
-double tropo_variance_m2(double el_rad) {
-  const double s = 0.3 / (std::sin(el_rad) + 0.1);
+double tropo_variance_m2(double sin_el) {
+  const double s = 0.3 / (sin_el + 0.1);
   return s * s;
 }
 
@@ -106,15 +106,31 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
   Vec3 p = opt.initial_p_ecef_m;
   double clk = 0.0;
   const bool prior_known = position_known(p);
-  const double h_hold_m = prior_known ? geodetic_from_ecef(p).h_m : 0.0;
+  // Geodetic coordinates of the estimate, kept for the position they were computed at (the
+  // prior's serve the held height and the first iteration's corrections).
+  Vec3 geo_at = Vec3::Zero();
+  Geodetic geo_of_p;
+  bool geo_valid = false;
+  auto geodetic_of = [&](const Vec3& q) {
+    if (!geo_valid || q != geo_at) {
+      geo_of_p = geodetic_from_ecef(q);
+      geo_at = q;
+      geo_valid = true;
+    }
+    return geo_of_p;
+  };
+  const double h_hold_m = prior_known ? geodetic_of(p).h_m : 0.0;
+  const double tow_s = to_week_tow(t).tow_s;  // for the Klobuchar model
   const double mask_rad = opt.elevation_mask_deg * kDegToRad;
   const double sa2 = opt.sigma_a_m * opt.sigma_a_m;
   const double sb2 = opt.sigma_b_m * opt.sigma_b_m;
 
   std::array<Row, kMaxSolverSatellites> row_store;
+  // sin(elevation) of each satellite, with its directions (for the weights).
+  std::array<double, kMaxSolverSatellites> sin_el;
   std::size_t n_sat_rows = 0;
   bool converged = false;
-  Mat3 cov = Mat3::Zero();  // of the last iteration's normal equations
+  Eigen::FullPivLU<Mat4> lu;  // of the last iteration's normal equations
   bool hold_height = false;
   // The elevation mask applies once the estimate is within 10 km (elevations then good to
   // ~0.1 deg): from the first iteration with a prior, otherwise after the first large steps
@@ -135,11 +151,13 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
                            (p - corrections_at).norm() > kReuseCorrections_m;
     Geodetic geo;
     Mat3 r_enu = Mat3::Identity();
-    Meteo meteo;
+    SaastamoinenZenith tropo_zenith;
     if (known && recompute) {
-      geo = geodetic_from_ecef(p);
+      geo = geodetic_of(p);
       r_enu = R_enu_from_ecef(geo);
-      if (opt.saastamoinen) meteo = standard_atmosphere(geo.h_m, opt.relative_humidity);
+      if (opt.saastamoinen)
+        tropo_zenith =
+            saastamoinen_zenith(geo, standard_atmosphere(geo.h_m, opt.relative_humidity));
     }
     if (recompute) corrections_at = known ? p : Vec3::Zero();
     for (std::size_t i = 0; i < meas.size(); ++i) {
@@ -158,9 +176,10 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
         out.az_deg = dir.az_rad * kRadToDeg;
         out.el_deg = dir.el_rad * kRadToDeg;
         if (known && opt.klobuchar)
-          out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, t);
+          out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, tow_s);
         if (known && opt.saastamoinen)
-          out.tropo_m = saastamoinen_delay(geo, dir.el_rad, meteo).total_m();
+          out.tropo_m = saastamoinen_delay(tropo_zenith, dir.el_rad).total_m();
+        sin_el[i] = std::sin(out.el_deg * kDegToRad);
       }
       out.residual_m = 0.0;
       out.used = false;
@@ -168,9 +187,9 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
       if (settled && el_rad < mask_rad) continue;
       out.residual_m = m.pseudorange_m - (range + clk - m.sat_clock_m + out.iono_m + out.tropo_m);
       out.used = true;
-      double var = sa2 + sb2 / std::sin(el_rad) + m.sat_variance_m2;
+      double var = sa2 + sb2 / sin_el[i] + m.sat_variance_m2;
       if (known && opt.klobuchar) var += 0.25 * out.iono_m * out.iono_m;
-      if (known && opt.saastamoinen) var += tropo_variance_m2(el_rad);
+      if (known && opt.saastamoinen) var += tropo_variance_m2(sin_el[i]);
       row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i};
     }
 
@@ -178,29 +197,29 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
     const std::size_t n_rows = n_sat_rows + (hold_height ? 1 : 0);
     if (n_sat_rows < 3 || n_rows < 4) break;
 
-    MatN4 h(static_cast<Eigen::Index>(n_rows), 4);
-    VecN v(static_cast<Eigen::Index>(n_rows));
-    VecN w(static_cast<Eigen::Index>(n_rows));
+    // Normal equations N = H^T W H and H^T W v, accumulated row by row: row (-u^T, 1) of a
+    // satellite with weight 1 / variance.
+    Mat4 n = Mat4::Zero();
+    Eigen::Vector4d hwv = Eigen::Vector4d::Zero();
+    auto add_row = [&](const Eigen::Vector4d& h_row, double v_m, double w) {
+      const Eigen::Vector4d wh = w * h_row;
+      n.noalias() += wh * h_row.transpose();
+      hwv += wh * v_m;
+    };
     for (std::size_t k = 0; k < n_sat_rows; ++k) {
-      const auto r = static_cast<Eigen::Index>(k);
-      h.row(r) << -row_store[k].u.transpose(), 1.0;
-      v(r) = row_store[k].residual_m;
-      w(r) = 1.0 / row_store[k].variance_m2;
+      Eigen::Vector4d h_row;
+      h_row << -row_store[k].u, 1.0;
+      add_row(h_row, row_store[k].residual_m, 1.0 / row_store[k].variance_m2);
     }
     if (hold_height) {
       // Pseudo-observation: the height stays at the prior height (1 cm sigma).
-      const Geodetic g = geodetic_from_ecef(p);
-      const Vec3 up = R_enu_from_ecef(g).row(2).transpose();
-      const auto r = static_cast<Eigen::Index>(n_sat_rows);
-      h.row(r) << up.transpose(), 0.0;
-      v(r) = h_hold_m - g.h_m;
-      w(r) = 1e4;
+      const Geodetic g = geodetic_of(p);
+      Eigen::Vector4d h_row;
+      h_row << R_enu_from_ecef(g).row(2).transpose(), 0.0;
+      add_row(h_row, h_hold_m - g.h_m, 1e4);
     }
-    const Mat4 n = h.transpose() * w.asDiagonal() * h;
-    Eigen::FullPivLU<Mat4> lu(n);
+    lu.compute(n);
     if (!lu.isInvertible()) break;
-    cov = lu.inverse().topLeftCorner<3, 3>();
-    const Eigen::Vector4d hwv = h.transpose() * (w.asDiagonal() * v);
     const Eigen::Vector4d dx = lu.solve(hwv);
     p += dx.head<3>();
     clk += dx(3);
@@ -218,7 +237,7 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
   // the update is below the convergence threshold, so they stand.
   sol.p_ecef_m = p;
   sol.clock_m = clk;
-  sol.cov_ecef_m2 = cov;
+  sol.cov_ecef_m2 = lu.inverse().topLeftCorner<3, 3>();
   sol.num_used = static_cast<int>(n_sat_rows);
   sol.fix = hold_height ? FixType::k2D : FixType::k3D;
   std::array<AzEl, kMaxSolverSatellites> dirs;

@@ -14,31 +14,47 @@ constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 // C/N0 from dB-Hz to a ratio in Hz.
 double cn0_ratio_hz(double cn0_dbhz) { return std::pow(10.0, cn0_dbhz / 10.0); }
 
-}  // namespace
-
-double dll_noise_m(double cn0_dbhz, const TrackingParams& p) {
+// The loops' noise from C/N0 as a ratio in Hz.
+double dll_noise_from_ratio_m(double cn0, const TrackingParams& p) {
   // Kaplan & Hegarty 2nd ed. eq. 5.23 (noncoherent early-minus-late power, wide front end),
   // in chips, times the chip length.
-  const double cn0 = cn0_ratio_hz(cn0_dbhz);
   const double d = p.chip_spacing;
   const double squaring_loss = 1.0 + 2.0 / (p.integration_s * cn0 * (2.0 - d));
   return p.chip_length_m * std::sqrt(p.dll_bandwidth_hz * d / (2.0 * cn0) * squaring_loss);
 }
 
-double pll_noise_cycles(double cn0_dbhz, const TrackingParams& p) {
+double pll_noise_from_ratio_cycles(double cn0, const TrackingParams& p) {
   // Kaplan & Hegarty 2nd ed. 5.6.1.1, in cycles instead of degrees.
-  const double cn0 = cn0_ratio_hz(cn0_dbhz);
   const double squaring_loss = 1.0 + 1.0 / (2.0 * p.integration_s * cn0);
   return std::sqrt(p.pll_bandwidth_hz / cn0 * squaring_loss) / kTwoPi;
 }
 
-double fll_noise_hz(double cn0_dbhz, const TrackingParams& p) {
+double fll_noise_from_ratio_hz(double cn0, const TrackingParams& p) {
   // Kaplan & Hegarty 2nd ed. 5.6.2, with F = 1 (high C/N0).
   constexpr double kF = 1.0;
-  const double cn0 = cn0_ratio_hz(cn0_dbhz);
   const double t = p.integration_s;
   const double squaring_loss = 1.0 + 1.0 / (t * cn0);
   return std::sqrt(4.0 * kF * p.fll_bandwidth_hz / cn0 * squaring_loss) / (kTwoPi * t);
+}
+
+}  // namespace
+
+double dll_noise_m(double cn0_dbhz, const TrackingParams& p) {
+  return dll_noise_from_ratio_m(cn0_ratio_hz(cn0_dbhz), p);
+}
+
+double pll_noise_cycles(double cn0_dbhz, const TrackingParams& p) {
+  return pll_noise_from_ratio_cycles(cn0_ratio_hz(cn0_dbhz), p);
+}
+
+double fll_noise_hz(double cn0_dbhz, const TrackingParams& p) {
+  return fll_noise_from_ratio_hz(cn0_ratio_hz(cn0_dbhz), p);
+}
+
+TrackingNoise tracking_noise(double cn0_dbhz, const TrackingParams& p) {
+  const double cn0 = cn0_ratio_hz(cn0_dbhz);
+  return {dll_noise_from_ratio_m(cn0, p), pll_noise_from_ratio_cycles(cn0, p),
+          fll_noise_from_ratio_hz(cn0, p)};
 }
 
 double cn0_dbhz(const Cn0Model& m, double el_rad) {

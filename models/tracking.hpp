@@ -34,6 +34,13 @@ double pll_noise_cycles(double cn0_dbhz, const TrackingParams& p);
 // FLL thermal noise, 1-sigma, Hz (Kaplan & Hegarty 2nd ed. 5.6.2, F = 1 at high C/N0):
 //   sigma = 1/(2 pi T) sqrt( 4 F B_n / C/N0 (1 + 1 / (T C/N0)) ).
 double fll_noise_hz(double cn0_dbhz, const TrackingParams& p);
+// The three at one C/N0 (its ratio computed once).
+struct TrackingNoise {
+  double code_m = 0.0;
+  double phase_cycles = 0.0;
+  double doppler_hz = 0.0;
+};
+TrackingNoise tracking_noise(double cn0_dbhz, const TrackingParams& p);
 
 // C/N0 by elevation: a zenith value plus the antenna gain relative to the zenith, linearly
 // interpolated in a table of (elevation deg, gain dB) sorted by elevation and held at its end
