@@ -29,12 +29,21 @@ namespace {
 
 const Geodetic kSite{32.3, -90.9, 60.0};  // the paper's test site
 
-std::string stationary_config(const fs::path& link, const std::string& profile) {
+// A stationary truth at kSite, the GNSS `profile` with one output and the IMU section as given
+// (YAML flow maps).
+std::string stationary_config_with_output(const std::string& output, const std::string& profile,
+                                         const std::string& imu = "{enabled: false}") {
   return fmt::format(
       "truth: {{source: stationary, position: {{lat_deg: {}, lon_deg: {}, h_m: {}}}}}\n"
-      "gnss:\n  profile: {}\n  outputs:\n    - {{type: pty, link: '{}'}}\n"
-      "imu: {{enabled: false}}\n",
-      kSite.lat_deg, kSite.lon_deg, kSite.h_m, profile, link.string());
+      "gnss:\n  profile: {}\n  outputs:\n    - {}\n"
+      "imu: {}\n",
+      kSite.lat_deg, kSite.lon_deg, kSite.h_m, profile, output, imu);
+}
+// The same with the output a pty at `link`.
+std::string stationary_config(const fs::path& link, const std::string& profile,
+                              const std::string& imu = "{enabled: false}") {
+  return stationary_config_with_output(fmt::format("{{type: pty, link: '{}'}}", link.string()),
+                                      profile, imu);
 }
 
 // Checks one client session: at most a leading fragment (the rest of a sentence an earlier
@@ -342,13 +351,7 @@ TEST(Faults, DiskFullForTheImuLogIsReportedOnceAndOutputGoesOn) {
   TempDir dir("disk-full");
   const fs::path link = dir / "gnss";
   NavemuRun nav(dir, "navemu",
-                fmt::format("truth: {{source: stationary, position: {{lat_deg: {}, lon_deg: {}, "
-                            "h_m: {}}}}}\n"
-                            "gnss:\n  profile: garmin-18x-5hz\n  outputs:\n"
-                            "    - {{type: pty, link: '{}'}}\n"
-                            "imu: {{enabled: true, log: /dev/full}}\n",
-                            kSite.lat_deg, kSite.lon_deg, kSite.h_m, link.string()),
-                60);
+                stationary_config(link, "garmin-18x-5hz", "{enabled: true, log: /dev/full}"), 60);
   ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
   PtyReader reader;
   ASSERT_TRUE(reader.open(link));
@@ -508,12 +511,8 @@ std::optional<int> wait_for_tcp_port(NavemuRun& nav, double timeout_s) {
 TEST(Faults, TcpClientDisconnectsAndReconnects) {
   TempDir dir("tcp-reconnect");
   NavemuRun nav(dir, "navemu",
-                fmt::format("truth: {{source: stationary, position: {{lat_deg: {}, lon_deg: {}, "
-                            "h_m: {}}}}}\n"
-                            "gnss:\n  profile: garmin-18x-5hz\n  outputs:\n"
-                            "    - {{type: tcp, address: 127.0.0.1, port: 0}}\n"
-                            "imu: {{enabled: false}}\n",
-                            kSite.lat_deg, kSite.lon_deg, kSite.h_m),
+                stationary_config_with_output("{type: tcp, address: 127.0.0.1, port: 0}",
+                                              "garmin-18x-5hz"),
                 60);
   const std::optional<int> port = wait_for_tcp_port(nav, 5.0);
   ASSERT_TRUE(port) << nav.diagnostics();
