@@ -373,6 +373,12 @@ class NavemuRun {
 
   // SIGTERM and wait (navemu stops at its next wake-up and prints its summary).
   std::optional<int> stop(double grace_s = 3.0) { return child_.stop(grace_s); }
+  // The same, checking that navemu exited with status 0 (its summary is then in err()).
+  void stop_expecting_exit_0() {
+    const std::optional<int> st = stop();
+    EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0)
+        << describe_status(st) << diagnostics();
+  }
 
  private:
   fs::path err_;

@@ -101,8 +101,7 @@ TEST(Faults, ClientClosesAndReopensThePtyMidStream) {
         << "1.5 s plus the queued epochs at 5 Hz" << nav.diagnostics();
   }
   EXPECT_GE(mid_sentence_closes, 2) << "the closes should fall inside sentences";
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
   const auto s = run_summary(nav.err());
   ASSERT_TRUE(s) << nav.diagnostics();
   EXPECT_EQ(s->skipped, 0) << nav.diagnostics();
@@ -147,8 +146,7 @@ TEST(Faults, NobodyReadingNeverBlocksAndNoStaleBurstAfterwards) {
   std::vector<Received> later;
   const double t_later = mono_s();
   const std::size_t later_bytes = reader.read_until(t_later + 3.0, later);
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
 
   // The largest epoch (whole seconds carry GSV) bounds what may arrive during the drain itself.
   std::size_t max_epoch = 0, epoch = 0;
@@ -263,8 +261,7 @@ TEST(Faults, BadTruthDatagramsAreRejectedAndTheFixStaysGood) {
   }
   ::close(fd);
   reader.read_until(mono_s() + 0.3, lines);
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
   ASSERT_GT(nan_sent, 0);
   ASSERT_GT(crc_sent, 0);
   ASSERT_GT(backwards_sent, 0);
@@ -363,8 +360,7 @@ TEST(Faults, DiskFullForTheImuLogIsReportedOnceAndOutputGoesOn) {
   // not only when it exits.
   const std::string err_running = nav.err();
   ASSERT_TRUE(nav.child().running()) << nav.diagnostics();
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
 
   const std::string kError = "log /dev/full: No space left on device";
   EXPECT_EQ(count_lines_with(err_running, kError), 1) << nav.diagnostics();
@@ -396,8 +392,7 @@ TEST(Faults, AStalledImuSkipsOldSamplesAndItsSequenceShowsTheGap) {
   sleep_s(1.0);
   nav.child().signal(SIGCONT);
   sleep_s(1.5);
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
 
   // imu.log rows: ..., gps_time_ns (column 10), sequence (column 11).
   std::vector<std::pair<std::int64_t, long>> rows;
@@ -538,8 +533,7 @@ TEST(Faults, TcpClientDisconnectsAndReconnects) {
     ASSERT_TRUE(nav.child().running()) << nav.diagnostics();
     sleep_s(0.3);  // epochs go out meanwhile with nobody connected
   }
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
   const auto s = run_summary(nav.err());
   ASSERT_TRUE(s) << nav.diagnostics();
   EXPECT_EQ(sessions, 4);
@@ -608,8 +602,7 @@ TEST(Faults, GarbageFloodIntoTheUbloxPortKeepsTheCadence) {
   const long rss_growth_kb = rss_kb(nav.child().pid()) - rss_before_kb;
   EXPECT_GT(rss_before_kb, 0);
   EXPECT_LT(rss_growth_kb, 1024) << "resident memory grew during the flood";
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
   EXPECT_EQ(write_errno, 0) << std::strerror(write_errno);
 
   // 3.5 s at 1 Hz: at least 3 RMCs, 1 s apart, every sentence whole and valid.
@@ -738,8 +731,7 @@ TEST(Faults, TruthJumps1000KmAndTheFixFollows) {
     if (k == 30) jump_real_s = t;
   }
   reader.read_until(mono_s() + 0.3, lines);  // navemu takes in the last datagram
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
   EXPECT_GE(check_session(lines, "across the jump"), 35) << nav.diagnostics();
   const auto s = run_summary(nav.err());
   ASSERT_TRUE(s) << nav.diagnostics();
@@ -842,8 +834,7 @@ TEST(Faults, TruthStreamStopsFor2SecondsThenResumes) {
     t += 0.1;
   }
   reader.read_until(mono_s() + 0.3, lines);  // navemu takes in the last datagram
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
   ASSERT_FALSE(status_before.empty()) << nav.diagnostics();
   EXPECT_TRUE(status_before.back().truth_ok) << nav.diagnostics();
   ASSERT_TRUE(lost_after_s) << "no 'truth LOST' status line during the gap" << nav.diagnostics();
@@ -953,8 +944,7 @@ TEST(Faults, TruthAt10kHzIsTakenInAndCounted) {
   while (!done && mono_s() < deadline) reader.read_until(mono_s() + 0.1, lines);
   send_thread.join();
   reader.read_until(mono_s() + 0.3, lines);  // navemu takes in the last datagram
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st);
+  nav.stop_expecting_exit_0();
 
   const auto s = run_summary(nav.err());
   ASSERT_TRUE(s) << nav.diagnostics();
@@ -1010,8 +1000,7 @@ TEST(Faults, RunsWithoutRoot) {
   reader.discard_queued();
   std::vector<Received> lines;
   reader.read_until(mono_s() + 2.0, lines);
-  const auto st = nav.stop();
-  EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st) << nav.diagnostics();
+  nav.stop_expecting_exit_0();
   EXPECT_GE(check_session(lines, "as an unprivileged user"), 8) << nav.diagnostics();
   EXPECT_EQ(fs::symlink_status(link).type(), fs::file_type::not_found) << "pty link left behind";
 }
