@@ -57,34 +57,40 @@ class Clock {
   enum class Kind { kRealTime, kLockstep, kOffline };
   Clock(Kind kind, GpsTime start, std::int64_t start_mono_ns, TruthSource* truth)
       : kind_(kind), gps0_(start), mono0_(start_mono_ns), truth_(truth) {}
-  // Waits until GPS time t; false when a stop was requested.
-  bool wait_until(GpsTime t) {
+  enum class Wait { kReached, kStopped, kWallTick };
+  // Waits until GPS time t. In lockstep, where GPS time stands still while the stream does,
+  // also returns kWallTick once the monotonic clock reaches `wall_tick_ns` (the ports are
+  // serviced and the status line printed on wall time).
+  Wait wait_until(GpsTime t, std::int64_t wall_tick_ns = INT64_MAX) {
     switch (kind_) {
-      case Kind::kOffline: return !g_stop.load();
+      case Kind::kOffline: return g_stop.load() ? Wait::kStopped : Wait::kReached;
       case Kind::kRealTime: {
         const std::int64_t deadline = mono_of(t);
         const timespec ts{static_cast<time_t>(deadline / kNsPerS),
                           static_cast<long>(deadline % kNsPerS)};
         while (!g_stop.load()) {
           const int rc = clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
-          if (rc == 0) return true;
-          if (rc != EINTR) return !g_stop.load();
+          if (rc == 0) return Wait::kReached;
+          if (rc != EINTR) return g_stop.load() ? Wait::kStopped : Wait::kReached;
         }
-        return false;
+        return Wait::kStopped;
       }
       case Kind::kLockstep: {
         while (!g_stop.load()) {
-          truth_->poll();
+          truth_->poll(std::nullopt);
           const std::optional<GpsTime> newest = truth_->newest();
-          if (newest && *newest >= t) return true;
+          if (newest && *newest >= t) return Wait::kReached;
+          if (monotonic_ns() >= wall_tick_ns) return Wait::kWallTick;
           timespec ts{0, 2'000'000};  // the next datagram; bounded so signals are seen
           nanosleep(&ts, nullptr);
         }
-        return false;
+        return Wait::kStopped;
       }
     }
-    return false;
+    return Wait::kStopped;
   }
+  // Real time: the scenario time now (where a truth stream's stamps should lie).
+  GpsTime now() const { return GpsTime{gps0_.ns + (monotonic_ns() - mono0_)}; }
   bool realtime() const { return kind_ == Kind::kRealTime; }
   std::int64_t mono_of(GpsTime t) const { return mono0_ + (t.ns - gps0_.ns); }
 
@@ -94,6 +100,73 @@ class Clock {
   std::int64_t mono0_ = 0;
   TruthSource* truth_;
 };
+
+// Lockstep: waits for the first accepted truth datagram while the ports are serviced (TCP
+// clients accepted, slcan adapter commands answered), with a status line each interval that
+// says what navemu waits for. Throws when truth.first_wait_s passes without one (0: waits
+// forever); none when a stop was requested.
+std::optional<GpsTime> wait_for_first_truth(const RunConfig& cfg, TruthSource& truth,
+                                            std::vector<std::unique_ptr<transport::BytePort>>& ports,
+                                            ImuCanOutputs* can_out, std::ostream& log) {
+  const std::string where = fmt::format("udp {}:{}", cfg.truth.udp_address, truth_udp_port(truth));
+  fmt::print(log, "navemu: lockstep: waiting for truth on {}; the scenario starts at its first datagram\n",
+             where);
+  log.flush();
+  const std::int64_t t0 = monotonic_ns();
+  const std::int64_t status_ns = std::llround(cfg.status_interval_s * 1e9);
+  std::int64_t next_status = status_ns > 0 ? t0 + status_ns : INT64_MAX;
+  while (!g_stop.load()) {
+    truth.poll(std::nullopt);
+    if (const std::optional<GpsTime> first = truth.newest()) return first;
+    const std::int64_t now = monotonic_ns();
+    const double waited_s = static_cast<double>(now - t0) * 1e-9;
+    if (cfg.truth.first_wait_s > 0.0 && waited_s > cfg.truth.first_wait_s)
+      throw std::runtime_error(fmt::format(
+          "lockstep: no truth datagram on {} within {} s (truth.first_wait_s; 0 waits forever): "
+          "is the simulator sending there?",
+          where, cfg.truth.first_wait_s));
+    if (now >= next_status) {
+      const TruthCounters* tc = truth.counters();
+      fmt::print(log, "navemu: waiting for truth on {} ({:.0f} s{})\n", where, waited_s,
+                 tc && tc->rejected() ? fmt::format(", {} datagrams rejected", tc->rejected()) : "");
+      log.flush();
+      next_status += status_ns;
+    }
+    for (auto& p : ports) p->service();
+    if (can_out) can_out->service();
+    timespec ts{0, 2'000'000};
+    nanosleep(&ts, nullptr);
+  }
+  return std::nullopt;
+}
+
+// The truth's state on the status line. Real time: rejecting when datagrams came during the
+// interval and none was taken (the sensors lose the truth timeout_s after the newest taken);
+// lost when some epoch or sample of the interval had no truth (so a loss shorter than the
+// interval is never left unreported); extrapolating when the newest accepted sample is more
+// than kExtrapolating_s older than the status time; ok otherwise. Lockstep, where time follows
+// the stream: paused when nothing came, rejecting when nothing was taken.
+constexpr double kExtrapolating_s = 0.25;
+struct TruthStatus {
+  bool lockstep = false;
+  bool lost = false;
+  std::uint64_t accepted = 0, rejected = 0;  // during the interval
+  double age_s = 0.0;  // status time minus the newest accepted sample's time, when positive
+};
+const char* truth_state(const TruthStatus& t) {
+  if (t.lockstep) return t.accepted ? "ok" : t.rejected ? "rejecting" : "paused";
+  if (t.rejected && !t.accepted) return "rejecting";
+  if (t.lost) return "lost";
+  return t.age_s > kExtrapolating_s ? "extrapolating" : "ok";
+}
+
+// " (accepted 120, rejected 3: crc 1, backwards 2; resync 1)"
+void format_truth_counts(const TruthCounters& c, fmt::memory_buffer& b) {
+  fmt::format_to(std::back_inserter(b), " (accepted {}, rejected {}", c.accepted, c.rejected());
+  if (c.rejected() || c.resync) b.append(std::string_view(c.rejected() ? ": " : "; "));
+  format_truth_reasons(c, b);
+  b.push_back(')');
+}
 
 // Output lateness statistics of one status interval, without allocating in the loop.
 class LatenessStats {
@@ -230,6 +303,20 @@ std::int64_t monotonic_ns() {
   return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
 }
 
+void format_truth_reasons(const TruthCounters& c, fmt::memory_buffer& b) {
+  const auto out = std::back_inserter(b);
+  const std::pair<const char*, std::uint64_t> reasons[] = {
+      {"crc", c.bad_framing}, {"nan", c.not_finite}, {"range", c.out_of_range},
+      {"duplicate", c.duplicate}, {"backwards", c.backwards}, {"future", c.future}};
+  const char* sep = "";
+  for (const auto& [name, n] : reasons) {
+    if (n == 0) continue;
+    fmt::format_to(out, "{}{} {}", sep, name, n);
+    sep = ", ";
+  }
+  if (c.resync) fmt::format_to(out, "{}resync {}", *sep ? "; " : "", c.resync);
+}
+
 void install_stop_handlers() {
   g_stop.store(false);
   struct sigaction sa {};
@@ -257,19 +344,6 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
                      "simulate needs a generator or a CSV truth, not udp");
   std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
   const bool lockstep = !offline && cfg.time_mode == TimeMode::kLockstep;
-  if (lockstep) {
-    // The scenario starts where the truth stream does.
-    fmt::print(log, "navemu: lockstep: waiting for the first truth datagram on udp port {}\n",
-               truth_udp_port(*truth));
-    log.flush();
-    while (!truth->newest()) {
-      if (g_stop.load()) return sum;
-      truth->poll();
-      timespec ts{0, 2'000'000};
-      nanosleep(&ts, nullptr);
-    }
-    start = *truth->newest();
-  }
   if (offline) {
     std::filesystem::create_directories(opt.out_dir);
     // The byte streams are written through append-only log ports: a folder used before starts
@@ -279,7 +353,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       std::filesystem::remove(opt.out_dir / name);
   }
 
-  // --- GNSS receiver and its outputs.
+  // --- GNSS outputs (the receiver itself comes once the start is known).
   NavData nav;
   std::unique_ptr<Receiver> receiver;
   std::unique_ptr<GnssDevice> device;
@@ -289,26 +363,6 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   std::int64_t gnss_period_ns = std::llround(1e9 / prof.rate_hz);
   const std::int64_t gnss_latency_ns = std::llround(prof.output_latency_s * 1e9);
   if (cfg.gnss_enabled) {
-    nav = cfg.nav_file.empty() ? nominal_constellation(start) : read_rinex_nav(cfg.nav_file);
-    ReceiverParams rp;
-    rp.measurement.mode = cfg.gnss_mode;
-    apply_receiver_class(rp.measurement, prof.receiver_class);
-    rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
-    AntennaPattern antenna = patch_antenna_pattern();
-    if (!prof.antenna_gain_db_by_el_deg.empty()) {
-      rp.measurement.cn0.gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;
-      antenna.rhcp_gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;
-    }
-    antenna.lhcp_rejection_db = prof.antenna_lhcp_rejection_db;
-    rp.measurement.seed = cfg.seed;
-    rp.max_channels = prof.max_channels;
-    rp.ideal_sigma_m = cfg.gnss_ideal_sigma_m;
-    if (!cfg.gnss_scene.obj.empty())
-      rp.measurement.environment = make_scene_environment(cfg.gnss_scene, cfg.truth.position,
-                                                          rp.measurement.tracking, antenna, log);
-    receiver = std::make_unique<Receiver>(nav, rp);
-    device = make_gnss_device(prof, cfg.gnss_mode, nav);
-    gnss_period_ns = device->period_ns();
     if (offline) {
       // The receiver's byte stream as on the wire: NMEA, or UBX mixed with NMEA.
       ports.push_back(transport::open_log_file((opt.out_dir / (prof.ubx ? "ubx.bin" : "nmea.log")).string()));
@@ -364,7 +418,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     truth_csv = std::make_unique<CsvFile>(
         opt.out_dir / "truth.csv",
         "time_s,lat_deg,lon_deg,h_m,v_n_mps,v_e_mps,v_d_mps,roll_deg,pitch_deg,yaw_deg\n");
-    if (receiver)
+    if (cfg.gnss_enabled)
       gnss_csv = std::make_unique<CsvFile>(
           opt.out_dir / "gnss.csv",
           "time_s,gps_week,gps_tow_s,truth_lat_deg,truth_lon_deg,truth_h_m,fix,num_tracked,"
@@ -374,6 +428,38 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   } else if (imu && !cfg.imu_log.empty()) {
     imu_log = transport::open_log_file(cfg.imu_log);
     imu_log->write(kImuHeader);
+  }
+
+  // --- Lockstep: the scenario starts where the truth stream does. The ports are open already,
+  // so clients can attach while navemu waits (their commands are answered once it starts).
+  if (lockstep) {
+    const std::optional<GpsTime> first = wait_for_first_truth(cfg, *truth, ports, can_out.get(), log);
+    if (!first) return sum;  // stopped while waiting
+    start = *first;
+  }
+
+  // --- The GNSS receiver: its navigation data and models from the scenario's start on.
+  if (cfg.gnss_enabled) {
+    nav = cfg.nav_file.empty() ? nominal_constellation(start) : read_rinex_nav(cfg.nav_file);
+    ReceiverParams rp;
+    rp.measurement.mode = cfg.gnss_mode;
+    apply_receiver_class(rp.measurement, prof.receiver_class);
+    rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
+    AntennaPattern antenna = patch_antenna_pattern();
+    if (!prof.antenna_gain_db_by_el_deg.empty()) {
+      rp.measurement.cn0.gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;
+      antenna.rhcp_gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;
+    }
+    antenna.lhcp_rejection_db = prof.antenna_lhcp_rejection_db;
+    rp.measurement.seed = cfg.seed;
+    rp.max_channels = prof.max_channels;
+    rp.ideal_sigma_m = cfg.gnss_ideal_sigma_m;
+    if (!cfg.gnss_scene.obj.empty())
+      rp.measurement.environment = make_scene_environment(cfg.gnss_scene, cfg.truth.position,
+                                                          rp.measurement.tracking, antenna, log);
+    receiver = std::make_unique<Receiver>(nav, rp);
+    device = make_gnss_device(prof, cfg.gnss_mode, nav);
+    gnss_period_ns = device->period_ns();
   }
 
   // --- Start-up messages: where everything is.
@@ -439,7 +525,9 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   std::int64_t imu_n = imu_j * imu_steps_per_out;  // the next internal step
   const std::int64_t status_ns =
       cfg.status_interval_s > 0.0 ? std::llround(cfg.status_interval_s * 1e9) : 0;
-  GpsTime next_status = status_ns ? start.plus_s(cfg.status_interval_s) : GpsTime{INT64_MAX};
+  // Real time (and offline, which prints none) at GPS-time intervals; lockstep on wall time.
+  GpsTime next_status =
+      status_ns && !lockstep ? start.plus_s(cfg.status_interval_s) : GpsTime{INT64_MAX};
 
   std::string chunk, replies;
   chunk.reserve(65536);
@@ -453,9 +541,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   last_fix.satellites.reserve(kMaxPrn);  // copied every epoch: no allocation
   std::optional<ImuTruth> last_fix_truth;
   std::int64_t interval_epochs = 0;
-  // Some GNSS epoch of the status interval had no truth: the status line says "truth LOST" even
-  // when the truth is back by the interval's end, so a loss shorter than the interval (the
-  // stream stopped for timeout_s + less than a second) is never left unreported.
+  // Some GNSS epoch or IMU sample of the status interval had no truth (truth_state()).
   bool interval_truth_lost = false;
   std::optional<ImuTruth> imu_before, imu_now, imu_after;
   std::int64_t window_n = -2;  // the internal step imu_now belongs to
@@ -473,6 +559,113 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     return GpsTime{j * imu_out_ns + std::llround(imu_params.latency_s * 1e9)};
   };
 
+  // Clients' input: commands answered on the port they came from, slcan adapter commands, bus
+  // errors. At the service tick, not at every wake-up: at 1 kHz each read is a system call per
+  // millisecond for nothing.
+  const auto service_ports = [&] {
+    if (can_out) can_out->service();
+    if (!device) return;
+    for (auto& p : ports) {
+      for (int n = 0; n < 16; ++n) {  // bounded: a flooding client cannot hold the loop
+        const std::size_t len = p->read(input);
+        if (len == 0) break;
+        replies.clear();
+        const std::span<const std::uint8_t> in(input.data(), len);
+        device->receive(in, replies);
+        if (capture_in) capture_in->write(in);
+        if (!replies.empty()) {
+          p->write(replies);
+          if (capture_out) capture_out->write(replies);
+        }
+      }
+    }
+    if (const std::optional<int> baud = device->take_baud_change())
+      for (auto& p : ports) transport::set_serial_baud(*p, *baud);
+  };
+
+  // --- Status line, formatted into one reused buffer: no allocation. In real time at whole
+  // status intervals of GPS time; in lockstep on wall time, as GPS time stands still while the
+  // stream does.
+  TruthCounters truth_at_status;  // the counters at the previous status line
+  std::int64_t truth_moved_mono = monotonic_ns();  // lockstep: when a datagram was last taken
+  GpsTime scenario_now = start;  // the last event's time
+  const auto print_status = [&](GpsTime at) {
+    // The live logs (IMU samples, the capture mirrors) are written out once per status interval
+    // as well as when their buffer fills, so they can be followed (tail -f) and a write error
+    // (disk full) is reported within a second, not only after 64 KB.
+    for (transport::BytePort* l : {imu_log.get(), capture_out.get(), capture_in.get()})
+      if (l != nullptr) l->service();
+    status_line.clear();
+    const auto out = std::back_inserter(status_line);
+    const CalendarTime c = utc_from_gps(at);
+    fmt::format_to(out, "navemu: {:02}:{:02}:{:02.0f} UTC gnss {} ep (", c.hour, c.minute,
+                   std::floor(c.second), sum.gnss_epochs);
+    if (!receiver || interval_epochs == 0) {
+      fmt::format_to(out, "no epoch");
+    } else {
+      fmt::format_to(out, "{} {}/{} sv", fix_name(last_fix.fix), last_fix.num_used,
+                     last_fix.satellites.size());
+      if (last_fix.fix != FixType::kNone) {
+        fmt::format_to(out, " PDOP {:.1f}", last_fix.dops.pdop);
+        if (last_fix_truth) {
+          const Vec3 e = enu_error(last_fix, *last_fix_truth);
+          fmt::format_to(out, " err {:.1f} m h {:.1f} m v", std::hypot(e.x(), e.y()),
+                         std::abs(e.z()));
+        }
+      }
+    }
+    fmt::format_to(out, ") imu {} smp", sum.imu_samples);
+    if (sum.imu_flagged) fmt::format_to(out, " ({} flagged)", sum.imu_flagged);
+    fmt::format_to(out, " | jitter ");
+    lateness.summary_and_reset(status_line);
+    std::uint64_t chunks_dropped = 0;
+    for (const auto& p : ports) chunks_dropped += p->counters().chunks_dropped;
+    const CanOutputTotals can = can_out ? can_out->totals() : CanOutputTotals{};
+    fmt::format_to(out, " | late {} skipped {} dropped {} chunks {} frames", sum.gnss_late,
+                   sum.gnss_skipped + sum.imu_skipped, chunks_dropped,
+                   can.frames_dropped + can.frames_failed);
+    if (can.frames_held) fmt::format_to(out, ", {} frames held", can.frames_held);
+    const TruthCounters* tc = truth->counters();
+    const TruthCounters now_counts = tc ? *tc : TruthCounters{};
+    const std::optional<GpsTime> newest = truth->newest();
+    TruthStatus ts;
+    ts.lockstep = lockstep;
+    ts.lost = (receiver && !last_fix_truth) || interval_truth_lost;
+    ts.accepted = now_counts.accepted - truth_at_status.accepted;
+    ts.rejected = now_counts.rejected() - truth_at_status.rejected();
+    if (newest && at > *newest) ts.age_s = seconds_between(at, *newest);
+    fmt::format_to(out, " | truth {}", truth_state(ts));
+    if (lockstep && ts.accepted == 0)
+      fmt::format_to(out, " for {:.0f} s", static_cast<double>(monotonic_ns() - truth_moved_mono) * 1e-9);
+    if (tc) format_truth_counts(now_counts, status_line);
+    truth_at_status = now_counts;
+    status_line.push_back('\n');
+    log.write(status_line.data(), static_cast<std::streamsize>(status_line.size()));
+    log.flush();
+    interval_epochs = 0;
+    interval_truth_lost = false;
+  };
+
+  // Lockstep's wall-time tick: the ports' input and the status line, also while the stream
+  // pauses.
+  std::int64_t next_tick_mono = monotonic_ns();
+  std::int64_t next_status_mono = status_ns ? next_tick_mono + status_ns : INT64_MAX;
+  std::uint64_t accepted_seen = 0;
+  const auto lockstep_tick = [&] {
+    const std::int64_t now = monotonic_ns();
+    if (const TruthCounters* tc = truth->counters(); tc && tc->accepted != accepted_seen) {
+      accepted_seen = tc->accepted;
+      truth_moved_mono = now;
+    }
+    if (now < next_tick_mono) return;
+    service_ports();
+    next_tick_mono = now + service_ns;
+    if (now >= next_status_mono) {
+      print_status(scenario_now);
+      next_status_mono = std::max(next_status_mono + status_ns, now);
+    }
+  };
+
   for (;;) {
     // The run covers the epochs measured in [start, end).
     const bool gnss_due = receiver && gnss_epoch(gnss_k) < end;
@@ -482,32 +675,16 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     if (gnss_due) next = std::min(next, gnss_compute_time(gnss_k));
     if (imu_due) next = std::min(next, imu_event(imu_j));
     next = std::min(next, next_status);
-    if ((device || can_out) && !offline) next = std::min(next, next_service);
-    if (!clock.wait_until(next)) break;
-    truth->poll();
-    // The ports' input (clients' commands, slcan commands, bus errors) at the service tick,
-    // not at every wake-up: at 1 kHz each read is a system call per millisecond for nothing.
-    const bool service_due = !offline && next_service <= next;
-    if (can_out && service_due) can_out->service();
-    // Commands from the clients: answered on the port they came from.
-    if (device && service_due) {
-      for (auto& p : ports) {
-        for (int n = 0; n < 16; ++n) {  // bounded: a flooding client cannot hold the loop
-          const std::size_t len = p->read(input);
-          if (len == 0) break;
-          replies.clear();
-          const std::span<const std::uint8_t> in(input.data(), len);
-          device->receive(in, replies);
-          if (capture_in) capture_in->write(in);
-          if (!replies.empty()) {
-            p->write(replies);
-            if (capture_out) capture_out->write(replies);
-          }
-        }
-      }
-      if (const std::optional<int> baud = device->take_baud_change())
-        for (auto& p : ports) transport::set_serial_baud(*p, *baud);
-    }
+    if ((device || can_out) && clock.realtime()) next = std::min(next, next_service);
+    if (lockstep) lockstep_tick();
+    const Clock::Wait waited = clock.wait_until(next, lockstep ? next_tick_mono : INT64_MAX);
+    if (waited == Clock::Wait::kStopped) break;
+    if (waited == Clock::Wait::kWallTick) continue;  // the tick runs at the top
+    scenario_now = next;
+    truth->poll(clock.realtime() ? std::optional<GpsTime>(clock.now()) : std::nullopt);
+    while (const std::optional<std::string> w = truth->take_warning())
+      fmt::print(log, "navemu: warning: {}\n", *w);
+    if (clock.realtime() && next_service <= next) service_ports();
 
     // A GNSS epoch whose output deadline passed more than a period ago is skipped, not sent
     // late. IMU samples are what a driver integrates, and a real IMU never drops one: after a
@@ -533,7 +710,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
       chunk.clear();
       device->encode_epoch(fix, receiver->measurements(), gnss_k, chunk);
       const GpsTime deadline{te.ns + gnss_latency_ns};
-      if (clock.realtime() && !clock.wait_until(deadline)) break;
+      if (clock.realtime() && clock.wait_until(deadline) == Clock::Wait::kStopped) break;
       for (auto& p : ports) {
         p->service();
         if (!p->write(chunk)) ++sum.output_chunks_dropped;
@@ -629,7 +806,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
         // sequence, as a frame lost on the bus does (protocols/can_frames.hpp; wraps).
         const auto sequence = static_cast<std::uint16_t>(imu_j - imu_j0);
         ++sum.imu_samples;
-        if (!valid) ++sum.imu_flagged;
+        if (!valid) {
+          ++sum.imu_flagged;
+          interval_truth_lost = true;
+        }
         if (can_out) {
           can::ImuSample cs;
           cs.gps_time_ns = t_meas.ns;
@@ -667,54 +847,8 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
 
     if (next_service <= next) next_service = GpsTime{next.ns + service_ns};
 
-    // --- Status line (real time only), formatted into one reused buffer: no allocation.
     if (next_status <= next) {
-      if (!offline) {
-        // The live logs (IMU samples, the capture mirrors) are written out once per status
-        // interval as well as when their buffer fills, so they can be followed (tail -f) and a
-        // write error (disk full) is reported within a second, not only after 64 KB.
-        for (transport::BytePort* l : {imu_log.get(), capture_out.get(), capture_in.get()})
-          if (l != nullptr) l->service();
-        status_line.clear();
-        const auto out = std::back_inserter(status_line);
-        const CalendarTime c = utc_from_gps(next_status);
-        fmt::format_to(out, "navemu: {:02}:{:02}:{:02.0f} UTC gnss {} ep (", c.hour, c.minute,
-                       std::floor(c.second), sum.gnss_epochs);
-        if (!receiver || interval_epochs == 0) {
-          fmt::format_to(out, "no epoch");
-        } else {
-          fmt::format_to(out, "{} {}/{} sv", fix_name(last_fix.fix), last_fix.num_used,
-                         last_fix.satellites.size());
-          if (last_fix.fix != FixType::kNone) {
-            fmt::format_to(out, " PDOP {:.1f}", last_fix.dops.pdop);
-            if (last_fix_truth) {
-              const Vec3 e = enu_error(last_fix, *last_fix_truth);
-              fmt::format_to(out, " err {:.1f} m h {:.1f} m v", std::hypot(e.x(), e.y()),
-                             std::abs(e.z()));
-            }
-          }
-        }
-        fmt::format_to(out, ") imu {} smp", sum.imu_samples);
-        if (sum.imu_flagged) fmt::format_to(out, " ({} flagged)", sum.imu_flagged);
-        fmt::format_to(out, " | jitter ");
-        lateness.summary_and_reset(status_line);
-        std::uint64_t dropped = 0;
-        for (const auto& p : ports) dropped += p->counters().chunks_dropped;
-        if (can_out) {
-          const CanOutputTotals t = can_out->totals();
-          dropped += t.frames_dropped + t.frames_failed;
-        }
-        fmt::format_to(out, " | late {} skipped {} dropped {} | truth {}", sum.gnss_late,
-                       sum.gnss_skipped + sum.imu_skipped, dropped,
-                       !receiver || (last_fix_truth && !interval_truth_lost) ? "ok" : "LOST");
-        if (const TruthCounters* tc = truth->counters())
-          fmt::format_to(out, " (accepted {}, rejected {})", tc->accepted, tc->rejected());
-        status_line.push_back('\n');
-        log.write(status_line.data(), static_cast<std::streamsize>(status_line.size()));
-        log.flush();
-      }
-      interval_epochs = 0;
-      interval_truth_lost = false;
+      if (!offline) print_status(next_status);
       next_status = GpsTime{next_status.ns + status_ns};
     }
   }
@@ -727,18 +861,16 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     const CanOutputTotals t = can_out->totals();
     sum.can_frames_written = t.frames_written;
     sum.can_frames_dropped = t.frames_dropped;
+    sum.can_frames_held = t.frames_held;
     sum.can_frames_failed = t.frames_failed;
     sum.can_bus_errors = t.bus_errors;
   }
   for (const auto& p : ports) {
     sum.client_bytes_read += p->counters().bytes_read;
+    sum.stale_flushes += p->counters().stale_flushes;
     sum.stale_bytes_flushed += p->counters().stale_bytes_flushed;
   }
-  if (const TruthCounters* tc = truth->counters()) {
-    sum.truth_accepted = tc->accepted;
-    sum.truth_rejected = tc->rejected();
-    sum.truth_lost = tc->lost;
-  }
+  if (const TruthCounters* tc = truth->counters()) sum.truth = *tc;
   sum.wall_s = static_cast<double>(monotonic_ns() - wall0) * 1e-9;
   sum.scenario_s = receiver ? static_cast<double>(sum.gnss_epochs) / prof.rate_hz
                             : static_cast<double>(sum.imu_samples) / std::max(imu_params.output_rate_hz, 1.0);

@@ -17,6 +17,8 @@
 // time = the newest truth datagram's time: an epoch is processed once the truth stream has
 // passed it; without truth, time stands still).
 
+#include <fmt/format.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -24,6 +26,7 @@
 #include <string>
 
 #include "emulator/run_config.hpp"
+#include "emulator/truth_buffer.hpp"
 #include "models/time.hpp"
 
 namespace navemu {
@@ -48,12 +51,18 @@ struct EngineSummary {
   std::uint64_t output_chunks_dropped = 0;
   // Summed over the GNSS ports (transport::PortCounters): bytes the clients sent (commands, or
   // whatever a client floods in), and unread output discarded as stale (a lower bound, pty).
-  std::uint64_t client_bytes_read = 0, stale_bytes_flushed = 0;
-  // CAN: written + dropped (queue full, ENOBUFS) + failed (interface down, ...) = every frame.
-  std::uint64_t can_frames_written = 0, can_frames_dropped = 0, can_frames_failed = 0, can_bus_errors = 0;
-  std::uint64_t truth_accepted = 0, truth_rejected = 0, truth_lost = 0;
+  std::uint64_t client_bytes_read = 0, stale_flushes = 0, stale_bytes_flushed = 0;
+  // CAN: written + dropped (queue full, ENOBUFS) + held (slcan channel not opened by a client)
+  // + failed (interface down, ...) = every frame.
+  std::uint64_t can_frames_written = 0, can_frames_dropped = 0, can_frames_held = 0,
+                can_frames_failed = 0, can_bus_errors = 0;
+  std::optional<TruthCounters> truth;  // a streamed truth's counters
   double wall_s = 0.0, scenario_s = 0.0;
 };
+
+// The truth's rejections by reason and its re-synchronisations, those that occurred:
+// "crc 1, backwards 2; resync 1" (README, "truth").
+void format_truth_reasons(const TruthCounters& c, fmt::memory_buffer& out);
 
 // SIGINT and SIGTERM end the loop at its next wake-up (outputs flushed, links removed).
 void install_stop_handlers();

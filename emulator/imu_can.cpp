@@ -98,6 +98,7 @@ CanOutputTotals ImuCanOutputs::totals() const {
     const transport::CanCounters& c = out.port->counters();
     t.frames_written += c.frames_written;
     t.frames_dropped += c.frames_dropped;
+    t.frames_held += c.frames_held;
     t.frames_failed += c.frames_failed;
     t.bus_errors += c.bus_errors;
     t.errors += c.errors;

@@ -16,7 +16,8 @@
 namespace navemu {
 
 struct CanOutputTotals {
-  std::uint64_t frames_written = 0, frames_dropped = 0, frames_failed = 0, bus_errors = 0, errors = 0;
+  std::uint64_t frames_written = 0, frames_dropped = 0, frames_held = 0, frames_failed = 0, bus_errors = 0,
+                errors = 0;
 };
 
 class ImuCanOutputs {

@@ -137,15 +137,23 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
                s.imu_flagged ? fmt::format(" ({} flagged: no truth)", s.imu_flagged) : "",
                opt.out_dir);
   } else {
+    const TruthCounters truth = s.truth.value_or(TruthCounters{});
+    fmt::memory_buffer reasons;
+    format_truth_reasons(truth, reasons);
     fmt::print(err,
                "navemu run: stopped after {:.1f} s: {} GNSS epochs ({} with a fix, {} late, {} "
                "skipped), {} IMU samples ({} skipped), {} output chunks dropped, {} stale bytes "
-               "flushed, {} bytes from clients, {} CAN frames ({} dropped, {} failed, {} bus "
-               "errors), truth {} accepted / {} rejected / {} lost unread\n",
+               "flushed in {} flushes, {} bytes from clients, {} CAN frames ({} dropped, {} failed, "
+               "{} bus errors){}, truth {} accepted / {} rejected / {} lost unread{}\n",
                s.wall_s, s.gnss_epochs, s.gnss_fixes, s.gnss_late, s.gnss_skipped, s.imu_samples,
-               s.imu_skipped, s.output_chunks_dropped, s.stale_bytes_flushed, s.client_bytes_read,
-               s.can_frames_written, s.can_frames_dropped, s.can_frames_failed, s.can_bus_errors,
-               s.truth_accepted, s.truth_rejected, s.truth_lost);
+               s.imu_skipped, s.output_chunks_dropped, s.stale_bytes_flushed, s.stale_flushes,
+               s.client_bytes_read, s.can_frames_written, s.can_frames_dropped, s.can_frames_failed,
+               s.can_bus_errors,
+               s.can_frames_held ? fmt::format(", {} CAN frames held back (no client opened the slcan channel)",
+                                               s.can_frames_held)
+                                 : "",
+               truth.accepted, truth.rejected(), truth.lost,
+               reasons.size() ? fmt::format(" ({})", fmt::to_string(reasons)) : "");
   }
   return 0;
 }

@@ -172,6 +172,9 @@ TruthSpec truth(YamlMap m) {
   t.position = position(m.map("position"), t.position);
   t.yaw_deg = m.number("yaw_deg").value_or(0.0);
   t.timeout_s = m.positive("timeout_s").value_or(t.timeout_s);
+  t.max_jump_s = m.positive("max_jump_s").value_or(t.max_jump_s);
+  t.resync_samples = static_cast<int>(m.integer("resync_samples", 2, 1000).value_or(t.resync_samples));
+  t.first_wait_s = m.positive("first_wait_s", true).value_or(t.first_wait_s);
 
   YamlMap c = m.map("circle");
   t.circle.center = t.position;

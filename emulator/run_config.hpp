@@ -125,7 +125,10 @@ struct TruthSpec {
   std::string csv_path;  // "-" : standard input
   std::string udp_address = "127.0.0.1";
   int udp_port = 5555;
-  double timeout_s = 1.0;
+  double timeout_s = 1.0;       // streamed truth: extrapolated this long, then lost
+  double max_jump_s = 5.0;      // a sample further ahead is an outlier (emulator/truth_buffer.hpp)
+  int resync_samples = 3;       // consecutive consistent outliers that re-synchronise the stream
+  double first_wait_s = 120.0;  // lockstep: longest wait for the first datagram; 0: no limit
 };
 
 struct RunConfig {

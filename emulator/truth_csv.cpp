@@ -21,10 +21,10 @@ constexpr const char* kTemperature = "temperature_c";
 
 }  // namespace
 
-TruthCsvReader::TruthCsvReader(std::string path)
+TruthCsvReader::TruthCsvReader(std::string path, bool time_must_increase)
     : csv_(std::move(path), {std::begin(kRequired), std::end(kRequired)},
            {kForce[0], kForce[1], kForce[2], kRate[0], kRate[1], kRate[2], kTemperature},
-           "time_s") {
+           time_must_increase ? std::optional<std::string>("time_s") : std::nullopt) {
   int rate_columns = 0;
   for (int i = 0; i < 3; ++i) rate_columns += csv_.has(kForce[i]) + csv_.has(kRate[i]);
   if (rate_columns != 0 && rate_columns != 6) {

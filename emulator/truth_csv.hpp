@@ -55,7 +55,9 @@ struct TruthRow {
 class TruthCsvReader {
  public:
   // Opens `path` and reads the header; InputError on a missing file or a bad header.
-  explicit TruthCsvReader(std::string path);
+  // `time_must_increase` false: rows out of time order are passed on (to a TruthBuffer, which
+  // applies the streamed-truth rules to them), not refused.
+  explicit TruthCsvReader(std::string path, bool time_must_increase = true);
   // The next row, checked (finite numbers, time increasing, latitude inside (-90, 90)); false
   // at the end of the file, or InputError at the end when the file has fewer than 3 rows.
   bool next(TruthRow& row);

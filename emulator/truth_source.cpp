@@ -27,12 +27,36 @@ class GeneratorSource final : public TruthSource {
   std::string what_;
 };
 
+// `stream`: the time rules of streamed truth apply (a file's rows are checked when read).
+TruthStreamLimits stream_limits(const TruthSpec& spec, double timeout_s, bool stream) {
+  TruthStreamLimits l;
+  l.timeout_s = timeout_s;
+  if (stream) l.max_jump_s = spec.max_jump_s;
+  l.resync_samples = spec.resync_samples;
+  return l;
+}
+
+// "3600.000 s ahead of the scenario clock", "12.500 s back from the newest sample"
+std::string describe_jump(const TruthResync& r) {
+  const double jump_s = static_cast<double>(r.jump_ns) * 1e-9;
+  return fmt::format("{:.3f} s {} {}", std::abs(jump_s), jump_s >= 0 ? "ahead of" : "behind",
+                     r.against_clock ? "the scenario clock" : "the newest accepted sample");
+}
+
 // A truth CSV (or standard input) replayed from the scenario start: row time_s maps to
 // start + (time_s - first row's time_s). Rows are read ahead into a buffer as queries need.
+// A file's times must increase (an InputError names the row otherwise); standard input is a
+// stream, whose times out of order follow the streamed-truth rules (duplicate, backwards,
+// future, resync), the first few refused rows named by line.
 class CsvSource final : public TruthSource {
  public:
-  CsvSource(const std::string& path, GpsTime start)
-      : reader_(path == "-" ? "/dev/stdin" : path), start_(start), buffer_(0.0, 10.0) {}
+  static constexpr int kRowsNamed = 10;  // refused rows reported by line; later ones counted
+
+  CsvSource(const TruthSpec& spec, GpsTime start)
+      : reader_(spec.csv_path == "-" ? "/dev/stdin" : spec.csv_path, spec.csv_path != "-"),
+        start_(start),
+        buffer_(stream_limits(spec, 0.0, spec.csv_path == "-")),
+        resync_samples_(spec.resync_samples) {}
 
   std::optional<ImuTruth> at(GpsTime t) override {
     TruthRow row;
@@ -50,28 +74,53 @@ class CsvSource final : public TruthSource {
       s.f_body_mps2 = row.f_body_mps2;
       s.w_ib_body_radps = row.w_ib_body_radps;
       s.temperature_c = row.temperature_c;
-      buffer_.push(s);
+      note(buffer_.push(s), row.time_s);
     }
     return buffer_.at(t);
   }
   std::optional<GpsTime> newest() const override { return buffer_.newest_time(); }
   const TruthCounters* counters() const override { return &buffer_.counters(); }
+  std::optional<std::string> take_warning() override {
+    if (warnings_.empty()) return std::nullopt;
+    std::string w = std::move(warnings_.front());
+    warnings_.erase(warnings_.begin());
+    return w;
+  }
   std::string describe() const override { return "truth CSV " + reader_.path(); }
 
  private:
+  void note(TruthVerdict v, double time_s) {
+    const std::string where = fmt::format("truth CSV {}:{}: time_s {}", reader_.path(), reader_.line(), time_s);
+    if (v == TruthVerdict::kResync) {
+      warnings_.push_back(fmt::format(
+          "{}: the rows' time jumped {}; re-synchronised after {} consecutive rows: from here on "
+          "a row's time maps to scenario time {:+.3f} s",
+          where, describe_jump(*buffer_.last_resync()), resync_samples_,
+          static_cast<double>(buffer_.last_resync()->offset_ns) * 1e-9));
+    } else if (v != TruthVerdict::kAccepted && named_++ < kRowsNamed) {
+      warnings_.push_back(fmt::format("{}: row refused ({}){}", where, to_string(v),
+                                      named_ == kRowsNamed ? "; further refused rows are only counted" : ""));
+    }
+  }
   TruthCsvReader reader_;
   GpsTime start_;
   TruthBuffer buffer_;
+  int resync_samples_;
   std::optional<double> first_s_;
   bool end_ = false;
+  int named_ = 0;
+  std::vector<std::string> warnings_;
 };
 
 class UdpSource final : public TruthSource {
  public:
   UdpSource(const TruthSpec& spec, GpsTime host_offset)
-      : rx_(spec.udp_address, spec.udp_port), host_offset_(host_offset), buffer_(spec.timeout_s) {}
+      : rx_(spec.udp_address, spec.udp_port),
+        host_offset_(host_offset),
+        buffer_(stream_limits(spec, spec.timeout_s, true)),
+        resync_samples_(spec.resync_samples) {}
 
-  void poll() override {
+  void poll(std::optional<GpsTime> clock) override {
     truth_datagram::Message m;
     for (int n = 0; n < 1000; ++n) {  // bounded: a flood cannot hold the loop
       const std::size_t len = rx_.receive(buf_);
@@ -86,13 +135,22 @@ class UdpSource final : public TruthSource {
         ++buffer_.counters().not_finite;
         continue;
       }
-      buffer_.push(*s);
+      if (buffer_.push(*s, clock) == TruthVerdict::kResync) resync_pending_ = true;
     }
     buffer_.counters().lost = rx_.kernel_dropped();
   }
   std::optional<ImuTruth> at(GpsTime t) override { return buffer_.at(t); }
   std::optional<GpsTime> newest() const override { return buffer_.newest_time(); }
   const TruthCounters* counters() const override { return &buffer_.counters(); }
+  std::optional<std::string> take_warning() override {
+    if (!resync_pending_) return std::nullopt;
+    resync_pending_ = false;
+    const TruthResync& r = *buffer_.last_resync();
+    return fmt::format(
+        "truth datagrams on udp port {}: the stream's time jumped {}; re-synchronised after {} "
+        "consistent datagrams: their time stamps now map to scenario time {:+.3f} s",
+        rx_.port(), describe_jump(r), resync_samples_, static_cast<double>(r.offset_ns) * 1e-9);
+  }
   std::string describe() const override {
     return fmt::format("truth datagrams on udp port {}", rx_.port());
   }
@@ -102,6 +160,8 @@ class UdpSource final : public TruthSource {
   transport::UdpReceiver rx_;
   GpsTime host_offset_;
   TruthBuffer buffer_;
+  int resync_samples_;
+  bool resync_pending_ = false;
   std::array<std::uint8_t, 8192> buf_{};
 };
 
@@ -166,7 +226,7 @@ std::unique_ptr<TruthSource> make_truth_source(const TruthSpec& spec, GpsTime st
           fmt::format("{} waypoints at {} m/s", spec.waypoints.waypoints.size(),
                       spec.waypoints.speed_mps));
     case TruthSourceKind::kCsv:
-      return std::make_unique<CsvSource>(spec.csv_path, start);
+      return std::make_unique<CsvSource>(spec, start);
     case TruthSourceKind::kUdp:
       return std::make_unique<UdpSource>(spec, host_offset);
   }

@@ -20,13 +20,17 @@ class TruthSource {
  public:
   virtual ~TruthSource() = default;
   // Takes in whatever has arrived; never blocks (a CSV on standard input reads ahead as at()
-  // needs it).
-  virtual void poll() {}
+  // needs it). `clock`: the scenario time now, in real time, where a stream's stamps must lie
+  // (emulator/truth_buffer.hpp); none in lockstep, where time follows the stream.
+  virtual void poll(std::optional<GpsTime> clock) { (void)clock; }
   // The truth at scenario time t. Queries may come in any order within the last few seconds.
   virtual std::optional<ImuTruth> at(GpsTime t) = 0;
   // The newest sample's time, for sources that stream (lockstep mode follows it).
   virtual std::optional<GpsTime> newest() const { return std::nullopt; }
   virtual const TruthCounters* counters() const { return nullptr; }
+  // A line for the user about the stream (a re-synchronisation, a refused CSV row), one per
+  // call, oldest first; none when there is nothing new.
+  virtual std::optional<std::string> take_warning() { return std::nullopt; }
   virtual std::string describe() const = 0;
 };
 

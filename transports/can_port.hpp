@@ -26,9 +26,10 @@ struct CanFrameView {
 
 struct CanCounters {
   std::uint64_t frames_written = 0;
-  std::uint64_t frames_dropped = 0;  // queue full (ENOBUFS/EAGAIN), channel closed, no reader
+  std::uint64_t frames_dropped = 0;  // queue full (ENOBUFS/EAGAIN), no reader
+  std::uint64_t frames_held = 0;     // slcan: not sent because no client has opened the channel
   std::uint64_t frames_failed = 0;   // not sent for another reason: invalid, interface down, ...
-                                     // (written + dropped + failed = every frame offered)
+                                     // (written + dropped + held + failed = every frame offered)
   std::uint64_t bus_errors = 0;      // error frames received from the interface
   std::uint64_t errors = 0;          // I/O errors (interface went down, ...); slcan: commands
                                      // answered with BEL

@@ -64,7 +64,7 @@ class SlcanPort final : public FramePort {
       return false;
     }
     if (!open_) {
-      counters_.frames_dropped++;
+      counters_.frames_held++;  // an adapter passes no frames while its channel is closed
       return false;
     }
     encode_slcan(frame, out_);

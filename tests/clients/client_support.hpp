@@ -255,18 +255,20 @@ inline long rss_kb(pid_t pid) {
 // --- navemu run.
 
 // One status line: "navemu: 12:48:13 UTC gnss 80 ep (3D 10/11 sv PDOP ...) imu 0 smp | jitter
-// ... | late 0 skipped 0 dropped 0 | truth ok (accepted 501, rejected 0)".
+// ... | late 0 skipped 0 dropped 0 chunks 0 frames | truth ok (accepted 501, rejected 0)".
 struct StatusLine {
   int second_of_day = 0;
   long epochs = 0;
   std::string fix;  // "3D 10/11 sv PDOP 1.4 ...", "no fix 0/0 sv"
-  long late = 0, skipped = 0, dropped = 0;
-  bool truth_ok = false;
+  long late = 0, skipped = 0, dropped = 0;  // dropped: output chunks + CAN frames
+  std::string truth;  // ok, extrapolating, rejecting, lost (real time); ok, rejecting, paused
+  bool truth_ok = false;  // the sensors have truth: ok or extrapolating
+  std::string truth_counts;  // "accepted 501, rejected 0", or empty
 };
 
 inline std::vector<StatusLine> status_lines(const std::string& err) {
   static const std::regex re(
-      R"(^navemu: (\d\d):(\d\d):(\d\d) UTC gnss (\d+) ep \((.*)\) imu .*\| late (\d+) skipped (\d+) dropped (\d+) \| truth (ok|LOST))");
+      R"(^navemu: (\d\d):(\d\d):(\d\d) UTC gnss (\d+) ep \((.*)\) imu .*\| late (\d+) skipped (\d+) dropped (\d+) chunks (\d+) frames.* \| truth (ok|extrapolating|rejecting|lost|paused)[^(]*(?:\((.*)\))?$)");
   std::vector<StatusLine> out;
   std::stringstream ss(err);
   for (std::string line; std::getline(ss, line);) {
@@ -278,8 +280,10 @@ inline std::vector<StatusLine> status_lines(const std::string& err) {
     s.fix = m[5];
     s.late = std::stol(m[6]);
     s.skipped = std::stol(m[7]);
-    s.dropped = std::stol(m[8]);
-    s.truth_ok = m[9] == "ok";
+    s.dropped = std::stol(m[8]) + std::stol(m[9]);
+    s.truth = m[10];
+    s.truth_ok = s.truth == "ok" || s.truth == "extrapolating";
+    s.truth_counts = m[11];
     out.push_back(s);
   }
   return out;
@@ -290,12 +294,13 @@ struct RunSummary {
   double wall_s = 0;
   long epochs = 0, fixes = 0, late = 0, skipped = 0, chunks_dropped = 0;
   long truth_accepted = 0, truth_rejected = 0, truth_lost = 0;
-  long stale_bytes_flushed = 0, client_bytes = 0;  // summed over the GNSS ports
+  long stale_bytes_flushed = 0, stale_flushes = 0, client_bytes = 0;  // summed over the GNSS ports
+  std::string truth_reasons;  // "crc 1, backwards 2; resync 1", or empty
 };
 
 inline std::optional<RunSummary> run_summary(const std::string& err) {
   static const std::regex re(
-      R"(navemu run: stopped after ([0-9.]+) s: (\d+) GNSS epochs \((\d+) with a fix, (\d+) late, (\d+) skipped\).* (\d+) output chunks dropped, (\d+) stale bytes flushed, (\d+) bytes from clients, .*truth (\d+) accepted / (\d+) rejected / (\d+) lost unread)");
+      R"(navemu run: stopped after ([0-9.]+) s: (\d+) GNSS epochs \((\d+) with a fix, (\d+) late, (\d+) skipped\).* (\d+) output chunks dropped, (\d+) stale bytes flushed in (\d+) flushes, (\d+) bytes from clients, .*truth (\d+) accepted / (\d+) rejected / (\d+) lost unread(?: \((.*)\))?)");
   std::smatch m;
   if (!std::regex_search(err, m, re)) return std::nullopt;
   RunSummary s;
@@ -306,10 +311,12 @@ inline std::optional<RunSummary> run_summary(const std::string& err) {
   s.skipped = std::stol(m[5]);
   s.chunks_dropped = std::stol(m[6]);
   s.stale_bytes_flushed = std::stol(m[7]);
-  s.client_bytes = std::stol(m[8]);
-  s.truth_accepted = std::stol(m[9]);
-  s.truth_rejected = std::stol(m[10]);
-  s.truth_lost = std::stol(m[11]);
+  s.stale_flushes = std::stol(m[8]);
+  s.client_bytes = std::stol(m[9]);
+  s.truth_accepted = std::stol(m[10]);
+  s.truth_rejected = std::stol(m[11]);
+  s.truth_lost = std::stol(m[12]);
+  s.truth_reasons = m[13];
   return s;
 }
 

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <random>
 #include <regex>
@@ -637,18 +638,28 @@ class TruthSender {
   TruthSender(const TruthSender&) = delete;
   TruthSender& operator=(const TruthSender&) = delete;
   bool ok() const { return fd_ >= 0; }
-  // One datagram at `position` stamped now; returns its time (CLOCK_REALTIME, s).
-  double send(const Geodetic& position) {
+  // One datagram at `position` stamped now, plus `offset_s` (a stream that jumped), as host
+  // UTC in binary or as GPS time in JSON; returns the time it was sent (CLOCK_REALTIME, s).
+  double send(const Geodetic& position, double offset_s = 0.0, bool json_gps_time = false) {
     truth_datagram::Message m;
-    m.time_base = truth_datagram::TimeBase::kHostUtc;
+    m.time_base = json_gps_time ? truth_datagram::TimeBase::kGps : truth_datagram::TimeBase::kHostUtc;
     m.position = {position.lat_deg, position.lon_deg, position.h_m};
     m.sequence = seq_++;
     const double now = real_s();
-    m.time_ns = static_cast<std::int64_t>(std::llround(now * 1e9));
-    const auto d = truth_datagram::encode_binary(m);
-    if (::sendto(fd_, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(&to_), sizeof to_) ==
-        static_cast<ssize_t>(d.size()))
-      ++sent_;
+    const auto unix_ns = static_cast<std::int64_t>(std::llround((now + offset_s) * 1e9));
+    m.time_ns = json_gps_time ? gps_from_unix_ns(unix_ns).ns : unix_ns;
+    const auto transmit = [&](const void* data, std::size_t size) {
+      if (::sendto(fd_, data, size, 0, reinterpret_cast<const sockaddr*>(&to_), sizeof to_) ==
+          static_cast<ssize_t>(size))
+        ++sent_;
+    };
+    if (json_gps_time) {
+      const std::string d = truth_datagram::encode_json(m);
+      transmit(d.data(), d.size());
+    } else {
+      const auto d = truth_datagram::encode_binary(m);
+      transmit(d.data(), d.size());
+    }
     return now;
   }
   long sent() const { return sent_; }
@@ -773,7 +784,7 @@ TEST(Faults, TruthJumps1000KmAndTheFixFollows) {
 
 // (i) The truth stream stops for 2 s and resumes. navemu extrapolates the truth for timeout_s
 // (1 s) and then reports its loss: the receiver has no fix (models/receiver.hpp: "without truth
-// the receiver reports no fix"), so RMC says V, and a status line says "truth LOST" within
+// the receiver reports no fix"), so RMC says V, and a status line says "truth lost" within
 // timeout_s + one epoch + 1 s (the status interval) of the last datagram (the status line reports
 // a loss in any epoch of its interval, so even this short one is never missed). Epochs keep coming
 // at their cadence throughout. When the stream resumes the fix returns within a few epochs,
@@ -800,16 +811,16 @@ TEST(Faults, TruthStreamStopsFor2SecondsThenResumes) {
     sender.send(kSite);
     t += 0.1;
   }
-  // The last datagram went out at t - 0.1; from then on, watch stderr for "truth LOST" (the
+  // The last datagram went out at t - 0.1; from then on, watch stderr for "truth lost" (the
   // status line that reports it may come just after the stream resumes: it covers the epochs
   // of the interval before it).
   const double last_mono = t - 0.1;
   const double last_real = real_s() - (mono_s() - last_mono);
   const auto lost_lines = [&] {
-    return static_cast<std::size_t>(count_lines_with(nav.err(), "| truth LOST"));
+    return static_cast<std::size_t>(count_lines_with(nav.err(), "| truth lost"));
   };
   const std::size_t lost_before = lost_lines();
-  // Before the stream began, the first status line may have said LOST; the last one before the
+  // Before the stream began, the first status line may have said lost; the last one before the
   // gap covers a second of steady truth.
   const std::vector<StatusLine> status_before = status_lines(nav.err());
   std::optional<double> lost_after_s;
@@ -837,7 +848,7 @@ TEST(Faults, TruthStreamStopsFor2SecondsThenResumes) {
   nav.stop_expecting_exit_0();
   ASSERT_FALSE(status_before.empty()) << nav.diagnostics();
   EXPECT_TRUE(status_before.back().truth_ok) << nav.diagnostics();
-  ASSERT_TRUE(lost_after_s) << "no 'truth LOST' status line during the gap" << nav.diagnostics();
+  ASSERT_TRUE(lost_after_s) << "no 'truth lost' status line during the gap" << nav.diagnostics();
   // The first epoch without truth lies up to one epoch (0.2 s) past the timeout, and the status
   // line after it up to one status interval (1 s) later; 0.2 s for the output latency (0.05 s),
   // the watch's 0.02 s polling and a busy machine. (Measured: 1.1 to 2.1 s, by the phase of the
@@ -890,13 +901,194 @@ TEST(Faults, TruthStreamStopsFor2SecondsThenResumes) {
   ASSERT_TRUE(returned) << "the fix never came back" << nav.diagnostics();
   EXPECT_LE(*returned, kMaxEpochsToReturn);
 
-  // The status lines: ok before the gap (checked above), LOST, then ok again at the end.
+  // The status lines: ok before the gap (checked above), lost, then ok again at the end.
   const std::vector<StatusLine> status = status_lines(nav.err());
   ASSERT_GE(status.size(), 8u);
   EXPECT_TRUE(status.back().truth_ok) << nav.diagnostics();
-  std::printf("truth gap %.1f s: LOST on stderr %.2f s after the last datagram; %d epochs V; "
+  std::printf("truth gap %.1f s: lost on stderr %.2f s after the last datagram; %d epochs V; "
               "fix back %d epochs after the stream resumed\n",
               kGap_s, *lost_after_s, v_in_gap, *returned);
+}
+
+// Reads the pty for `seconds` while one datagram goes out every 0.1 s, made by `send_one(k)`.
+void stream_for(PtyReader& reader, std::vector<Received>& lines, int datagrams,
+                const std::function<void(int)>& send_one) {
+  const double t0 = mono_s();
+  for (int k = 0; k < datagrams; ++k) {
+    reader.read_until(t0 + 0.1 * k, lines);
+    send_one(k);
+  }
+}
+
+// (k) One datagram stamped an hour ahead among good ones (a sender whose clock glitched once):
+// it is rejected and counted as future, the stream goes on, the fix stays at the truth and the
+// status line says ok throughout. (Before, the outlier became the newest sample: every later
+// datagram was refused as backwards and the receiver interpolated towards the outlier.)
+TEST(Faults, ATruthDatagramAnHourAheadIsRejectedAsFutureAndTheStreamGoesOn) {
+  TempDir dir("truth-future");
+  const fs::path link = dir / "gnss";
+  NavemuRun nav(dir, "navemu", udp_truth_config(link), 60);
+  const std::optional<int> port = nav.wait_for_udp_port(5.0);
+  ASSERT_TRUE(port) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  PtyReader reader;
+  ASSERT_TRUE(reader.open(link));
+  reader.discard_queued();
+  TruthSender sender(*port);
+  ASSERT_TRUE(sender.ok());
+  const Geodetic far{kSite.lat_deg + 0.009, kSite.lon_deg, kSite.h_m};  // 1 km north
+  std::vector<Received> lines;
+  stream_for(reader, lines, 60, [&](int k) {
+    sender.send(kSite);
+    if (k == 20) sender.send(far, 3600.0);
+  });
+  reader.read_until(mono_s() + 0.3, lines);
+  nav.stop_expecting_exit_0();
+
+  const auto s = run_summary(nav.err());
+  ASSERT_TRUE(s) << nav.diagnostics();
+  EXPECT_EQ(s->truth_accepted, sender.sent() - 1) << nav.diagnostics();
+  EXPECT_EQ(s->truth_rejected, 1) << nav.diagnostics();
+  EXPECT_EQ(s->truth_reasons, "future 1") << nav.diagnostics();
+  int fixes = 0;
+  bool fixed = false;
+  for (const Rmc& m : rmcs(lines)) {
+    fixed = fixed || m.valid;
+    if (!fixed) continue;
+    EXPECT_TRUE(m.valid) << "fix lost at " << m.unix_ms;
+    if (!m.valid) continue;
+    ++fixes;
+    EXPECT_LE(horizontal_error_m(m.position, kSite), 15.0);
+  }
+  EXPECT_GE(fixes, 20) << nav.diagnostics();
+  bool seen_ok = false, seen_future = false;
+  for (const StatusLine& sl : status_lines(nav.err())) {
+    seen_ok = seen_ok || sl.truth == "ok";
+    if (seen_ok) {
+      EXPECT_EQ(sl.truth, "ok") << nav.diagnostics();
+    }
+    seen_future = seen_future || sl.truth_counts.find("future 1") != std::string::npos;
+  }
+  EXPECT_TRUE(seen_future) << "no status line counts the future datagram" << nav.diagnostics();
+}
+
+// (l) A simulator reset: its clock starts again 100 s earlier, at a place 1000 km away, sent as
+// JSON with GPS time stamps. The first datagrams of the new stream are refused as backwards;
+// after three consistent ones the stream is re-synchronised (a warning line, counted as resync)
+// and the fix follows it to the new place. (Before, every datagram after the reset was refused
+// for the rest of the run and the receiver lost its fix for good.)
+TEST(Faults, ATruthStreamThatJumpsBackIsResynchronisedAndTheFixFollows) {
+  TempDir dir("truth-resync");
+  const fs::path link = dir / "gnss";
+  NavemuRun nav(dir, "navemu", udp_truth_config(link), 60);
+  const std::optional<int> port = nav.wait_for_udp_port(5.0);
+  ASSERT_TRUE(port) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  PtyReader reader;
+  ASSERT_TRUE(reader.open(link));
+  reader.discard_queued();
+  TruthSender sender(*port);
+  ASSERT_TRUE(sender.ok());
+  const Geodetic far{kSite.lat_deg + 9.0, kSite.lon_deg, kSite.h_m};
+  std::vector<Received> lines;
+  double reset_real_s = 0;
+  stream_for(reader, lines, 80, [&](int k) {  // 3 s before the reset, 5 s after
+    const double t = k < 30 ? sender.send(kSite, 0.0, true) : sender.send(far, -100.0, true);
+    if (k == 30) reset_real_s = t;
+  });
+  reader.read_until(mono_s() + 0.3, lines);
+  nav.stop_expecting_exit_0();
+
+  const auto s = run_summary(nav.err());
+  ASSERT_TRUE(s) << nav.diagnostics();
+  EXPECT_EQ(s->truth_accepted, sender.sent() - 2) << nav.diagnostics();
+  EXPECT_EQ(s->truth_rejected, 2) << nav.diagnostics();
+  EXPECT_EQ(s->truth_reasons, "backwards 2; resync 1") << nav.diagnostics();
+  EXPECT_EQ(count_lines_with(nav.err(), "navemu: warning: truth datagrams on udp port"), 1) << nav.diagnostics();
+  EXPECT_NE(nav.err().find("jumped 100."), std::string::npos) << nav.diagnostics();
+  EXPECT_NE(nav.err().find("re-synchronised after 3 consistent datagrams"), std::string::npos);
+  // After the reset the fix reaches the new place within a few epochs (three datagrams, 0.2 s,
+  // and the truth timeout bridge the re-synchronisation) and stays there.
+  const auto reset_ms = static_cast<std::int64_t>(std::ceil(reset_real_s * 1e3));
+  std::optional<int> followed;
+  int epochs_after = 0;
+  for (const Rmc& m : rmcs(lines)) {
+    if (m.unix_ms < reset_ms) continue;
+    ++epochs_after;
+    if (!followed) {
+      if (m.valid && horizontal_error_m(m.position, far) <= 15.0) followed = epochs_after;
+      continue;
+    }
+    EXPECT_TRUE(m.valid && horizontal_error_m(m.position, far) <= 15.0)
+        << "epoch " << epochs_after << " after the reset";
+  }
+  ASSERT_TRUE(followed) << "the fix never reached the new place" << nav.diagnostics();
+  EXPECT_LE(*followed, 4);
+  EXPECT_GE(epochs_after - *followed, 15);
+  const std::vector<StatusLine> status = status_lines(nav.err());
+  ASSERT_FALSE(status.empty());
+  EXPECT_EQ(status.back().truth, "ok") << nav.diagnostics();
+  EXPECT_NE(status.back().truth_counts.find("resync 1"), std::string::npos) << nav.diagnostics();
+  std::printf("truth stream reset: the fix was at the new place %d epochs after it\n", *followed);
+}
+
+// (m) Datagrams keep arriving but none can be taken (their times jump about, each far from the
+// last): the receiver loses its fix once the newest accepted truth is older than timeout_s, and
+// the status line says "rejecting" while no datagram is taken. Good datagrams bring the fix
+// back. (Before, the first outlier an hour ahead was accepted and the receiver kept a fix on a
+// frozen truth.)
+TEST(Faults, TruthThatIsAllRejectedEndsTheFixAfterTheTimeoutThoughDatagramsArrive) {
+  TempDir dir("truth-rejecting");
+  const fs::path link = dir / "gnss";
+  NavemuRun nav(dir, "navemu", udp_truth_config(link), 60);
+  const std::optional<int> port = nav.wait_for_udp_port(5.0);
+  ASSERT_TRUE(port) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  PtyReader reader;
+  ASSERT_TRUE(reader.open(link));
+  reader.discard_queued();
+  TruthSender sender(*port);
+  ASSERT_TRUE(sender.ok());
+  std::vector<Received> lines;
+  double bad_from_s = 0, bad_until_s = 0;
+  stream_for(reader, lines, 100, [&](int k) {  // 3 s good, 4 s bad, 3 s good
+    if (k < 30 || k >= 70) {
+      const double t = sender.send(kSite);
+      if (k == 70) bad_until_s = t;
+    } else {
+      const double t = sender.send(kSite, (k % 2 ? 3600.0 : -3600.0) * (1 + k % 3));
+      if (k == 30) bad_from_s = t;
+    }
+  });
+  reader.read_until(mono_s() + 0.3, lines);
+  nav.stop_expecting_exit_0();
+
+  const auto s = run_summary(nav.err());
+  ASSERT_TRUE(s) << nav.diagnostics();
+  EXPECT_EQ(s->truth_accepted, sender.sent() - 40) << nav.diagnostics();
+  EXPECT_EQ(s->truth_rejected, 40) << nav.diagnostics();
+  const auto from_ms = static_cast<std::int64_t>(std::llround(bad_from_s * 1e3));
+  const auto until_ms = static_cast<std::int64_t>(std::llround(bad_until_s * 1e3));
+  int valid_before = 0, void_in_bad = 0, valid_after = 0;
+  for (const Rmc& m : rmcs(lines)) {
+    // The last good datagram went out 0.1 s before bad_from; then 1 s of extrapolation.
+    if (m.unix_ms > from_ms + 1200 && m.unix_ms < until_ms - 100) {
+      EXPECT_FALSE(m.valid) << "a fix " << m.unix_ms - from_ms << " ms into the rejected stream";
+      void_in_bad += m.valid ? 0 : 1;
+    } else if (m.unix_ms < from_ms - 200) {
+      valid_before += m.valid ? 1 : 0;
+    } else if (m.unix_ms > until_ms + 1000) {
+      EXPECT_TRUE(m.valid) << "no fix " << m.unix_ms - until_ms << " ms after good truth returned";
+      valid_after += m.valid ? 1 : 0;
+    }
+  }
+  EXPECT_GE(valid_before, 8);
+  EXPECT_GE(void_in_bad, 10);
+  EXPECT_GE(valid_after, 5);
+  std::string states;
+  for (const StatusLine& sl : status_lines(nav.err())) states += sl.truth + " ";
+  EXPECT_NE(states.find("rejecting rejecting"), std::string::npos) << states;
+  EXPECT_EQ(states.substr(states.size() - 3), "ok ") << states;
 }
 
 // (j) Truth at 10 kHz for 3 s (a simulator sending every physics step), then at 10 Hz for 1 s.

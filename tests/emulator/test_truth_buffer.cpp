@@ -274,6 +274,137 @@ TEST(TruthBuffer, RejectsBadSpans) {
   EXPECT_THROW(TruthBuffer(-1.0), std::invalid_argument);
   EXPECT_THROW(TruthBuffer(1.0, kNaN), std::invalid_argument);
   EXPECT_NO_THROW(TruthBuffer(0.0, 0.0));
+  EXPECT_THROW(TruthBuffer(TruthStreamLimits{1.0, 10.0, -1.0, 3}), std::invalid_argument);
+  EXPECT_THROW(TruthBuffer(TruthStreamLimits{1.0, 10.0, 5.0, 1}), std::invalid_argument);
+}
+
+// --- Jumps in time (emulator/truth_buffer.hpp, "Re-synchronisation").
+
+const TruthStreamLimits kStream{1.0, 10.0, 5.0, 3};
+
+// A stationary sample at kCenter (+ north_m) at t.
+ImuTruth at_site(GpsTime t, double north_m = 0.0) {
+  ImuTruth s;
+  s.t = t;
+  s.position = kCenter;
+  s.position.lat_deg += north_m / 111'000.0;
+  return s;
+}
+
+// 10 Hz for 2 s from kStart.
+void push_steady(TruthBuffer& b, int samples = 21) {
+  for (int k = 0; k < samples; ++k) ASSERT_EQ(b.push(at_site(kStart.plus_s(0.1 * k))), TruthVerdict::kAccepted);
+}
+
+TEST(TruthBuffer, ASingleSampleAnHourAheadIsRejectedAsFutureAndNeverApplied) {
+  TruthBuffer b(kStream);
+  push_steady(b);
+  const GpsTime newest = kStart.plus_s(2.0);
+  EXPECT_EQ(b.push(at_site(kStart.plus_s(3600.0), 1000.0)), TruthVerdict::kFuture);
+  EXPECT_EQ(b.newest_time(), newest);
+  // The stream goes on as if it had never come: accepted, interpolated at the site.
+  for (int k = 1; k <= 10; ++k)
+    EXPECT_EQ(b.push(at_site(newest.plus_s(0.1 * k))), TruthVerdict::kAccepted) << k;
+  const std::optional<ImuTruth> got = b.at(newest.plus_s(0.55));
+  ASSERT_TRUE(got);
+  EXPECT_LT(distance_m(got->position, kCenter), 1e-6);
+  EXPECT_EQ(b.counters().future, 1u);
+  EXPECT_EQ(b.counters().resync, 0u);
+  EXPECT_EQ(b.counters().accepted, 31u);
+  // Just within the bound is a gap, not a jump.
+  EXPECT_EQ(b.push(at_site(newest.plus_s(1.0 + 5.0))), TruthVerdict::kAccepted);
+}
+
+TEST(TruthBuffer, AStreamThatJumpsBackIsResynchronisedAfterThreeConsistentSamples) {
+  TruthBuffer b(kStream);
+  push_steady(b);
+  const GpsTime newest = kStart.plus_s(2.0);
+  // A simulator reset: its time starts again 100 s earlier, 10 Hz, at a place 500 m north.
+  const GpsTime reset = kStart.plus_s(-100.0);
+  EXPECT_EQ(b.push(at_site(reset, 500.0)), TruthVerdict::kBackwards);
+  EXPECT_EQ(b.push(at_site(reset.plus_s(0.1), 500.0)), TruthVerdict::kBackwards);
+  EXPECT_EQ(b.newest_time(), newest);  // nothing applied yet
+  EXPECT_EQ(b.push(at_site(reset.plus_s(0.2), 500.0)), TruthVerdict::kResync);
+  // The new stream goes on from the newest sample held before, one step of its own later.
+  EXPECT_EQ(b.newest_time(), newest.plus_s(0.1));
+  ASSERT_TRUE(b.last_resync());
+  EXPECT_FALSE(b.last_resync()->against_clock);
+  EXPECT_EQ(b.last_resync()->jump_ns, reset.plus_s(0.2).ns - newest.ns);
+  EXPECT_EQ(b.last_resync()->offset_ns, newest.plus_s(0.1).ns - reset.plus_s(0.2).ns);
+  for (int k = 3; k <= 12; ++k)
+    EXPECT_EQ(b.push(at_site(reset.plus_s(0.1 * k), 500.0)), TruthVerdict::kAccepted) << k;
+  // Only the new place is held: no interpolation across the jump.
+  const std::optional<ImuTruth> got = b.at(newest.plus_s(0.5));
+  ASSERT_TRUE(got);
+  EXPECT_LT(distance_m(got->position, at_site(reset, 500.0).position), 1e-6);
+  EXPECT_FALSE(b.at(newest).has_value());
+  EXPECT_EQ(b.counters().backwards, 2u);
+  EXPECT_EQ(b.counters().resync, 1u);
+  EXPECT_EQ(b.counters().accepted, 21u + 1u + 10u);
+}
+
+TEST(TruthBuffer, AStreamThatJumpsAnHourAheadIsResynchronisedToo) {
+  TruthBuffer b(kStream);
+  push_steady(b);
+  const GpsTime ahead = kStart.plus_s(3602.0);
+  EXPECT_EQ(b.push(at_site(ahead)), TruthVerdict::kFuture);
+  EXPECT_EQ(b.push(at_site(ahead.plus_s(0.1))), TruthVerdict::kFuture);
+  EXPECT_EQ(b.push(at_site(ahead.plus_s(0.2))), TruthVerdict::kResync);
+  EXPECT_EQ(b.newest_time(), kStart.plus_s(2.1));
+  EXPECT_EQ(b.counters().future, 2u);
+}
+
+TEST(TruthBuffer, OutliersThatDoNotAgreeNeverResynchroniseAndTheTruthEndsAtTheTimeout) {
+  TruthBuffer b(kStream);
+  push_steady(b);
+  const GpsTime newest = kStart.plus_s(2.0);
+  // Datagrams keep coming, each far off and not following the one before: none is taken.
+  const double offsets_s[] = {3600.0, -50.0, 7200.0, -3600.0, 600.0, 590.0, -10.0, 10'000.0, 20.0};
+  for (double dt : offsets_s) {
+    const TruthVerdict v = b.push(at_site(newest.plus_s(dt)));
+    EXPECT_TRUE(v == TruthVerdict::kFuture || v == TruthVerdict::kBackwards) << dt;
+  }
+  EXPECT_EQ(b.counters().resync, 0u);
+  EXPECT_EQ(b.newest_time(), newest);
+  // The truth lasts until the timeout after the newest accepted sample, whatever arrives.
+  EXPECT_TRUE(b.at(newest.plus_s(1.0)).has_value());
+  EXPECT_FALSE(b.at(newest.plus_s(1.01)).has_value());
+  // Two consistent outliers, then a good sample: the count starts again.
+  EXPECT_EQ(b.push(at_site(newest.plus_s(-30.0))), TruthVerdict::kBackwards);
+  EXPECT_EQ(b.push(at_site(newest.plus_s(-29.9))), TruthVerdict::kBackwards);
+  EXPECT_EQ(b.push(at_site(newest.plus_s(0.1))), TruthVerdict::kAccepted);
+  EXPECT_EQ(b.push(at_site(newest.plus_s(-29.8))), TruthVerdict::kBackwards);
+  EXPECT_EQ(b.counters().resync, 0u);
+}
+
+TEST(TruthBuffer, AgainstTheClockStampsFarFromItAreOutliersAndResynchroniseOntoIt) {
+  TruthBuffer b(kStream);
+  const GpsTime clock = kStart;
+  // A simulator that stamps its own time from 0 (1980), from its first datagram on.
+  const GpsTime sim0{1'000'000'000};
+  EXPECT_EQ(b.push(at_site(sim0), clock), TruthVerdict::kBackwards);
+  EXPECT_EQ(b.push(at_site(sim0.plus_s(0.1)), clock.plus_s(0.1)), TruthVerdict::kBackwards);
+  EXPECT_TRUE(b.empty());
+  EXPECT_EQ(b.push(at_site(sim0.plus_s(0.2)), clock.plus_s(0.2)), TruthVerdict::kResync);
+  EXPECT_EQ(b.newest_time(), clock.plus_s(0.2));  // onto the clock
+  EXPECT_TRUE(b.last_resync()->against_clock);
+  EXPECT_EQ(b.push(at_site(sim0.plus_s(0.3)), clock.plus_s(0.3)), TruthVerdict::kAccepted);
+  EXPECT_EQ(b.newest_time(), clock.plus_s(0.3));
+  // A stream that pauses and resumes with the clock is no jump, however long the pause.
+  EXPECT_EQ(b.push(at_site(sim0.plus_s(60.3)), clock.plus_s(60.3)), TruthVerdict::kAccepted);
+  // One stamped an hour ahead of the clock is.
+  EXPECT_EQ(b.push(at_site(sim0.plus_s(3660.4)), clock.plus_s(60.4)), TruthVerdict::kFuture);
+  EXPECT_EQ(b.push(at_site(sim0.plus_s(60.5)), clock.plus_s(60.5)), TruthVerdict::kAccepted);
+}
+
+TEST(TruthBuffer, WithoutAJumpLimitOnlyBackwardsTimesAreRefused) {
+  TruthBuffer b(1.0, 10.0);  // max_jump_s unlimited
+  push_steady(b);
+  EXPECT_EQ(b.push(at_site(kStart.plus_s(3600.0))), TruthVerdict::kAccepted);
+  for (int k = 0; k < 10; ++k) EXPECT_EQ(b.push(at_site(kStart.plus_s(k))), TruthVerdict::kBackwards);
+  EXPECT_EQ(b.counters().resync, 0u);
+  EXPECT_STREQ(to_string(TruthVerdict::kFuture), "future");
+  EXPECT_STREQ(to_string(TruthVerdict::kResync), "resync");
 }
 
 }  // namespace

@@ -159,10 +159,12 @@ TEST(SlcanPort, FramesFlowOnlyWhileTheChannelIsOpen) {
   EXPECT_TRUE(rig.port->fd_capable());
   const std::vector<std::uint8_t> dead = {0xDE, 0xAD};
 
-  // Closed at first: frames are dropped, nothing reaches the client.
+  // Closed at first: frames are held back (counted as such, not as dropped), nothing reaches
+  // the client.
   EXPECT_FALSE(rig.port->write(frame(0x123, dead), 0));
   EXPECT_EQ(rig.receive(), "");
-  EXPECT_EQ(rig.port->counters().frames_dropped, 1u);
+  EXPECT_EQ(rig.port->counters().frames_held, 1u);
+  EXPECT_EQ(rig.port->counters().frames_dropped, 0u);
 
   // What python-can sends on opening: C, S6, O (one write); each is answered with CR.
   EXPECT_EQ(rig.command("C\rS6\rO\r"), "\r\r\r");
@@ -182,7 +184,8 @@ TEST(SlcanPort, FramesFlowOnlyWhileTheChannelIsOpen) {
   EXPECT_EQ(rig.command("C\r"), "\r");
   EXPECT_FALSE(rig.port->write(frame(0x123, dead), 0));
   EXPECT_EQ(rig.receive(), "");
-  EXPECT_EQ(rig.port->counters().frames_dropped, 2u);
+  EXPECT_EQ(rig.port->counters().frames_held, 2u);
+  EXPECT_EQ(rig.port->counters().frames_dropped, 0u);
   EXPECT_EQ(rig.port->counters().frames_written, 3u);
 
   // Listen-only opens the channel too.
