@@ -430,6 +430,40 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     imu_log->write(kImuHeader);
   }
 
+  // --- Start-up messages: where everything is (before lockstep waits, so clients know where
+  // to attach).
+  fmt::print(log, "navemu: truth: {}\n", truth->describe());
+  if (cfg.truth.kind == TruthSourceKind::kUdp && !transport::is_loopback_address(cfg.truth.udp_address))
+    fmt::print(log,
+               "navemu: warning: truth datagrams are accepted on {}, not loopback: any host that "
+               "reaches it can move the emulated vehicle\n",
+               cfg.truth.udp_address);
+  if (cfg.gnss_enabled) {
+    for (const auto& p : ports)
+      fmt::print(log, "navemu: GNSS {} on {}\n", prof.ubx ? "UBX/NMEA" : "NMEA", p->describe());
+    if (!offline && ports.empty()) fmt::print(log, "navemu: GNSS has no output (gnss.outputs)\n");
+    if (!offline)
+      for (const OutputSpec& o : cfg.gnss_outputs)
+        if (o.type == "tcp" && !transport::is_loopback_address(o.address))
+          fmt::print(log,
+                     "navemu: warning: the GNSS tcp output listens on {}, not loopback: any host "
+                     "that reaches it receives the receiver's output and can configure it\n",
+                     o.address);
+    if (capture_out)
+      fmt::print(log, "navemu: GNSS capture: sent bytes to {0}, received bytes to {0}.in\n",
+                 cfg.gnss_capture);
+  }
+  if (imu) {
+    fmt::print(log, "navemu: IMU {} ({} Hz){}\n", cfg.imu_profile, imu_params.output_rate_hz,
+               imu_log ? " samples logged to " + cfg.imu_log : "");
+    if (can_out)
+      for (const std::string& line : can_out->describe())
+        fmt::print(log, "navemu: IMU CAN frames on {}\n", line);
+    else if (!offline)
+      fmt::print(log, "navemu: IMU has no output (imu.outputs; set imu.log to record samples)\n");
+  }
+  log.flush();
+
   // --- Lockstep: the scenario starts where the truth stream does. The ports are open already,
   // so clients can attach while navemu waits (their commands are answered once it starts).
   if (lockstep) {
@@ -462,44 +496,15 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     gnss_period_ns = device->period_ns();
   }
 
-  // --- Start-up messages: where everything is.
   fmt::print(log, "navemu: scenario start {} ({}), seed {}, {}\n", format_iso_utc(start),
              format_week_tow(start), cfg.seed,
              offline ? "offline" : lockstep ? "lockstep" : "real time");
-  fmt::print(log, "navemu: truth: {}\n", truth->describe());
-  if (cfg.truth.kind == TruthSourceKind::kUdp && !transport::is_loopback_address(cfg.truth.udp_address))
-    fmt::print(log,
-               "navemu: warning: truth datagrams are accepted on {}, not loopback: any host that "
-               "reaches it can move the emulated vehicle\n",
-               cfg.truth.udp_address);
   if (receiver) {
     std::set<int> prns;
     for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
     fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {} ({} satellites)\n",
                prof.name, prof.rate_hz, receiver_mode_name(cfg.gnss_mode),
                cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, prns.size());
-    for (const auto& p : ports)
-      fmt::print(log, "navemu: GNSS {} on {}\n", prof.ubx ? "UBX/NMEA" : "NMEA", p->describe());
-    if (!offline && ports.empty()) fmt::print(log, "navemu: GNSS has no output (gnss.outputs)\n");
-    if (!offline)
-      for (const OutputSpec& o : cfg.gnss_outputs)
-        if (o.type == "tcp" && !transport::is_loopback_address(o.address))
-          fmt::print(log,
-                     "navemu: warning: the GNSS tcp output listens on {}, not loopback: any host "
-                     "that reaches it receives the receiver's output and can configure it\n",
-                     o.address);
-    if (capture_out)
-      fmt::print(log, "navemu: GNSS capture: sent bytes to {0}, received bytes to {0}.in\n",
-                 cfg.gnss_capture);
-  }
-  if (imu) {
-    fmt::print(log, "navemu: IMU {} ({} Hz){}\n", cfg.imu_profile, imu_params.output_rate_hz,
-               imu_log ? " samples logged to " + cfg.imu_log : "");
-    if (can_out)
-      for (const std::string& line : can_out->describe())
-        fmt::print(log, "navemu: IMU CAN frames on {}\n", line);
-    else if (!offline)
-      fmt::print(log, "navemu: IMU has no output (imu.outputs; set imu.log to record samples)\n");
   }
   log.flush();
   // The geoid grid loads on first use: before the loop, not at the first fix.

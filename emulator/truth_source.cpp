@@ -36,6 +36,11 @@ TruthStreamLimits stream_limits(const TruthSpec& spec, double timeout_s, bool st
   return l;
 }
 
+// "8 loops", or "forever" for 0 (models/trajectory.hpp).
+std::string count_or_forever(int n, const char* what) {
+  return n == 0 ? std::string("forever") : fmt::format("{} {}", n, what);
+}
+
 // "3600.000 s ahead of the scenario clock", "12.500 s back from the newest sample"
 std::string describe_jump(const TruthResync& r) {
   const double jump_s = static_cast<double>(r.jump_ns) * 1e-9;
@@ -213,13 +218,13 @@ std::unique_ptr<TruthSource> make_truth_source(const TruthSpec& spec, GpsTime st
     case TruthSourceKind::kCircle:
       return std::make_unique<GeneratorSource>(
           make_trajectory(spec.circle, start),
-          fmt::format("circle r {} m at {} m/s, {} loops", spec.circle.radius_m,
-                      spec.circle.speed_mps, spec.circle.loops));
+          fmt::format("circle r {} m at {} m/s, {}", spec.circle.radius_m, spec.circle.speed_mps,
+                      count_or_forever(spec.circle.loops, "loops")));
     case TruthSourceKind::kLine:
       return std::make_unique<GeneratorSource>(
           make_trajectory(spec.line, start),
-          fmt::format("line {} m at {} m/s, {} passes", spec.line.length_m, spec.line.speed_mps,
-                      spec.line.passes));
+          fmt::format("line {} m at {} m/s, {}", spec.line.length_m, spec.line.speed_mps,
+                      count_or_forever(spec.line.passes, "passes")));
     case TruthSourceKind::kWaypoints:
       return std::make_unique<GeneratorSource>(
           make_trajectory(spec.waypoints, start),

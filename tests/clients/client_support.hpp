@@ -35,9 +35,14 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
+#include "models/geodesy.hpp"
+#include "models/time.hpp"
+#include "protocols/nmea.hpp"
+#include "protocols/truth_datagram.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu::test::clients {
@@ -393,6 +398,70 @@ class NavemuRun {
   Child child_;
 };
 
+// The number of lines of `text` that contain `what`.
+inline int count_lines_with(const std::string& text, const std::string& what) {
+  int n = 0;
+  std::stringstream ss(text);
+  for (std::string line; std::getline(ss, line);) n += line.find(what) != std::string::npos ? 1 : 0;
+  return n;
+}
+
+// --- A truth stream: datagrams to navemu's UDP port on loopback, counted.
+class TruthSender {
+ public:
+  explicit TruthSender(int port) {
+    fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    to_.sin_family = AF_INET;
+    to_.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    to_.sin_port = htons(static_cast<std::uint16_t>(port));
+  }
+  ~TruthSender() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  TruthSender(const TruthSender&) = delete;
+  TruthSender& operator=(const TruthSender&) = delete;
+  bool ok() const { return fd_ >= 0; }
+  // One datagram at `position` stamped now, plus `offset_s` (a stream that jumped), as host
+  // UTC in binary or as GPS time in JSON; returns the time it was sent (CLOCK_REALTIME, s).
+  double send(const Geodetic& position, double offset_s = 0.0, bool json_gps_time = false) {
+    truth_datagram::Message m;
+    m.time_base = json_gps_time ? truth_datagram::TimeBase::kGps : truth_datagram::TimeBase::kHostUtc;
+    m.position = {position.lat_deg, position.lon_deg, position.h_m};
+    m.sequence = seq_++;
+    const double now = real_s();
+    const auto unix_ns = static_cast<std::int64_t>(std::llround((now + offset_s) * 1e9));
+    m.time_ns = json_gps_time ? gps_from_unix_ns(unix_ns).ns : unix_ns;
+    if (json_gps_time) {
+      transmit(truth_datagram::encode_json(m));
+    } else {
+      const auto d = truth_datagram::encode_binary(m);
+      transmit(std::string_view(reinterpret_cast<const char*>(d.data()), d.size()));
+    }
+    return now;
+  }
+  // One JSON datagram at `position` stamped with GPS time `t` (a simulator's own clock).
+  void send_at(const Geodetic& position, GpsTime t) {
+    truth_datagram::Message m;
+    m.time_base = truth_datagram::TimeBase::kGps;
+    m.position = {position.lat_deg, position.lon_deg, position.h_m};
+    m.sequence = seq_++;
+    m.time_ns = t.ns;
+    transmit(truth_datagram::encode_json(m));
+  }
+  long sent() const { return sent_; }
+
+ private:
+  void transmit(std::string_view d) {
+    if (::sendto(fd_, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(&to_), sizeof to_) ==
+        static_cast<ssize_t>(d.size()))
+      ++sent_;
+  }
+  int fd_ = -1;
+  sockaddr_in to_{};
+  std::uint32_t seq_ = 0;
+  long sent_ = 0;
+};
+
 // --- Reading a pty.
 
 // One line received on the pty, without its CR LF; t_* are the arrival times of its first byte
@@ -532,6 +601,35 @@ inline std::int64_t rmc_unix_ms(const std::vector<std::string>& f) {
                       static_cast<unsigned>(std::stoul(f[9].substr(2, 2))),
                       static_cast<unsigned>(std::stoul(f[9].substr(0, 2))));
   return days * 86'400'000 + nmea_ms_of_day(f[1]);
+}
+
+// One RMC of a session: its epoch (ms since the Unix epoch), status and position.
+struct Rmc {
+  std::int64_t unix_ms = 0;
+  bool valid = false;  // status A
+  Geodetic position;
+};
+
+inline std::vector<Rmc> rmcs(const std::vector<Received>& lines) {
+  std::vector<Rmc> out;
+  for (const Received& r : lines) {
+    const auto f = nmea::parse(r.text);
+    if (!f || (*f)[0].substr(2) != "RMC") continue;
+    Rmc m;
+    m.unix_ms = rmc_unix_ms(*f);
+    m.valid = (*f)[2] == "A";
+    if (m.valid)
+      m.position = Geodetic{nmea_degrees((*f)[3], (*f)[4]), nmea_degrees((*f)[5], (*f)[6]), 0.0};
+    out.push_back(m);
+  }
+  return out;
+}
+
+// Horizontal distance of a fix from the truth, m.
+inline double horizontal_error_m(const Geodetic& fix, const Geodetic& truth) {
+  const Vec3 e =
+      enu_from_ecef(ecef_from_geodetic(Geodetic{fix.lat_deg, fix.lon_deg, truth.h_m}), truth);
+  return std::hypot(e.x(), e.y());
 }
 
 // --- gpsd.

@@ -333,14 +333,6 @@ TEST(Faults, SigtermDuringOutputExitsCleanly) { check_stop_signal_during_output(
 
 TEST(Faults, SigintDuringOutputExitsCleanly) { check_stop_signal_during_output(SIGINT, "sigint"); }
 
-// The number of lines of `text` that contain `what`.
-int count_lines_with(const std::string& text, const std::string& what) {
-  int n = 0;
-  std::stringstream ss(text);
-  for (std::string line; std::getline(ss, line);) n += line.find(what) != std::string::npos ? 1 : 0;
-  return n;
-}
-
 // (e) The disk of the IMU log is full (/dev/full: every write fails with ENOSPC). navemu says so
 // once, in one line naming the log and the error, and goes on: the pty output keeps its 5 Hz
 // cadence, and it exits 0 with its summary. (gnss.capture cannot point at /dev/full: navemu
@@ -622,90 +614,12 @@ TEST(Faults, GarbageFloodIntoTheUbloxPortKeepsTheCadence) {
               s->stale_bytes_flushed, rss_growth_kb);
 }
 
-// The truth stream of tests (h) and (i): binary datagrams (host UTC time stamps, now) to
-// navemu's UDP port, counted.
-class TruthSender {
- public:
-  explicit TruthSender(int port) {
-    fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-    to_.sin_family = AF_INET;
-    to_.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    to_.sin_port = htons(static_cast<std::uint16_t>(port));
-  }
-  ~TruthSender() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  TruthSender(const TruthSender&) = delete;
-  TruthSender& operator=(const TruthSender&) = delete;
-  bool ok() const { return fd_ >= 0; }
-  // One datagram at `position` stamped now, plus `offset_s` (a stream that jumped), as host
-  // UTC in binary or as GPS time in JSON; returns the time it was sent (CLOCK_REALTIME, s).
-  double send(const Geodetic& position, double offset_s = 0.0, bool json_gps_time = false) {
-    truth_datagram::Message m;
-    m.time_base = json_gps_time ? truth_datagram::TimeBase::kGps : truth_datagram::TimeBase::kHostUtc;
-    m.position = {position.lat_deg, position.lon_deg, position.h_m};
-    m.sequence = seq_++;
-    const double now = real_s();
-    const auto unix_ns = static_cast<std::int64_t>(std::llround((now + offset_s) * 1e9));
-    m.time_ns = json_gps_time ? gps_from_unix_ns(unix_ns).ns : unix_ns;
-    const auto transmit = [&](const void* data, std::size_t size) {
-      if (::sendto(fd_, data, size, 0, reinterpret_cast<const sockaddr*>(&to_), sizeof to_) ==
-          static_cast<ssize_t>(size))
-        ++sent_;
-    };
-    if (json_gps_time) {
-      const std::string d = truth_datagram::encode_json(m);
-      transmit(d.data(), d.size());
-    } else {
-      const auto d = truth_datagram::encode_binary(m);
-      transmit(d.data(), d.size());
-    }
-    return now;
-  }
-  long sent() const { return sent_; }
-
- private:
-  int fd_ = -1;
-  sockaddr_in to_{};
-  std::uint32_t seq_ = 0;
-  long sent_ = 0;
-};
-
 std::string udp_truth_config(const fs::path& link) {
   return fmt::format(
       "truth: {{source: udp, udp: {{port: 0}}, timeout_s: 1.0}}\n"
       "gnss:\n  outputs:\n    - {{type: pty, link: '{}'}}\n"
       "imu: {{enabled: false}}\n",
       link.string());
-}
-
-// One RMC of a session: its epoch (ms since the Unix epoch), status and position.
-struct Rmc {
-  std::int64_t unix_ms = 0;
-  bool valid = false;  // status A
-  Geodetic position;
-};
-
-std::vector<Rmc> rmcs(const std::vector<Received>& lines) {
-  std::vector<Rmc> out;
-  for (const Received& r : lines) {
-    const auto f = nmea::parse(r.text);
-    if (!f || (*f)[0].substr(2) != "RMC") continue;
-    Rmc m;
-    m.unix_ms = rmc_unix_ms(*f);
-    m.valid = (*f)[2] == "A";
-    if (m.valid)
-      m.position = Geodetic{nmea_degrees((*f)[3], (*f)[4]), nmea_degrees((*f)[5], (*f)[6]), 0.0};
-    out.push_back(m);
-  }
-  return out;
-}
-
-// Horizontal distance of a fix from the truth, m.
-double horizontal_error_m(const Geodetic& fix, const Geodetic& truth) {
-  const Vec3 e =
-      enu_from_ecef(ecef_from_geodetic(Geodetic{fix.lat_deg, fix.lon_deg, truth.h_m}), truth);
-  return std::hypot(e.x(), e.y());
 }
 
 // (h) The truth stream jumps 1000 km (9 degrees north) and goes on from there, as when a
@@ -1089,6 +1003,53 @@ TEST(Faults, TruthThatIsAllRejectedEndsTheFixAfterTheTimeoutThoughDatagramsArriv
   for (const StatusLine& sl : status_lines(nav.err())) states += sl.truth + " ";
   EXPECT_NE(states.find("rejecting rejecting"), std::string::npos) << states;
   EXPECT_EQ(states.substr(states.size() - 3), "ok ") << states;
+}
+
+// (n) A slow truth stream (1.5 Hz, within the 1 s timeout): every epoch has truth and a fix,
+// and the status line says "extrapolating" when the newest sample is more than 0.25 s old,
+// never "lost".
+TEST(Faults, ASlowTruthStreamIsReportedAsExtrapolatingNotLost) {
+  TempDir dir("truth-slow");
+  const fs::path link = dir / "gnss";
+  NavemuRun nav(dir, "navemu", udp_truth_config(link), 60);
+  const std::optional<int> port = nav.wait_for_udp_port(5.0);
+  ASSERT_TRUE(port) << nav.diagnostics();
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  PtyReader reader;
+  ASSERT_TRUE(reader.open(link));
+  reader.discard_queued();
+  TruthSender sender(*port);
+  ASSERT_TRUE(sender.ok());
+  std::vector<Received> lines;
+  const double t0 = mono_s();
+  for (int k = 0; k < 10; ++k) {  // 6 s at 1.5 Hz
+    reader.read_until(t0 + k / 1.5, lines);
+    sender.send(kSite);
+  }
+  reader.read_until(mono_s() + 0.2, lines);
+  nav.stop_expecting_exit_0();
+  int fixes = 0;
+  bool fixed = false;
+  for (const Rmc& m : rmcs(lines)) {
+    fixed = fixed || m.valid;
+    if (fixed) {
+      EXPECT_TRUE(m.valid) << m.unix_ms;
+    }
+    fixes += m.valid ? 1 : 0;
+  }
+  EXPECT_GE(fixes, 20);
+  int extrapolating = 0, after_first_ok = 0;
+  bool seen_ok = false;
+  for (const StatusLine& sl : status_lines(nav.err())) {
+    extrapolating += sl.truth == "extrapolating" ? 1 : 0;
+    if (seen_ok) {
+      EXPECT_NE(sl.truth, "lost") << nav.diagnostics();
+      ++after_first_ok;
+    }
+    seen_ok = seen_ok || sl.truth == "ok" || sl.truth == "extrapolating";
+  }
+  EXPECT_GE(after_first_ok, 3);
+  EXPECT_GE(extrapolating, 1) << nav.diagnostics();
 }
 
 // (j) Truth at 10 kHz for 3 s (a simulator sending every physics step), then at 10 Hz for 1 s.

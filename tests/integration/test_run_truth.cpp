@@ -74,6 +74,47 @@ TEST(RunTruth, CsvOnStandardInputDrivesTheReceiverUntilItEnds) {
   EXPECT_NEAR(std::stod(rmc[600][7]), 3.9, 1.0);
 }
 
+// A truth CSV on standard input is a stream (README, "Streamed truth"): a replay whose time
+// restarts (two runs of the same file back to back) is re-synchronised after three rows, with
+// the refused rows and the re-synchronisation named by line, and the receiver keeps its fix
+// through the second run. A row an hour ahead is refused as future.
+TEST(RunTruth, CsvOnStandardInputFollowsTheStreamRules) {
+  const fs::path d = temp_dir("stdin-resync");
+  std::ofstream(d / "cfg.yaml") << "truth:\n  source: csv\n  csv: {path: \"-\"}\nimu: {enabled: false}\n";
+  std::ifstream in(kSource / "configs/truth/circle_paper.csv");
+  std::string header, line;
+  std::getline(in, header);
+  std::vector<std::string> rows;
+  while (std::getline(in, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 2300u);
+  {
+    std::ofstream twice(d / "twice.csv");
+    twice << header << "\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      twice << rows[i] << "\n";
+      if (i == 1000) twice << "3700.0" << rows[i].substr(rows[i].find(',')) << "\n";  // line 1003
+    }
+    for (const std::string& r : rows) twice << r << "\n";  // lines 2303 on: the time restarts
+  }
+  const auto r = test::run_command(
+      test::shell_quote(test::navemu_binary().string()) + " simulate " +
+      test::shell_quote((d / "cfg.yaml").string()) +
+      " --start 2010-11-17T13:00:00Z --duration 455 --out " + test::shell_quote((d / "out").string()) +
+      " < " + test::shell_quote((d / "twice.csv").string()) + " 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("truth CSV /dev/stdin:1003: time_s 3700: row refused (future)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("truth CSV /dev/stdin:2303: time_s 0: row refused (backwards)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("truth CSV /dev/stdin:2305: time_s 0.2: the rows' time jumped 229.7"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("re-synchronised after 3 consecutive rows"), std::string::npos) << r.out;
+  // 455 s at 5 Hz: a fix in every epoch but the one or two at the re-synchronisation.
+  const auto rmc = rmc_sentences(d / "out" / "nmea.log");
+  ASSERT_EQ(rmc.size(), 2275u);
+  int valid = 0;
+  for (const auto& s : rmc) valid += s[2] == "A";
+  EXPECT_GE(valid, 2272);
+}
+
 TEST(RunTruth, LockstepTakesTimeFromTheTruthStream) {
   const fs::path d = temp_dir("lockstep");
   const int port = free_udp_port();
