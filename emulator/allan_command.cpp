@@ -351,10 +351,10 @@ std::shared_ptr<AllanOptions> add_allan_command(CLI::App& app) {
                   "Comma-separated columns to analyse (default: the six sensor columns)")
       ->delimiter(',');
   cmd->add_option("--rate", opt->rate_hz, "Sample rate in Hz (default: from the time_s column)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--points-per-decade", opt->points_per_decade, "Tau values per decade")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100));
+      ->check(number_between(1, 100));
   cmd->add_option("--png", opt->png_file, "Write a log-log plot of the curves to this PNG file");
   cmd->add_option("--out", opt->out_file,
                   "Write the curves to this CSV file ('-': standard output)");

@@ -20,8 +20,10 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
       "Times are ISO-8601 UTC (2023-01-08T09:59:42Z) or GPS WEEK:TOW (2244:36000)."};
   app.name("navemu");
   app.set_version_flag("--version", std::string("navemu ") + NAVEMU_VERSION);
-  app.require_subcommand(1);
-  app.footer("Run 'navemu SUBCOMMAND --help' for the options and output of each subcommand.");
+  app.require_subcommand(0, 1);
+  app.footer("Run 'navemu help SUBCOMMAND' (or 'navemu SUBCOMMAND --help') for the options and\n"
+             "output of each subcommand; 'navemu profiles' lists the receiver and IMU profiles and\n"
+             "the ready scenarios.");
 
   const auto run = add_run_command(app);
   const auto simulate = add_simulate_command(app);
@@ -35,6 +37,10 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   const auto allan = add_allan_command(app);
   const auto deadreckon = add_deadreckon_command(app);
   const auto scene = add_scene_command(app);
+  app.add_subcommand("profiles", "List the GNSS receiver and IMU profiles and the ready scenarios");
+  std::string help_topic;
+  app.add_subcommand("help", "Print this list, or the help of one subcommand")
+      ->add_option("subcommand", help_topic, "The subcommand to explain");
 
   try {
     app.parse(argc, argv);
@@ -44,7 +50,24 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
     return code == 0 ? 0 : 2;
   }
 
+  // `navemu` alone and `navemu help`: the command list; `navemu help SUBCOMMAND`: its help.
+  if (app.get_subcommands().empty() || app.got_subcommand("help")) {
+    if (help_topic.empty()) {
+      // Not app.help(), which would explain the selected subcommand (help) instead.
+      out << app.get_formatter()->make_help(&app, "navemu", CLI::AppFormatMode::Normal);
+      return 0;
+    }
+    try {
+      out << app.get_subcommand(help_topic)->help();
+      return 0;
+    } catch (const CLI::OptionNotFound&) {
+      err << "navemu help: no subcommand '" << help_topic << "' (navemu help lists them)\n";
+      return 2;
+    }
+  }
+
   try {
+    if (app.got_subcommand("profiles")) return run_profiles(out);
     if (app.got_subcommand("run")) return run_run(*run, out, err);
     if (app.got_subcommand("simulate")) return run_run(*simulate, out, err);
     if (app.got_subcommand("sky")) return run_sky(sky, out, err);

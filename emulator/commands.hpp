@@ -21,6 +21,13 @@ namespace navemu {
 std::vector<double> parse_numbers(const std::string& text, const std::string& field,
                                   const std::vector<std::string>& names, const char* form);
 
+// Checks of numeric options whose messages show the value as given and the bounds in plain
+// notation (CLI11's own let NaN through and print the largest double in 309 digits): a finite
+// number, inside [min, max], above 0, or not negative.
+CLI::Validator number_between(double min, double max);
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
+
 // "LAT,LON,H" in degrees, degrees and metres above the ellipsoid; InputError otherwise.
 Geodetic parse_geodetic(const std::string& text, const std::string& field);
 
@@ -98,5 +105,7 @@ int run_scene(const SceneOptions& opt, std::ostream& out, std::ostream& err);
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app);
 std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app);
 int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err);
+// navemu profiles: the profiles and ready scenarios, one line each (emulator/profiles_command.cpp).
+int run_profiles(std::ostream& out);
 
 }  // namespace navemu

@@ -251,9 +251,9 @@ std::shared_ptr<DeadreckonOptions> add_deadreckon_command(CLI::App& app) {
   cmd->add_option("--at", opt->at, "Start position LAT,LON,H (deg, deg, m above the ellipsoid)")
       ->capture_default_str();
   cmd->add_option("--start-lat", opt->start_lat_deg, "Start latitude (deg), overrides --at")
-      ->check(CLI::Range(-90.0, 90.0));
+      ->check(number_between(-90.0, 90.0));
   cmd->add_option("--start-lon", opt->start_lon_deg, "Start longitude (deg), overrides --at")
-      ->check(CLI::Range(-180.0, 360.0));
+      ->check(number_between(-180.0, 360.0));
   cmd->add_option("--start-h", opt->start_h_m, "Start ellipsoidal height (m), overrides --at");
   cmd->add_option("--initial-rpy", opt->initial_rpy_deg,
                   "Initial attitude ROLL,PITCH,YAW (deg, ZYX Euler angles of body FRD in NED)")
@@ -262,10 +262,10 @@ std::shared_ptr<DeadreckonOptions> add_deadreckon_command(CLI::App& app) {
                   "Estimate the sensor biases as the mean of the first S seconds minus the "
                   "ideal stationary output, and remove them (0: off)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--every", opt->every,
                   "Write every N-th sample (default: the number of samples in 1 s)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--out", opt->out_file, "Output CSV ('-': standard output)")
       ->capture_default_str();
   cmd->add_flag("--gyro-only-heading", opt->gyro_only_heading,

@@ -7,6 +7,7 @@
 #include <sched.h>
 #include <sys/mman.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -345,12 +346,20 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
   const bool lockstep = !offline && cfg.time_mode == TimeMode::kLockstep;
   if (offline) {
-    std::filesystem::create_directories(opt.out_dir);
+    std::error_code ec;
+    if (std::filesystem::exists(opt.out_dir, ec) && !std::filesystem::is_directory(opt.out_dir, ec))
+      throw InputError(opt.out_dir.string(), 0, "--out", "exists and is not a folder");
+    std::filesystem::create_directories(opt.out_dir, ec);
+    if (ec)
+      throw InputError(opt.out_dir.string(), 0, "--out",
+                       fmt::format("cannot create the output folder ({})", ec.message()));
+    if (::access(opt.out_dir.c_str(), W_OK) != 0)
+      throw InputError(opt.out_dir.string(), 0, "--out",
+                       fmt::format("cannot write into the output folder ({})", std::strerror(errno)));
     // The byte streams are written through append-only log ports: a folder used before starts
     // them empty, as the CSVs are, and loses a stream this run does not write (ubx.bin after a
     // u-blox run, when this one sends NMEA), so every file in it belongs to this run.
-    for (const char* name : {"nmea.log", "ubx.bin", "can.log"})
-      std::filesystem::remove(opt.out_dir / name);
+    for (const char* name : {"nmea.log", "ubx.bin", "can.log"}) std::filesystem::remove(opt.out_dir / name, ec);
   }
 
   // --- GNSS outputs (the receiver itself comes once the start is known).

@@ -1,6 +1,8 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cstdlib>
+#include <functional>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -24,7 +26,35 @@ double parse_number(std::string_view text, const std::string& field, const char*
   return v;
 }
 
+// A numeric option's check: `ok` on its finite value, or `what` in the message.
+CLI::Validator number_check(std::function<bool(double)> ok, std::string what, std::string description) {
+  return CLI::Validator(
+      [ok = std::move(ok), what = std::move(what)](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        const double v = std::strtod(begin, &end);
+        if (text.empty() || end != begin + text.size()) return fmt::format("'{}' is not a number", text);
+        if (!std::isfinite(v)) return fmt::format("'{}' is not a finite number", text);
+        if (!ok(v)) return fmt::format("{} is not {}", text, what);
+        return "";
+      },
+      std::move(description));
+}
+
 }  // namespace
+
+CLI::Validator number_between(double min, double max) {
+  return number_check([=](double v) { return v >= min && v <= max; },
+                      fmt::format("between {} and {}", min, max), fmt::format("NUMBER in [{}, {}]", min, max));
+}
+
+CLI::Validator positive_number() {
+  return number_check([](double v) { return v > 0.0; }, "above 0", "POSITIVE");
+}
+
+CLI::Validator non_negative_number() {
+  return number_check([](double v) { return v >= 0.0; }, "0 or more", "NONNEGATIVE");
+}
 
 std::vector<double> parse_numbers(const std::string& text, const std::string& field,
                                   const std::vector<std::string>& names, const char* form) {

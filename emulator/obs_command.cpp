@@ -60,10 +60,10 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
       ->required();
   obs->add_option("--duration", opt.duration_s, "Length in seconds")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 7.0 * 86400.0));
+      ->check(number_between(0.0, 7.0 * 86400.0));
   obs->add_option("--interval", opt.interval_s, "Epoch interval in seconds")
       ->capture_default_str()
-      ->check(CLI::Range(0.001, 3600.0));
+      ->check(number_between(0.001, 3600.0));
   obs->add_option("--out", opt.out_file, "Output RINEX 3 observation file")->required();
   obs->add_option("--mode", opt.mode, "Receiver mode")
       ->capture_default_str()
@@ -76,7 +76,7 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
   obs->add_option("--sisre", opt.sisre_m,
                   "Signal-in-space range error of the broadcast orbits and clocks, m RMS "
                   "(default 0.56, GPS of recent years; roughly 0.6-1 in the mid-2000s)")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(number_between(0.0, 100.0));
   obs->add_option("--sat-errors", opt.sat_errors,
                   "Broadcast orbit/clock error model: gauss-markov (radial/along/cross and clock, "
                   "correlated in time) or paper (the paper's Hwang-Parkinson formula, ~10 m)")
@@ -84,10 +84,10 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
       ->check(CLI::IsMember({"gauss-markov", "paper"}));
   obs->add_option("--clock-h0", opt.clock_h0,
                   "Receiver oscillator white-frequency coefficient h0 (default 2e-19, a TCXO)")
-      ->check(CLI::Range(0.0, 1e-15));
+      ->check(number_between(0.0, 1e-15));
   obs->add_option("--clock-h-2", opt.clock_h_minus2,
                   "Receiver oscillator random-walk-frequency coefficient h-2 (default 2e-20)")
-      ->check(CLI::Range(0.0, 1e-15));
+      ->check(number_between(0.0, 1e-15));
   obs->add_option("--seed", opt.seed, "Scenario seed")->capture_default_str();
   obs->add_option("--disable", opt.disable, "Error sources to switch off (comma-separated)")
       ->delimiter(',')
@@ -98,13 +98,13 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
       ->check(CLI::IsMember({"klobuchar", "vtec"}));
   obs->add_option("--vtec", opt.vtec_tecu, "Vertical TEC for --iono vtec, TECU")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 500.0));
+      ->check(number_between(0.0, 500.0));
   obs->add_option("--pressure-hpa", opt.pressure_hpa, "Surface pressure (default: standard atmosphere)")
-      ->check(CLI::Range(300.0, 1100.0));
+      ->check(number_between(300.0, 1100.0));
   obs->add_option("--temperature-c", opt.temperature_c, "Surface temperature")
-      ->check(CLI::Range(-80.0, 60.0));
+      ->check(number_between(-80.0, 60.0));
   obs->add_option("--humidity", opt.humidity, "Relative humidity, 0..1")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(number_between(0.0, 1.0));
 }
 
 int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {

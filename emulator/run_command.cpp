@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <algorithm>
 #include <ostream>
 
 #include "emulator/commands.hpp"
@@ -22,6 +23,8 @@ struct RunOptions {
 };
 
 namespace {
+
+constexpr const char* kSimulateUbxMessages[] = {"NAV-PVT", "NAV-SAT", "RXM-RAWX", "RXM-SFRBX"};
 
 const char* kConfigHelp =
     "The configuration (YAML; configs/default.yaml documents every key) names the scenario\n"
@@ -62,7 +65,7 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
               "  gpsd -N -n /tmp/navemu-gnss; gpspipe -w");
   run->add_option("config", opt->config, "Configuration file (default: configs/default.yaml)");
   run->add_option("--duration", opt->duration_s, "Stop after this many seconds (default: run until stopped)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_common(run, *opt);
   return opt;
 }
@@ -75,7 +78,9 @@ std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app) {
   sim->footer(std::string(kConfigHelp) +
               "Runs the same models and encoders as `navemu run` without sleeping (the truth must\n"
               "be a generator or a CSV file) and writes into --out:\n"
-              "  nmea.log   the receiver's byte stream\n"
+              "  nmea.log   the receiver's byte stream (ubx.bin for a u-blox receiver: its\n"
+              "             power-up output and UBX NAV-PVT, NAV-SAT, RXM-RAWX and RXM-SFRBX\n"
+              "             every epoch, as a logging client would enable them)\n"
               "  truth.csv  the truth at each GNSS epoch (the truth CSV format: replayable)\n"
               "  gnss.csv   per epoch: truth, fix, satellites, solution, velocity, error (east,\n"
               "             north, up, horizontal), DOPs and the receiver's 1-sigma accuracy\n"
@@ -92,7 +97,7 @@ std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app) {
   sim->add_option("config", opt->config, "Configuration file")->required();
   sim->add_option("--duration", opt->duration_s, "Scenario length in seconds")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sim->add_option("--out", opt->out_dir, "Output folder (created)")->required();
   add_common(sim, *opt);
   return opt;
@@ -100,7 +105,14 @@ std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app) {
 
 int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
   (void)out;
-  const RunConfig cfg = load(opt);
+  RunConfig cfg = load(opt);
+  // Offline, nobody configures a u-blox receiver: its stream carries what a logging client
+  // (u-center, RTKLIB's command files) would enable, every epoch, beside the power-up output.
+  if (opt.offline && cfg.gnss.ubx)
+    for (const char* name : kSimulateUbxMessages) {
+      auto& m = cfg.gnss.ubx->messages;
+      if (std::none_of(m.begin(), m.end(), [&](const auto& e) { return e.first == name; })) m.emplace_back(name, 1);
+    }
   // A real-time run that starts now follows the system clock: the start and the monotonic
   // clock are read together, before the setup's delay.
   EngineOptions eo;

@@ -341,8 +341,14 @@ std::filesystem::path default_run_config() { return config_dir() / "default.yaml
 
 RunConfig load_run_config(const std::filesystem::path& file) {
   YamlMap root = load_yaml_file(file);
+  if (root.empty())
+    throw InputError(file.string(), 0, "",
+                     "empty configuration: it names none of the sections scenario, truth, gnss, imu, "
+                     "realtime (configs/default.yaml documents every key; navemu run without a file "
+                     "runs that default)");
   RunConfig c;
   c.file = file;
+  c.description = root.text("description").value_or("");
 
   YamlMap sc = root.map("scenario");
   c.start = sc.text("start").value_or(c.start);

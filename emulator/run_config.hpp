@@ -133,6 +133,7 @@ struct TruthSpec {
 
 struct RunConfig {
   std::filesystem::path file;
+  std::string description;  // one line for `navemu profiles`
   std::string start = "now";
   TimeMode time_mode = TimeMode::kRealTime;
   std::uint64_t seed = 1;

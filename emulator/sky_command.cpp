@@ -50,7 +50,7 @@ void add_sky_command(CLI::App& app, SkyOptions& opt) {
       ->capture_default_str();
   sky->add_option("--mask", opt.mask_deg, "Elevation mask in degrees")
       ->capture_default_str()
-      ->check(CLI::Range(-90.0, 90.0));
+      ->check(number_between(-90.0, 90.0));
 }
 
 int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {

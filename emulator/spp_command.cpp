@@ -29,7 +29,7 @@ void add_spp_command(CLI::App& app, SppOptions& opt) {
   spp->add_option("NAV", opt.nav_file, "RINEX navigation file")->required();
   spp->add_option("--mask", opt.mask_deg, "Elevation mask in degrees")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 90.0));
+      ->check(number_between(0.0, 90.0));
   spp->add_option("--iono", opt.iono, "Ionospheric correction: klobuchar (broadcast) or off")
       ->capture_default_str()
       ->check(CLI::IsMember({"klobuchar", "off"}));

@@ -3,7 +3,11 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "models/errors.hpp"
 
@@ -171,18 +175,55 @@ void YamlMap::reject_unknown_keys() const {
   }
 }
 
+namespace {
+
+// Where the first byte that cannot be in a YAML text file lies (a NUL or another control
+// character than tab, CR and LF, or malformed UTF-8: YAML 1.2 section 5.1), as "line L, column
+// C (byte 0xNN)"; empty for text.
+std::string first_binary_byte(const std::string& text) {
+  int line = 1, column = 1;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t len = c < 0x80 ? 1 : (c & 0xE0) == 0xC0 ? 2 : (c & 0xF0) == 0xE0 ? 3 : (c & 0xF8) == 0xF0 ? 4 : 0;
+    bool ok = len != 0 && i + len <= text.size() && (c >= 0x20 || c == '\t' || c == '\n' || c == '\r') &&
+              c != 0x7F && (len != 2 || c >= 0xC2);
+    for (std::size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+    if (!ok) return fmt::format("line {}, column {} (byte 0x{:02X})", line, column, c);
+    if (c == '\n') {
+      ++line;
+      column = 0;
+    }
+    ++column;
+    i += len;
+  }
+  return "";
+}
+
+}  // namespace
+
 YAML::Node parse_yaml_file(const std::filesystem::path& file, const char* what) {
-  if (!std::filesystem::is_regular_file(file))
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(file.string(), 0, "", fmt::format("is a folder, not a {} file", what));
+  if (!std::filesystem::exists(file, ec))
     throw InputError(file.string(), 0, "", fmt::format("no such {} file", what));
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError(file.string(), 0, "", fmt::format("not a regular file: a {} file is YAML text", what));
   // yaml-cpp builds the whole document as nodes (about 100 bytes per scalar): a bound, so that
   // a wrong file is an error rather than memory exhausted. Configurations are a few kB.
   constexpr std::uintmax_t kMaxBytes = 16u << 20;
-  std::error_code ec;
   if (const std::uintmax_t size = std::filesystem::file_size(file, ec); !ec && size > kMaxBytes)
     throw InputError(file.string(), 0, "",
                      fmt::format("{} bytes: over the 16 MiB a {} file may have", size, what));
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string(), 0, "", fmt::format("cannot be opened ({})", std::strerror(errno)));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(file.string(), 0, "", fmt::format("cannot be read ({})", std::strerror(errno)));
+  if (const std::string where = first_binary_byte(text); !where.empty())
+    throw InputError(file.string(), 0, "",
+                     fmt::format("not a text file: {} cannot be in YAML; is this the {} file?", where, what));
   try {
-    return YAML::LoadFile(file.string());
+    return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(file.string(), e.mark.line + 1, "", "YAML syntax error: " + e.msg);
   } catch (const YAML::Exception& e) {

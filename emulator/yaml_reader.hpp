@@ -21,6 +21,7 @@ class YamlMap {
   YamlMap(std::filesystem::path file, const YAML::Node& node, std::string where);
 
   bool has(const std::string& key) const;
+  bool empty() const { return !node_.IsMap() || node_.size() == 0; }
   std::optional<std::string> text(const std::string& key);
   std::optional<double> number(const std::string& key);
   // A number that must be positive (or >= 0 with allow_zero).

@@ -8,8 +8,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,20 @@ inline std::filesystem::path shared_data(const std::string& relative) {
 // The built navemu executable.
 inline std::filesystem::path navemu_binary() {
   return std::filesystem::path(NAVEMU_BINARY_DIR) / "emulator" / "navemu";
+}
+
+// The full path of a program: PATH first, then /usr/sbin and /sbin (Debian installs gpsd in
+// /usr/sbin, which an unprivileged user's PATH may lack). Empty when not found.
+inline std::string find_program(const std::string& name) {
+  std::string dirs = std::getenv("PATH") != nullptr ? std::getenv("PATH") : "";
+  dirs += ":/usr/sbin:/sbin";
+  std::stringstream ss(dirs);
+  for (std::string d; std::getline(ss, d, ':');) {
+    if (d.empty()) continue;
+    const std::filesystem::path p = std::filesystem::path(d) / name;
+    if (::access(p.c_str(), X_OK) == 0 && std::filesystem::is_regular_file(p)) return p.string();
+  }
+  return {};
 }
 
 struct CommandResult {

@@ -113,20 +113,6 @@ class TempDir {
   fs::path path_;
 };
 
-// The full path of a program: PATH first, then /usr/sbin and /sbin (Debian installs gpsd in
-// /usr/sbin, which an unprivileged user's PATH may lack). Empty when not found.
-inline std::string find_program(const std::string& name) {
-  std::string dirs = std::getenv("PATH") != nullptr ? std::getenv("PATH") : "";
-  dirs += ":/usr/sbin:/sbin";
-  std::stringstream ss(dirs);
-  for (std::string d; std::getline(ss, d, ':');) {
-    if (d.empty()) continue;
-    const fs::path p = fs::path(d) / name;
-    if (::access(p.c_str(), X_OK) == 0 && fs::is_regular_file(p)) return p.string();
-  }
-  return {};
-}
-
 // A port that was free a moment ago on 127.0.0.1 (SOCK_STREAM or SOCK_DGRAM): bind port 0 and
 // ask the kernel which one it gave. Tests run in parallel, so never a fixed port.
 inline int free_port(int type) {

@@ -188,6 +188,41 @@ TEST(Faults, NobodyReadingNeverBlocksAndNoStaleBurstAfterwards) {
               now_real * 1e3 - static_cast<double>(newest));
 }
 
+// (b2) The counters of outputs nobody takes, in the status and summary lines in the same
+// words: a pty nobody reads has its stale output flushed (counted in flushes and bytes), and an
+// slcan channel no client opened holds its CAN frames back (counted as held, not as dropped).
+TEST(Faults, StatusAndSummaryCountUnreadOutputInTheSameWords) {
+  TempDir dir("counters");
+  const fs::path link = dir / "gnss", imu_link = dir / "imu";
+  NavemuRun nav(dir, "navemu",
+                stationary_config(link, "ublox-nmea-5hz",
+                                  fmt::format("{{outputs: [{{type: slcan, link: '{}', layouts: [j1939]}}]}}",
+                                              imu_link.string())),
+                60);
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  sleep_s(12.0);  // > 20 KB of NMEA: the pty fills and stale output is flushed
+  nav.stop_expecting_exit_0();
+  const std::vector<StatusLine> status = status_lines(nav.err());
+  ASSERT_GE(status.size(), 8u) << nav.diagnostics();
+  EXPECT_EQ(status.back().dropped, 0) << "frames held back counted as dropped" << nav.diagnostics();
+  const std::regex held_status(R"(dropped 0 chunks 0 frames, (\d+) frames held \|)");
+  std::smatch m;
+  std::string last_status;
+  std::stringstream lines(nav.err());
+  for (std::string l; std::getline(lines, l);)
+    if (l.find(" UTC gnss ") != std::string::npos) last_status = l;
+  ASSERT_TRUE(std::regex_search(last_status, m, held_status)) << last_status;
+  EXPECT_GE(std::stol(m[1]), 2 * 125 * 8);  // two J1939 frames per sample at 125 Hz
+  const auto s = run_summary(nav.err());
+  ASSERT_TRUE(s) << nav.diagnostics();
+  EXPECT_GT(s->stale_flushes, 0) << nav.diagnostics();
+  const std::regex held_summary(
+      R"(0 CAN frames \(0 dropped, 0 failed, 0 bus errors\), (\d+) CAN frames held back \(no client opened the slcan channel\))");
+  const std::string err = nav.err();
+  ASSERT_TRUE(std::regex_search(err, m, held_summary)) << nav.diagnostics();
+  EXPECT_GE(std::stol(m[1]), 2 * 125 * 10);
+}
+
 // (c) Truth datagrams with NaN, a bad CRC or a time going backwards, among good ones: each is
 // rejected and counted, none moves the fix. The faulty ones carry a position 1 km away, so one
 // that slipped through would show in the fix.

@@ -74,10 +74,123 @@ TEST(Cli, HelpAndVersion) {
 }
 
 TEST(Cli, UsageErrorsExitTwo) {
-  EXPECT_EQ(navemu({}).code, 2);
   EXPECT_EQ(navemu({"fly"}).code, 2);
+  EXPECT_EQ(navemu({"help", "fly"}).code, 2);
   EXPECT_EQ(navemu({"sky", "--mask", "95"}).code, 2);
   EXPECT_EQ(navemu({"spp", "--iono", "nequick", "a", "b"}).code, 2);
+}
+
+// `navemu` alone and `navemu help` print the command list (not "A subcommand is required");
+// `navemu help SUBCOMMAND` that subcommand's help.
+TEST(Cli, WithoutASubcommandOrWithHelpItListsTheCommands) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{}, {"help"}}) {
+    const CliRun r = navemu(args);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    for (const char* cmd : {"run", "simulate", "sky", "spp", "obs", "imu", "allan", "deadreckon",
+                            "scene", "profiles", "help"})
+      EXPECT_NE(r.out.find(std::string("\n  ") + cmd + " "), std::string::npos) << cmd << "\n" << r.out;
+    EXPECT_EQ(r.out.find("A subcommand is required"), std::string::npos);
+  }
+  const CliRun run_help = navemu({"help", "run"});
+  EXPECT_EQ(run_help.code, 0);
+  EXPECT_NE(run_help.out.find("--duration"), std::string::npos) << run_help.out;
+}
+
+// `navemu profiles`: every GNSS and IMU profile and every ready scenario, one line each with its
+// description.
+TEST(Cli, ProfilesListsEveryProfileAndScenarioWithADescription) {
+  const CliRun r = navemu({"profiles"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::filesystem::path configs = std::filesystem::path(NAVEMU_SOURCE_DIR) / "configs";
+  std::size_t files = 0;
+  for (const auto& [dir, heading] : {std::pair{configs / "gnss", "GNSS receiver profiles"},
+                                     std::pair{configs / "imu", "IMU profiles"},
+                                     std::pair{configs, "Ready scenarios"}}) {
+    EXPECT_NE(r.out.find(heading), std::string::npos) << r.out;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+      if (e.path().extension() != ".yaml") continue;
+      ++files;
+      const std::string name = "  " + e.path().stem().string() + " ";
+      const std::size_t at = r.out.find(name);
+      ASSERT_NE(at, std::string::npos) << name << "\n" << r.out;
+      const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+      EXPECT_GT(line.size(), name.size() + 10) << "no description: " << line;
+      EXPECT_EQ(line.find("does not load"), std::string::npos) << line;
+    }
+  }
+  EXPECT_EQ(static_cast<std::size_t>(count_lines(r.out)), files + 3) << r.out;
+  EXPECT_NE(r.out.find("  ublox-m8   u-blox M8"), std::string::npos) << r.out;
+}
+
+// Numbers that are not finite, zero or negative where a positive one is wanted, or outside an
+// option's range are usage errors that show the value as given and plain bounds: never a run,
+// never a 309-digit number.
+TEST(Cli, NumbersOutsideTheirRangeAreErrorsThatShowTheValue) {
+  const std::string cfg = (std::filesystem::path(NAVEMU_SOURCE_DIR) / "configs/default.yaml").string();
+  const std::string out = (std::filesystem::path(::testing::TempDir()) / "never-written").string();
+  const auto expect_refused = [](const std::vector<std::string>& args, const std::string& shown) {
+    const CliRun r = navemu(args);
+    EXPECT_EQ(r.code, 2) << args.back() << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 2) << r.err;  // the message, and "Run with --help ..."
+    EXPECT_NE(r.err.find(shown), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("0000000000"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+  };
+  for (const char* d : {"nan", "inf", "-inf", "1e400", "NaN"})
+    expect_refused({"simulate", cfg, "--out", out, "--duration", d}, std::string("'") + d + "' is not a finite number");
+  expect_refused({"simulate", cfg, "--out", out, "--duration", "0"}, "--duration: 0 is not above 0");
+  expect_refused({"simulate", cfg, "--out", out, "--duration", "-5"}, "--duration: -5 is not above 0");
+  expect_refused({"simulate", cfg, "--out", out, "--duration", "ten"}, "'ten' is not a number");
+  expect_refused({"run", cfg, "--duration", "nan"}, "--duration: 'nan' is not a finite number");
+  expect_refused({"run", cfg, "--duration", "-1"}, "--duration: -1 is not above 0");
+  expect_refused({"sky", "--mask", "nan"}, "--mask: 'nan' is not a finite number");
+  expect_refused({"sky", "--mask", "95"}, "--mask: 95 is not between -90 and 90");
+  expect_refused({"spp", "--mask", "inf", "a", "b"}, "--mask: 'inf' is not a finite number");
+  expect_refused({"obs", "--nominal", "--at", "32,-90,0", "--start", "2020-01-01T00:00:00Z", "--out", out,
+                  "--interval", "nan"},
+                 "--interval: 'nan' is not a finite number");
+  expect_refused({"obs", "--nominal", "--at", "32,-90,0", "--start", "2020-01-01T00:00:00Z", "--out", out,
+                  "--clock-h0", "1"},
+                 "--clock-h0: 1 is not between 0 and 1e-15");
+  expect_refused({"allan", "x.csv", "--rate", "nan"}, "--rate: 'nan' is not a finite number");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A configuration that is empty, binary or a folder, and an --out that cannot be written, each
+// get one specific line (file, what is wrong), exit status 1, no raw library text.
+TEST(Cli, UnusableConfigurationsAndOutputFoldersAreOneLineErrors) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "cli-bad-config";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto expect_error = [](const std::vector<std::string>& args, const std::string& message) {
+    const CliRun r = navemu(args);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("YAML syntax"), std::string::npos) << r.err;
+  };
+  const std::string out = (dir / "out").string();
+  std::ofstream(dir / "empty.yaml").close();
+  expect_error({"simulate", (dir / "empty.yaml").string(), "--duration", "1", "--out", out},
+               "empty.yaml: empty configuration: it names none of the sections scenario, truth, gnss, imu, realtime");
+  std::ofstream(dir / "comments.yaml") << "# nothing but a comment\n\n";
+  expect_error({"simulate", (dir / "comments.yaml").string(), "--duration", "1", "--out", out},
+               "comments.yaml: empty configuration");
+  std::ofstream(dir / "binary.yaml", std::ios::binary) << std::string("scenario:\n  seed: 1\n\x7f" "ELF\x02\x01\x00\x00", 26);
+  expect_error({"run", (dir / "binary.yaml").string(), "--duration", "1"},
+               "binary.yaml: not a text file: line 3, column 1 (byte 0x7F) cannot be in YAML");
+  std::ofstream(dir / "latin1.yaml", std::ios::binary) << "truth: {source: circle} # caf\xe9\n";
+  expect_error({"run", (dir / "latin1.yaml").string(), "--duration", "1"},
+               "latin1.yaml: not a text file: line 1, column 30 (byte 0xE9)");
+  expect_error({"run", dir.string(), "--duration", "1"}, dir.string() + ": is a folder, not a configuration file");
+  const std::string cfg = (std::filesystem::path(NAVEMU_SOURCE_DIR) / "configs/default.yaml").string();
+  expect_error({"simulate", cfg, "--duration", "1", "--out", "/proc/navemu-out"},
+               "/proc/navemu-out: --out: cannot create the output folder (No such file or directory)");
+  std::ofstream(dir / "a-file").close();
+  expect_error({"simulate", cfg, "--duration", "1", "--out", (dir / "a-file").string()},
+               "a-file: --out: exists and is not a folder");
 }
 
 TEST(Cli, SkyNominalListsVisibleSatellitesAndDops) {

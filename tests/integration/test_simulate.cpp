@@ -272,6 +272,55 @@ TEST(Simulate, SceneRunsAreDeterministicAndCostSatellites) {
   EXPECT_NE(bad.out.find("nowhere.obj"), std::string::npos) << bad.out;
 }
 
+// The ready u-blox scenarios offline: the circle goes on forever, as in configs/default.yaml
+// (past the 8 loops, 462 s, of the circle's own default), and ubx.bin holds the UBX a logging
+// client would enable (NAV-PVT, NAV-SAT, RXM-RAWX, RXM-SFRBX every epoch) beside the power-up
+// NMEA. RTKLIB's convbin, an independent decoder, turns it into observations and ephemerides.
+TEST(Simulate, UbloxScenariosDriveForeverAndWriteUbxIntoUbxBin) {
+  const std::string convbin = test::find_program("convbin");
+  for (const char* scenario : {"ublox-m8", "ublox-f9p"}) {
+    SCOPED_TRACE(scenario);
+    const fs::path out = temp_dir(std::string("ublox-") + scenario);
+    const test::CommandResult r =
+        simulate(fs::path(NAVEMU_SOURCE_DIR) / "configs" / (std::string(scenario) + ".yaml"), out, 600);
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("circle r 9.144 m at 1 m/s, forever"), std::string::npos) << r.out;
+    // Still moving at 1 m/s after 500 s.
+    const auto truth = csv_rows(out / "truth.csv");
+    ASSERT_GT(truth.size(), 590u);
+    for (std::size_t i = 500; i < truth.size(); i += 10)
+      EXPECT_NEAR(std::hypot(std::stod(truth[i][4]), std::stod(truth[i][5])), 1.0, 1e-3) << truth[i][0];  // 4 decimals
+
+    // UBX frames by class and id (u-blox 8 / F9 interface descriptions: sync B5 62, class,
+    // id, little-endian length, payload, 2-byte checksum).
+    const std::string bin = slurp(out / "ubx.bin");
+    std::map<std::pair<int, int>, int> count;
+    for (std::size_t i = bin.find("\xb5\x62"); i != std::string::npos && i + 6 <= bin.size();
+         i = bin.find("\xb5\x62", i + 1)) {
+      const auto u8 = [&](std::size_t k) { return static_cast<unsigned char>(bin[i + k]); };
+      ++count[{u8(2), u8(3)}];
+      i += 6u + (u8(4) | u8(5) << 8) + 1u;
+    }
+    EXPECT_EQ((count[{0x01, 0x07}]), 600) << "NAV-PVT";
+    EXPECT_EQ((count[{0x01, 0x35}]), 600) << "NAV-SAT";
+    EXPECT_EQ((count[{0x02, 0x15}]), 600) << "RXM-RAWX";
+    EXPECT_GE((count[{0x02, 0x13}]), 100) << "RXM-SFRBX";
+    EXPECT_NE(bin.find("$GPGGA"), std::string::npos) << "the power-up NMEA";
+    if (convbin.empty()) continue;
+    const test::CommandResult c = test::run_command(
+        test::shell_quote(convbin) + " -r ubx -v 3.04 -o " + test::shell_quote((out / "ubx.obs").string()) +
+        " -n " + test::shell_quote((out / "ubx.nav").string()) + " " + test::shell_quote((out / "ubx.bin").string()) +
+        " 2>&1");
+    EXPECT_EQ(c.exit_code, 0) << c.out;
+    const std::string obs = slurp(out / "ubx.obs"), nav = slurp(out / "ubx.nav");
+    std::size_t epochs = 0;
+    for (std::size_t at = obs.find("\n> "); at != std::string::npos; at = obs.find("\n> ", at + 1)) ++epochs;
+    EXPECT_GE(epochs, 590u) << c.out;
+    EXPECT_NE(nav.find("END OF HEADER"), std::string::npos);
+    EXPECT_GT(nav.size(), 2000u) << "no ephemerides decoded from RXM-SFRBX";
+  }
+}
+
 TEST(Simulate, RejectsAStreamedTruth) {
   const fs::path dir = temp_dir("udp");
   const fs::path cfg = dir / "udp.yaml";
