@@ -15,56 +15,42 @@
 #include <vector>
 
 #include "emulator/geoid_loader.hpp"
+#include "tests/nga_egm96.hpp"
 
 namespace navemu {
 namespace {
 
 namespace fs = std::filesystem;
 
-const GeoidGrid& egm96() {
-  const LoadedGeoid& g = egm96_geoid();
-  // proj-data, a dependency of libproj (tools/install-deps), installs the grid.
-  if (!g.grid) ADD_FAILURE() << g.description;
-  static const GeoidGrid none("none", -180.0, 180.0, 2, 2, std::vector<float>(4, 0.0f));
-  return g.grid ? *g.grid : none;
-}
+using test::kEgm96BilinearTolerance_m;
+using test::kNgaEgm96TestPoints;
 
-// The test points NGA publishes with EGM96 (readme.txt of the EGM96 distribution,
-// earth-info.nga.mil/GandG/wgs84/gravitymod/egm96/: latitude, longitude east in [0, 360), geoid
-// height in m, as NGA's programs compute them from the model). Tolerance: the error of
-// bilinear interpolation in the 15' grid, 0.040 m RMS and 1.15 m at worst in high mountains
-// (GeographicLib, GeoidEval documentation, egm96-15); these points lie in smooth terrain, so
-// 3 x the RMS, 0.12 m. A wrong sign or a missing geoid is off by 3 to 100 m.
-struct NgaPoint {
-  double lat_deg, lon_deg, n_m;
-};
-constexpr NgaPoint kNgaEgm96TestPoints[] = {
-    {38.6281550, 269.7791550, -31.628}, {-14.6212170, 305.0211140, -2.969},
-    {46.8743190, 102.4487290, -43.575}, {-23.6174460, 133.8747120, 15.871},
-    {38.6254730, 359.9995000, 50.066},  {-0.4667440, 0.0023000, 17.329},
-};
-constexpr double kBilinearTolerance_m = 0.12;
-
+// proj-data, a dependency of libproj (tools/install-deps), installs the grid: its absence is
+// a failure here.
 TEST(GeoidLoader, Egm96MatchesNgaTestValues) {
-  const GeoidGrid& g = egm96();
+  const LoadedGeoid& geoid = egm96_geoid();
+  ASSERT_TRUE(geoid.grid) << geoid.description;
+  const GeoidGrid& g = *geoid.grid;
   EXPECT_EQ(g.name(), kEgm96GridName);
   EXPECT_DOUBLE_EQ(g.step_deg(), 0.25);
-  for (const NgaPoint& p : kNgaEgm96TestPoints) {
+  for (const test::NgaEgm96Point& p : kNgaEgm96TestPoints) {
     const double n = g.separation_m(p.lat_deg, p.lon_deg);
     std::printf("%12.7f %12.7f  NGA %8.3f m  grid %8.3f m  difference %+.3f m\n", p.lat_deg,
                 p.lon_deg, p.n_m, n, n - p.n_m);
-    EXPECT_NEAR(n, p.n_m, kBilinearTolerance_m) << p.lat_deg << ", " << p.lon_deg;
+    EXPECT_NEAR(n, p.n_m, kEgm96BilinearTolerance_m) << p.lat_deg << ", " << p.lon_deg;
     // The same place with its longitude in [-180, 180).
-    EXPECT_NEAR(g.separation_m(p.lat_deg, p.lon_deg - 360.0), p.n_m, kBilinearTolerance_m);
+    EXPECT_NEAR(g.separation_m(p.lat_deg, p.lon_deg - 360.0), p.n_m, kEgm96BilinearTolerance_m);
   }
-  EXPECT_NE(egm96_geoid().description.find("/usr/share/proj/egm96_15.gtx"), std::string::npos)
-      << egm96_geoid().description;
+  EXPECT_NE(geoid.description.find("/usr/share/proj/egm96_15.gtx"), std::string::npos)
+      << geoid.description;
 }
 
 // Between the nodes the grid in memory gives what PROJ's vgridshift gives reading the file:
 // random places over the globe, the grid's seam at 180 deg and the poles.
 TEST(GeoidLoader, InterpolatesAsProjDoes) {
-  const GeoidGrid& g = egm96();
+  const LoadedGeoid& geoid = egm96_geoid();
+  ASSERT_TRUE(geoid.grid) << geoid.description;
+  const GeoidGrid& g = *geoid.grid;
   PJ_CONTEXT* ctx = proj_context_create();
   PJ* shift = proj_create(ctx, "+proj=vgridshift +grids=egm96_15.gtx +multiplier=1");
   ASSERT_NE(shift, nullptr);

@@ -17,6 +17,7 @@
 #include "protocols/nmea.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
+#include "tests/nga_egm96.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
@@ -50,21 +51,10 @@ std::vector<std::vector<std::string>> gga_sentences(const std::string& bytes) {
   return out;
 }
 
-// NGA's EGM96 test points (readme.txt of the EGM96 distribution,
-// earth-info.nga.mil/GandG/wgs84/gravitymod/egm96/), longitudes east in [0, 360), and the
-// tolerance of bilinear interpolation in the 15' grid, 3 x its 0.040 m RMS error
-// (tests/emulator/test_geoid_loader.cpp says more).
-struct NgaPoint {
-  double lat_deg, lon_deg, n_m;
-};
-constexpr NgaPoint kNgaEgm96TestPoints[] = {
-    {38.6281550, 269.7791550, -31.628}, {-14.6212170, 305.0211140, -2.969},
-    {46.8743190, 102.4487290, -43.575}, {-23.6174460, 133.8747120, 15.871},
-    {38.6254730, 359.9995000, 50.066},  {-0.4667440, 0.0023000, 17.329},
-};
-constexpr double kBilinearTolerance_m = 0.12;
+using test::kEgm96BilinearTolerance_m;
+using test::kNgaEgm96TestPoints;
 
-// A u-blox F9P standing at each point for 5 s, sending NAV-PVT, NAV-POSLLH and its NMEA.
+// A u-blox F9P standing at each of NGA's EGM96 test points for 5 s, sending NAV-PVT, NAV-POSLLH and its NMEA.
 // ellipsoidal height - hMSL is the geoid height there (the fix is within metres of the point;
 // EGM96 changes by millimetres over that); GGA's altitude + separation is the ellipsoidal
 // height, its separation the geoid height to GGA's 0.1 m.
@@ -74,7 +64,7 @@ TEST(GeoidHeights, UbxAndNmeaReportEgm96AtNgaTestPoints) {
   cfg.gnss.ubx->messages = {{"NAV-PVT", 1}, {"NAV-POSLLH", 1}};
   cfg.imu_enabled = false;
   cfg.truth.kind = TruthSourceKind::kStationary;
-  for (const NgaPoint& p : kNgaEgm96TestPoints) {
+  for (const test::NgaEgm96Point& p : kNgaEgm96TestPoints) {
     SCOPED_TRACE(testing::Message() << p.lat_deg << ", " << p.lon_deg);
     cfg.truth.position = Geodetic{p.lat_deg, p.lon_deg > 180.0 ? p.lon_deg - 360.0 : p.lon_deg, 100.0};
     const fs::path d = temp_dir("nga");
@@ -101,13 +91,13 @@ TEST(GeoidHeights, UbxAndNmeaReportEgm96AtNgaTestPoints) {
                     ASSERT_TRUE(ubx::decode(parser.payload(), m));
                     if (!(m.flags & ubx::NavPvt::kGnssFixOk)) return;
                     ++pvt;
-                    EXPECT_NEAR((m.height_mm - m.h_msl_mm) * 1e-3, p.n_m, kBilinearTolerance_m);
+                    EXPECT_NEAR((m.height_mm - m.h_msl_mm) * 1e-3, p.n_m, kEgm96BilinearTolerance_m);
                     height_by_tow[static_cast<int>(m.i_tow_ms)] = m.height_mm * 1e-3;
                   } else if (id == ubx::kNavPosllh) {
                     ubx::NavPosllh m;
                     ASSERT_TRUE(ubx::decode(parser.payload(), m));
                     ++posllh;
-                    EXPECT_NEAR((m.height_mm - m.h_msl_mm) * 1e-3, p.n_m, kBilinearTolerance_m);
+                    EXPECT_NEAR((m.height_mm - m.h_msl_mm) * 1e-3, p.n_m, kEgm96BilinearTolerance_m);
                   }
                 });
     EXPECT_GE(pvt, 4);
@@ -117,7 +107,7 @@ TEST(GeoidHeights, UbxAndNmeaReportEgm96AtNgaTestPoints) {
     EXPECT_GE(gga.size(), 4u);
     for (const auto& f : gga) {
       ASSERT_EQ(f[6], "1") << "a fix";
-      EXPECT_NEAR(std::stod(f[11]), p.n_m, kBilinearTolerance_m + 0.05);  // printed to 0.1 m
+      EXPECT_NEAR(std::stod(f[11]), p.n_m, kEgm96BilinearTolerance_m + 0.05);  // printed to 0.1 m
       EXPECT_GT(std::stod(f[9]) + std::stod(f[11]), 90.0);  // h = H + N: about 100 m again
       EXPECT_LT(std::stod(f[9]) + std::stod(f[11]), 110.0);
     }
