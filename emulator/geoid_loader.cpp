@@ -64,8 +64,9 @@ LoadedGeoid load_geoid(const std::string& grid_name) {
   const std::unique_ptr<PJ, PjDeleter> shift(proj_create(
       ctx.get(), fmt::format("+proj=vgridshift +grids={} +multiplier=1", g.filename).c_str()));
   if (!shift)
-    return without_geoid(fmt::format("PROJ cannot read {}: {}", g.filename,
-                                     proj_context_errno_string(ctx.get(), proj_context_errno(ctx.get()))));
+    return without_geoid(fmt::format(
+        "PROJ cannot read {}: {}", g.filename,
+        proj_context_errno_string(ctx.get(), proj_context_errno(ctx.get()))));
 
   // N at every node, a row at a time. Longitude and latitude in radians, as PROJ's grid
   // extent (node c of a row at west + c * step).
@@ -87,15 +88,15 @@ LoadedGeoid load_geoid(const std::string& grid_name) {
       if (n != static_cast<std::size_t>(cols) || !std::isfinite(v) || std::fabs(v) > 1000.0)
         return without_geoid(fmt::format("{} has no value at latitude {} deg, longitude {} deg",
                                          g.filename, -90.0 + r * step_deg, west_deg + c * step_deg));
-      n_m[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c)] =
-          static_cast<float>(v);
+      n_m[static_cast<std::size_t>(r * cols + c)] = static_cast<float>(v);
     }
   }
 
   LoadedGeoid out;
   out.grid.emplace(grid_name, west_deg, step_deg, rows, cols, std::move(n_m));
-  out.description = fmt::format("heights above mean sea level: geoid grid {} ({}' grid, {}, read through PROJ {})",
-                                grid_name, step_deg * 60.0, g.filename, info.version);
+  out.description =
+      fmt::format("heights above mean sea level: geoid grid {} ({}' grid, {}, read through PROJ {})",
+                  grid_name, step_deg * 60.0, g.filename, info.version);
   return out;
 }
 
