@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "emulator/commands.hpp"
+#include "emulator/geoid_loader.hpp"
 #include "emulator/imu_can.hpp"
 #include "emulator/imu_profile.hpp"
 #include "emulator/gnss_scene.hpp"
@@ -497,6 +498,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     rp.measurement.seed = cfg.seed;
     rp.max_channels = prof.max_channels;
     rp.ideal_sigma_m = cfg.gnss_ideal_sigma_m;
+    // The geoid of the MSL heights (GGA, NAV-PVT, NAV-POSLLH): read once per process, here,
+    // before the loop.
+    const LoadedGeoid& geoid = egm96_geoid();
+    if (geoid.grid) rp.geoid = &*geoid.grid;
     if (!cfg.gnss_scene.obj.empty())
       rp.measurement.environment = make_scene_environment(cfg.gnss_scene, cfg.truth.position,
                                                           rp.measurement.tracking, antenna, log);
@@ -514,10 +519,9 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {} ({} satellites)\n",
                prof.name, prof.rate_hz, receiver_mode_name(cfg.gnss_mode),
                cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, prns.size());
+    fmt::print(log, "navemu: {}\n", egm96_geoid().description);
   }
   log.flush();
-  // The geoid grid loads on first use: before the loop, not at the first fix.
-  (void)geoid_separation_m(cfg.truth.position.lat_deg, cfg.truth.position.lon_deg);
   if (!offline) try_realtime_hardening(cfg, log);
 
   const Clock::Kind kind = offline    ? Clock::Kind::kOffline

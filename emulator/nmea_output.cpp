@@ -34,8 +34,8 @@ void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::s
   if (valid) {
     pos = nmea::LatLon{fix.position.lat_deg, fix.position.lon_deg};
     // Height above the geoid and the geoid's separation, so that a client adding them gets
-    // the ellipsoidal height back (0 separation when no geoid model is installed).
-    separation_m = geoid_separation_m(fix.position.lat_deg, fix.position.lon_deg);
+    // the ellipsoidal height back (0 separation when the receiver has no geoid model).
+    separation_m = fix.geoid_separation_m;
     alt_msl_m = fix.position.h_m - *separation_m;
     if (fix.v_ned_mps) {
       const Vec3& v = *fix.v_ned_mps;

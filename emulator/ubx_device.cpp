@@ -479,7 +479,7 @@ bool UbxDevice::output_message(MsgId id, std::vector<std::uint8_t>& out) const {
   const double g_speed = std::hypot(v_ned.x(), v_ned.y());
   double heading_deg = std::atan2(v_ned.y(), v_ned.x()) * kRadToDeg;
   if (heading_deg < 0.0) heading_deg += 360.0;
-  const double separation_m = valid ? geoid_separation_m(fix.position.lat_deg, fix.position.lon_deg) : 0.0;
+  const double separation_m = fix.geoid_separation_m;  // 0 without a fix
   const std::uint8_t status_flags =
       static_cast<std::uint8_t>((valid ? NavStatus::kGpsFixOk : 0) |
                                 (mode_ == ReceiverMode::kDgps ? NavStatus::kDiffSoln : 0) |

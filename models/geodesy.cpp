@@ -1,42 +1,14 @@
 #include "models/geodesy.hpp"
 
 #include <GeographicLib/Geocentric.hpp>
-#include <GeographicLib/Geoid.hpp>
 
 #include <cmath>
-#include <exception>
-#include <iostream>
-#include <memory>
 
 namespace navemu {
 
 namespace {
 
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
-
-// The geoid model, loaded once on first use. GeographicLib::Geoid throws when its data file
-// is missing; then the model stays absent and MSL heights equal ellipsoidal heights.
-struct GeoidHolder {
-  std::unique_ptr<GeographicLib::Geoid> geoid;
-};
-
-const GeoidHolder& geoid_holder() {
-  // Function-local static: initialised exactly once, thread-safe (C++11 [stmt.dcl]/4).
-  static const GeoidHolder holder = [] {
-    GeoidHolder h;
-    try {
-      // threadsafe = true reads the whole grid into memory, after which evaluation is
-      // thread-safe (GeographicLib::Geoid documentation).
-      h.geoid = std::make_unique<GeographicLib::Geoid>("egm96-5", "", true, true);
-    } catch (const std::exception&) {
-      std::cerr << "navemu: no geoid data (GeographicLib egm96-5) found; MSL heights equal "
-                   "ellipsoidal heights (separation 0). Install geoid data with "
-                   "geographiclib-get-geoids egm96-5 or set GEOGRAPHICLIB_GEOID_PATH.\n";
-    }
-    return h;
-  }();
-  return holder;
-}
 
 }  // namespace
 
@@ -99,20 +71,6 @@ AzEl azimuth_elevation(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m,
   if (az >= kTwoPi) az = 0.0;  // a tiny negative angle rounded up to 2*pi
   out.az_rad = az;
   return out;
-}
-
-double geoid_separation_m(double lat_deg, double lon_deg) {
-  const GeoidHolder& h = geoid_holder();
-  if (!h.geoid) return 0.0;
-  return (*h.geoid)(lat_deg, lon_deg);
-}
-
-bool geoid_available() { return geoid_holder().geoid != nullptr; }
-
-std::string geoid_description() {
-  const GeoidHolder& h = geoid_holder();
-  if (!h.geoid) return "none (MSL = ellipsoidal height)";
-  return h.geoid->GeoidName();
 }
 
 }  // namespace navemu

@@ -1,10 +1,8 @@
 #pragma once
-// WGS-84 geodesy through GeographicLib: ECEF <-> geodetic, local ENU/NED frames,
-// azimuth/elevation on the geodetic normal, and geoid (MSL) heights.
+// WGS-84 geodesy through GeographicLib: ECEF <-> geodetic, local ENU/NED frames and
+// azimuth/elevation on the geodetic normal. Heights above mean sea level: models/geoid.hpp.
 
 #include <Eigen/Core>
-#include <optional>
-#include <string>
 
 namespace navemu {
 
@@ -45,13 +43,5 @@ AzEl azimuth_elevation(const Geodetic& rx, const Vec3& p_rx_ecef_m, const Vec3& 
 // The same with the receiver's R_enu_from_ecef computed once for many targets.
 AzEl azimuth_elevation(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m,
                        const Vec3& p_target_ecef_m);
-
-// Geoid undulation N (MSL height = h - N). Uses GeographicLib::Geoid ("egm96-5" by
-// default, searched in GEOGRAPHICLIB_GEOID_PATH / GEOGRAPHICLIB_DATA) when the data is
-// installed; otherwise returns 0 and `geoid_available()` is false. The first fallback
-// prints a one-line notice to stderr.
-double geoid_separation_m(double lat_deg, double lon_deg);
-bool geoid_available();
-std::string geoid_description();  // e.g. "egm96-5" or "none (MSL = ellipsoidal height)"
 
 }  // namespace navemu

@@ -8,6 +8,11 @@
 
 namespace navemu {
 
+namespace {
+double separation_m(const GeoidGrid* geoid, const Geodetic& p) {
+  return geoid ? geoid->separation_m(p.lat_deg, p.lon_deg) : 0.0;
+}
+}  // namespace
 
 Receiver::Receiver(const NavData& nav, const ReceiverParams& p)
     : p_(p), gen_(nav, p.measurement), ideal_rng_(p.measurement.seed, stream_id("ideal_fix")) {
@@ -73,6 +78,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
     out.num_used = static_cast<int>(e.sats.size());
     out.sigma_n_m = out.sigma_e_m = out.sigma_v_m = s;
     out.sigma_h_m = std::sqrt(2.0) * s;
+    out.geoid_separation_m = separation_m(p_.geoid, out.position);
     return out;
   }
   if (sol.fix == FixType::kNone) return out;
@@ -90,6 +96,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   out.sigma_h_m = std::hypot(out.sigma_n_m, out.sigma_e_m);
   out.sigma_v_m = std::sqrt(std::max(cov_ned(2, 2), 0.0));
   out.range_rms_m = sol.num_used > 0 ? std::sqrt(sum_sq / sol.num_used) : 0.0;
+  out.geoid_separation_m = separation_m(p_.geoid, out.position);
   last_fix_ecef_m_ = sol.p_ecef_m;
   return out;
 }

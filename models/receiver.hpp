@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "models/geoid.hpp"
 #include "models/imu_kinematics.hpp"
 #include "models/measurement.hpp"
 #include "models/random.hpp"
@@ -21,6 +22,9 @@ struct ReceiverParams {
   // 1-sigma per axis (north, east, down), whatever the satellites do; DOPs and the satellites
   // are still reported. Unset: the position engine's solution.
   std::optional<double> ideal_sigma_m;
+  // The geoid of the heights above mean sea level the receiver reports (it must outlive the
+  // receiver); none: geoid separation 0, MSL heights equal ellipsoidal heights.
+  const GeoidGrid* geoid = nullptr;
 };
 
 struct ReceiverSatellite {
@@ -42,6 +46,9 @@ struct ReceiverFix {
   // horizontal (root sum of squares) and vertical.
   double sigma_n_m = 0.0, sigma_e_m = 0.0, sigma_h_m = 0.0, sigma_v_m = 0.0;
   double range_rms_m = 0.0;                   // RMS of the used pseudorange residuals
+  // Geoid undulation N at the fix (ReceiverParams::geoid): the height above mean sea level is
+  // position.h_m - geoid_separation_m. 0 without a fix or a geoid.
+  double geoid_separation_m = 0.0;
 };
 
 class Receiver {

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <new>
@@ -23,6 +24,7 @@
 
 #include "emulator/commands.hpp"
 #include "emulator/engine.hpp"
+#include "emulator/geoid_loader.hpp"
 #include "emulator/run_config.hpp"
 #include "emulator/truth_buffer.hpp"
 
@@ -122,6 +124,20 @@ TEST(SteadyStateAllocation, TruthBufferAtOneKilohertz) {
   feed(30'000, 90'000);
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_LE(buffer.size(), 10'002u);
+}
+
+// The geoid of the MSL heights is in memory once loaded: a vehicle crossing grid cells (an
+// aircraft crosses a 15' cell every two minutes) reads no file and allocates nothing. Here a
+// sweep over the globe, every cell of it visited.
+TEST(SteadyStateAllocation, GeoidAnywhereOnTheGlobe) {
+  const LoadedGeoid& geoid = egm96_geoid();
+  ASSERT_TRUE(geoid.grid) << geoid.description;
+  const long long before = g_allocations.load();
+  double sum_m = 0.0;
+  for (double lat = -90.0; lat <= 90.0; lat += 0.1)
+    for (double lon = -180.0; lon < 180.0; lon += 0.1) sum_m += geoid.grid->separation_m(lat, lon);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_TRUE(std::isfinite(sum_m));
 }
 
 // A log that discards what it is given without allocating (an ostringstream would grow).

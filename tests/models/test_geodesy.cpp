@@ -190,21 +190,5 @@ TEST(GeodesyAzEl, SpirentLookAngles) {
   }
 }
 
-// ---- geoid ---------------------------------------------------------------------------------
-
-TEST(GeodesyGeoid, FallbackOrModel) {
-  if (!geoid_available()) {
-    EXPECT_EQ(geoid_separation_m(35.16, 139.61), 0.0);
-    EXPECT_EQ(geoid_description(), "none (MSL = ellipsoidal height)");
-    return;
-  }
-  // EGM96 undulation at 0 N 0 E is +17.16 m; EGM96 spans about -107 m to +86 m worldwide.
-  EXPECT_EQ(geoid_description(), "egm96-5");
-  EXPECT_NEAR(geoid_separation_m(0.0, 0.0), 17.16, 0.1);
-  const double n = geoid_separation_m(35.160866522, 139.613842697);
-  EXPECT_GT(n, -107.0);
-  EXPECT_LT(n, 86.0);
-}
-
 }  // namespace
 }  // namespace navemu
