@@ -34,11 +34,21 @@ void list(std::ostream& out, const std::vector<std::string>& names,
   }
 }
 
+// Scenario files under configs/ ("default", "mission/high"): every .yaml but the profiles and
+// the material tables.
 std::vector<std::string> ready_scenarios() {
   std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(config_dir(), ec))
-    if (e.is_regular_file() && e.path().extension() == ".yaml") names.push_back(e.path().stem().string());
+  for (auto it = std::filesystem::recursive_directory_iterator(config_dir(), ec);
+       it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    const std::string folder = it->path().filename().string();
+    if (it->is_directory() && (folder == "gnss" || folder == "imu" || folder == "scenes")) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_regular_file() && it->path().extension() == ".yaml")
+      names.push_back(std::filesystem::relative(it->path(), config_dir()).replace_extension().string());
+  }
   std::sort(names.begin(), names.end());
   return names;
 }

@@ -106,12 +106,14 @@ TEST(Cli, ProfilesListsEveryProfileAndScenarioWithADescription) {
   std::size_t files = 0;
   for (const auto& [dir, heading] : {std::pair{configs / "gnss", "GNSS receiver profiles"},
                                      std::pair{configs / "imu", "IMU profiles"},
-                                     std::pair{configs, "Ready scenarios"}}) {
+                                     std::pair{configs, "Ready scenarios"},
+                                     std::pair{configs / "mission", "Ready scenarios"}}) {
     EXPECT_NE(r.out.find(heading), std::string::npos) << r.out;
     for (const auto& e : std::filesystem::directory_iterator(dir)) {
       if (e.path().extension() != ".yaml") continue;
       ++files;
-      const std::string name = "  " + e.path().stem().string() + " ";
+      const std::string name =
+          std::string("  ") + (dir.filename() == "mission" ? "mission/" : "") + e.path().stem().string() + " ";
       const std::size_t at = r.out.find(name);
       ASSERT_NE(at, std::string::npos) << name << "\n" << r.out;
       const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
@@ -120,7 +122,7 @@ TEST(Cli, ProfilesListsEveryProfileAndScenarioWithADescription) {
     }
   }
   EXPECT_EQ(static_cast<std::size_t>(count_lines(r.out)), files + 3) << r.out;
-  EXPECT_NE(r.out.find("  ublox-m8   u-blox M8"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("u-blox M8 (protocol 18) on the pty /tmp/navemu-ublox-m8"), std::string::npos) << r.out;
 }
 
 // Numbers that are not finite, zero or negative where a positive one is wanted, or outside an
