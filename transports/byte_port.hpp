@@ -54,9 +54,13 @@ class BytePort {
 };
 
 // A pseudo-terminal: the slave in raw mode with mode 0666 (gpsd drops privileges after
-// opening it), optionally reachable through a symlink that is replaced when it exists as a
-// symlink, refused when it is anything else, and removed when the port closes. The port keeps
-// the slave open itself, so clients may close and reopen it at any time.
+// opening it), optionally reachable through a symlink. One port owns a link: it holds an
+// exclusive flock(2) on LINK.lock beside it (a file with its pid in it) from before it creates
+// the link until after it has removed it, so a second port on the same link is refused with
+// "pty link LINK is in use by navemu (pid N)" and leaves the first one's link alone. The
+// kernel drops the lock of a process that dies, so a link and lock file left by a killed
+// instance are taken over. A link path that exists and is not a symlink is refused. The port
+// keeps the slave open itself, so clients may close and reopen it at any time.
 //
 // Stale output: before each chunk the port asks the kernel how many bytes sit unread on the
 // slave side (FIONREAD, plus what was written in the last few milliseconds, which the kernel
