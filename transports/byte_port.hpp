@@ -81,7 +81,11 @@ std::unique_ptr<BytePort> open_pty(const PtyOptions& opt);
 // The slave device ("/dev/pts/7") of an open_pty() port; empty for any other port.
 std::string pty_slave_path(const BytePort& port);
 
-// A serial device through libserialport (8 data bits, no parity, 1 stop bit, no flow control).
+// A serial device through libserialport (8 data bits, no parity, 1 stop bit, no flow control),
+// opened exclusively: the port takes an exclusive flock(2) on the device before configuring it
+// (a device another program has locked is refused with "serial port DEVICE is in use by NAME
+// (pid N)") and then sets TIOCEXCL (tty_ioctl(4)), so that later open(2)s of the device by
+// other programs fail with EBUSY (root's excepted).
 // libserialport looks devices up under /sys/class/tty, so it refuses ptys (/dev/pts/N): use
 // open_pty() for those. A chunk that would leave more than max_backlog_bytes waiting in the
 // output queue is dropped: when the baud rate is too low for the configured output, messages
