@@ -62,6 +62,14 @@ class BytePort {
 // instance are taken over. A link path that exists and is not a symlink is refused. The port
 // keeps the slave open itself, so clients may close and reopen it at any time.
 //
+// gpsd: a pty's slave hangs up for good when the port closes, and gpsd 3.22 keeps such a
+// device in its pool without ever reopening it, so after navemu restarts, gpsd stays silent.
+// With gpsd_socket (gpsd's control socket, gpsd -F) the port tells gpsd as a hotplug script
+// would (gpsd(8), "GPS DEVICE MANAGEMENT"): "-LINK" then "+LINK" once the link exists, and
+// "-LINK" when the port closes; gpsd then reopens the new slave and its clients get fixes
+// again without reconnecting. describe() tells whether gpsd was told; a gpsd that cannot be
+// reached is not an error.
+//
 // Stale output: before each chunk the port asks the kernel how many bytes sit unread on the
 // slave side (FIONREAD, plus what was written in the last few milliseconds, which the kernel
 // reports late); when that plus the chunk would exceed max_backlog_bytes, the unread bytes are
@@ -76,6 +84,7 @@ class BytePort {
 struct PtyOptions {
   std::string link_path;                 // empty: no symlink
   std::size_t max_backlog_bytes = 4096;  // unread output beyond this is flushed as stale
+  std::string gpsd_socket = {};          // gpsd's control socket; empty: gpsd is not told
 };
 std::unique_ptr<BytePort> open_pty(const PtyOptions& opt);
 // The slave device ("/dev/pts/7") of an open_pty() port; empty for any other port.

@@ -40,6 +40,7 @@
 
 #include "transports/byte_port.hpp"
 #include "transports/file_lock.hpp"
+#include "transports/gpsd_control.hpp"
 
 namespace navemu::transport {
 namespace {
@@ -52,6 +53,8 @@ constexpr std::size_t kTailReserve = 32 * 1024;
 // How long the kernel worker may take to move written bytes into n_tty (see above); it
 // usually takes microseconds, and milliseconds on a busy machine.
 constexpr std::chrono::milliseconds kPushLag{5};
+// How long gpsd may take to answer a removal on its control socket (it answers at once).
+constexpr std::chrono::milliseconds kGpsdTimeout{2000};
 
 // Bytes written within the last kPushLag (at least): two consecutive buckets, each at least
 // kPushLag long, the current one younger than kPushLag, so together they cover the window.
@@ -164,7 +167,8 @@ class LinkLock {
 
 class PtyPort final : public BytePort {
  public:
-  explicit PtyPort(const PtyOptions& opt) : max_backlog_(opt.max_backlog_bytes) {
+  explicit PtyPort(const PtyOptions& opt)
+      : gpsd_socket_(opt.gpsd_socket), max_backlog_(opt.max_backlog_bytes) {
     // The link is ours before anything else happens: a path that cannot be a link is refused
     // first, then one that another port owns.
     if (!opt.link_path.empty()) {
@@ -220,12 +224,21 @@ class PtyPort final : public BytePort {
       make_link(opt.link_path, slave_path_);
       link_path_ = opt.link_path;
     }
+    if (!gpsd_socket_.empty()) gpsd_status_ = announce_to_gpsd();
   }
 
   ~PtyPort() override {
-    // The link goes first, then (members) the pty and, last, the lock. Remove the symlink only
-    // while it still names our slave (the lock keeps other navemu instances off it, but
-    // anything else may have replaced it).
+    // gpsd is told first (it closes its end of the pty), then the link goes, then (members) the
+    // pty and, last, the lock.
+    if (!gpsd_socket_.empty()) {
+      try {
+        gpsd_control(gpsd_socket_, "-" + client_path(), kGpsdTimeout);
+      } catch (const std::runtime_error&) {
+        // gpsd has gone: nothing to withdraw from.
+      }
+    }
+    // Remove the symlink only while it still names our slave (the lock keeps other navemu
+    // instances off it, but anything else may have replaced it).
     if (!link_path_.empty()) {
       std::array<char, 256> target{};
       const ssize_t n = ::readlink(link_path_.c_str(), target.data(), target.size() - 1);
@@ -289,13 +302,37 @@ class PtyPort final : public BytePort {
   }
 
   std::string describe() const override {
-    return link_path_.empty() ? "pty " + slave_path_ : "pty " + link_path_ + " -> " + slave_path_;
+    return (link_path_.empty() ? "pty " + slave_path_
+                               : "pty " + link_path_ + " -> " + slave_path_) +
+           gpsd_status_;
   }
 
   const std::string& slave_path() const { return slave_path_; }
 
  private:
   bool tail_pending() const { return tail_off_ < tail_.size(); }
+
+  // The path clients open: the link, or the slave when there is none.
+  const std::string& client_path() const { return link_path_.empty() ? slave_path_ : link_path_; }
+
+  // Puts the port into gpsd's device pool, as a hotplug script does for a new USB receiver
+  // (gpsd(8), "GPS DEVICE MANAGEMENT"). gpsd keeps a device it has read from in its pool after
+  // the pty hung up (a previous navemu exited, or was killed before it could remove the device)
+  // and never reopens it, and answers ERROR to "+" for a path already in the pool (gpsd 3.22,
+  // by experiment); so "-" first (ERROR when gpsd does not have it), then "+", whose answer
+  // gpsd gives only after probing the device with the data this port has yet to send, so it is
+  // not awaited. Returns the part of describe() that tells the outcome; a gpsd that cannot be
+  // reached is not an error.
+  std::string announce_to_gpsd() {
+    const std::string path = client_path();
+    try {
+      gpsd_control(gpsd_socket_, "-" + path, kGpsdTimeout);
+      gpsd_control(gpsd_socket_, "+" + path, std::chrono::milliseconds(0));
+      return fmt::format(", announced to gpsd ({})", gpsd_socket_);
+    } catch (const std::runtime_error& e) {
+      return fmt::format(", not announced to gpsd: {}", e.what());
+    }
+  }
 
   // One non-blocking write(2) on the master; -1 with errno on failure (EAGAIN not counted).
   ssize_t write_master(const std::uint8_t* data, std::size_t size) {
@@ -377,6 +414,8 @@ class PtyPort final : public BytePort {
   Fd inotify_;
   std::string slave_path_;
   std::string link_path_;
+  std::string gpsd_socket_;  // gpsd's control socket; empty: gpsd is not told
+  std::string gpsd_status_;  // ", announced to gpsd (...)" for describe()
   std::size_t max_backlog_;
   RecentBytes recent_;              // written lately, possibly not yet visible to FIONREAD
   std::vector<std::uint8_t> tail_;  // unsent end of the last chunk, reserved once

@@ -7,17 +7,21 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -308,6 +312,87 @@ TEST(Pty, RefusesToReplaceARegularFileFollowALockSymlinkOrUseAMissingDirectory) 
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
   }
+}
+
+// A stand-in for gpsd's control socket (gpsd(8), "GPS DEVICE MANAGEMENT": one command line per
+// connection here, answered "OK"): records each command and whether `link` existed when it came.
+class FakeGpsdControl {
+ public:
+  FakeGpsdControl(const std::string& socket_path, const std::string& link) {
+    fd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", socket_path.c_str());
+    if (fd_ < 0 || ::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 ||
+        ::listen(fd_, 4) != 0)
+      throw std::runtime_error("cannot listen on " + socket_path);
+    thread_ = std::thread([this, link] {
+      while (!stop_) {
+        pollfd p{fd_, POLLIN, 0};
+        if (::poll(&p, 1, 10) <= 0) continue;
+        const int c = ::accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
+        if (c < 0) continue;
+        std::string line =
+            read_until(c, [](const std::string& d) { return d.find('\n') != d.npos; });
+        line = line.substr(0, line.find('\n'));
+        const bool link_there = std::filesystem::is_symlink(link);
+        ::send(c, "OK\n", 3, MSG_NOSIGNAL);  // the port may have gone already: no SIGPIPE
+        ::close(c);
+        std::lock_guard<std::mutex> lock(mutex_);
+        commands_.push_back(line + (link_there ? " (link there)" : " (no link)"));
+      }
+    });
+  }
+  ~FakeGpsdControl() {
+    stop_ = true;
+    thread_.join();
+    ::close(fd_);
+  }
+  // The commands received, once `n` have come (at most 2 s).
+  std::vector<std::string> commands(std::size_t n) {
+    const auto deadline = Clock::now() + milliseconds(2000);
+    for (;;) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (commands_.size() >= n || Clock::now() > deadline) return commands_;
+      }
+      std::this_thread::sleep_for(milliseconds(5));
+    }
+  }
+
+ private:
+  int fd_ = -1;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  std::mutex mutex_;
+  std::vector<std::string> commands_;
+};
+
+TEST(Pty, GpsdIsToldWhenTheLinkComesAndGoes) {
+  TempDir dir;
+  const std::string link = (dir.path / "gnss").string();
+  const std::string sock = (dir.path / "gpsd.sock").string();
+  {
+    FakeGpsdControl gpsd(sock, link);
+    auto port = open_pty({link, 4096, sock});
+    // Removed first (gpsd refuses to add a path it still has), then added, once the link is up.
+    EXPECT_EQ(gpsd.commands(2), (std::vector<std::string>{"-" + link + " (link there)",
+                                                          "+" + link + " (link there)"}));
+    EXPECT_EQ(port->describe(), fmt::format("pty {} -> {}, announced to gpsd ({})", link,
+                                            pty_slave_path(*port), sock));
+    port.reset();
+    // Removed again at close, before the link goes.
+    EXPECT_EQ(gpsd.commands(3).back(), "-" + link + " (link there)");
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link)));
+  }
+  // No gpsd listening: the port works all the same and says so.
+  std::filesystem::remove(sock);
+  auto port = open_pty({link, 4096, sock});
+  EXPECT_EQ(port->describe(),
+            fmt::format("pty {} -> {}, not announced to gpsd: gpsd control socket {}: No such "
+                        "file or directory",
+                        link, pty_slave_path(*port), sock));
+  expect_output_reaches(*port, link);
 }
 
 TEST(Pty, ClientClosesAndReopensMidStream) {
