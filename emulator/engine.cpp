@@ -227,7 +227,7 @@ Vec3 enu_error(const ReceiverFix& fix, const ImuTruth& truth) {
 }
 
 std::unique_ptr<transport::BytePort> open_output(const OutputSpec& o, const GnssProfile& profile) {
-  if (o.type == "pty") return transport::open_pty({o.link, o.max_backlog_bytes});
+  if (o.type == "pty") return transport::open_pty({o.link, o.max_backlog_bytes, o.gpsd_socket});
   if (o.type == "serial") return transport::open_serial({o.device, o.baud ? o.baud : profile.baud});
   if (o.type == "tcp") return transport::open_tcp_server({o.address, o.port, 8});
   if (o.type == "udp") return transport::open_udp_sender({o.address, o.port});

@@ -56,6 +56,7 @@ OutputSpec output(YamlMap m) {
   if (o.type == "pty") {
     o.link = resolve(m.file(), m.text("link").value_or(""));
     if (auto v = m.integer("max_backlog_bytes", 0, 1 << 20)) o.max_backlog_bytes = static_cast<std::size_t>(*v);
+    o.gpsd_socket = resolve(m.file(), m.text("gpsd_socket").value_or(""));
   } else if (o.type == "serial") {
     o.device = m.text("device").value_or("");
     if (o.device.empty()) m.fail("device", "required for a serial output (e.g. /dev/ttyUSB0)");

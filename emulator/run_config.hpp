@@ -67,6 +67,7 @@ struct OutputSpec {
   int port = 0;
   std::string path;  // file
   std::size_t max_backlog_bytes = 4096;  // pty
+  std::string gpsd_socket;  // pty: gpsd's control socket, told when the pty comes and goes
 };
 
 // How IMU samples become CAN frames (protocols/can_frames.hpp, configs/can/navemu.dbc).

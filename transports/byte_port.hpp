@@ -54,9 +54,21 @@ class BytePort {
 };
 
 // A pseudo-terminal: the slave in raw mode with mode 0666 (gpsd drops privileges after
-// opening it), optionally reachable through a symlink that is replaced when it exists as a
-// symlink, refused when it is anything else, and removed when the port closes. The port keeps
-// the slave open itself, so clients may close and reopen it at any time.
+// opening it), optionally reachable through a symlink. One port owns a link: it holds an
+// exclusive flock(2) on LINK.lock beside it (a file with its pid in it) from before it creates
+// the link until after it has removed it, so a second port on the same link is refused with
+// "pty link LINK is in use by navemu (pid N)" and leaves the first one's link alone. The
+// kernel drops the lock of a process that dies, so a link and lock file left by a killed
+// instance are taken over. A link path that exists and is not a symlink is refused. The port
+// keeps the slave open itself, so clients may close and reopen it at any time.
+//
+// gpsd: a pty's slave hangs up for good when the port closes, and gpsd 3.22 keeps such a
+// device in its pool without ever reopening it, so after navemu restarts, gpsd stays silent.
+// With gpsd_socket (gpsd's control socket, gpsd -F) the port tells gpsd as a hotplug script
+// would (gpsd(8), "GPS DEVICE MANAGEMENT"): "-LINK" then "+LINK" once the link exists, and
+// "-LINK" when the port closes; gpsd then reopens the new slave and its clients get fixes
+// again without reconnecting. describe() tells whether gpsd was told; a gpsd that cannot be
+// reached is not an error.
 //
 // Stale output: before each chunk the port asks the kernel how many bytes sit unread on the
 // slave side (FIONREAD, plus what was written in the last few milliseconds, which the kernel
@@ -72,12 +84,17 @@ class BytePort {
 struct PtyOptions {
   std::string link_path;                 // empty: no symlink
   std::size_t max_backlog_bytes = 4096;  // unread output beyond this is flushed as stale
+  std::string gpsd_socket = {};          // gpsd's control socket; empty: gpsd is not told
 };
 std::unique_ptr<BytePort> open_pty(const PtyOptions& opt);
 // The slave device ("/dev/pts/7") of an open_pty() port; empty for any other port.
 std::string pty_slave_path(const BytePort& port);
 
-// A serial device through libserialport (8 data bits, no parity, 1 stop bit, no flow control).
+// A serial device through libserialport (8 data bits, no parity, 1 stop bit, no flow control),
+// opened exclusively: the port takes an exclusive flock(2) on the device before configuring it
+// (a device another program has locked is refused with "serial port DEVICE is in use by NAME
+// (pid N)") and then sets TIOCEXCL (tty_ioctl(4)), so that later open(2)s of the device by
+// other programs fail with EBUSY (root's excepted).
 // libserialport looks devices up under /sys/class/tty, so it refuses ptys (/dev/pts/N): use
 // open_pty() for those. A chunk that would leave more than max_backlog_bytes waiting in the
 // output queue is dropped: when the baud rate is too low for the configured output, messages

@@ -33,11 +33,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
 
 #include "transports/byte_port.hpp"
+#include "transports/file_lock.hpp"
+#include "transports/gpsd_control.hpp"
 
 namespace navemu::transport {
 namespace {
@@ -50,6 +53,8 @@ constexpr std::size_t kTailReserve = 32 * 1024;
 // How long the kernel worker may take to move written bytes into n_tty (see above); it
 // usually takes microseconds, and milliseconds on a busy machine.
 constexpr std::chrono::milliseconds kPushLag{5};
+// How long gpsd may take to answer a removal on its control socket (it answers at once).
+constexpr std::chrono::milliseconds kGpsdTimeout{2000};
 
 // Bytes written within the last kPushLag (at least): two consecutive buckets, each at least
 // kPushLag long, the current one younger than kPushLag, so together they cover the window.
@@ -81,21 +86,8 @@ class RecentBytes {
 
 std::string errno_text(int e) { return std::error_code(e, std::generic_category()).message(); }
 
-// Owns a file descriptor and closes it.
-struct Fd {
-  int fd = -1;
-  Fd() = default;
-  explicit Fd(int f) : fd(f) {}
-  Fd(const Fd&) = delete;
-  Fd& operator=(const Fd&) = delete;
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
-  }
-};
-
-// Creates (or atomically replaces) the symlink `link` -> `target`. Refuses a path that exists
-// and is not a symlink, and a link whose directory does not exist.
-void make_link(const std::string& link, const std::string& target) {
+// Refuses a link path that exists and is not a symlink, and one whose directory does not exist.
+void check_link_path(const std::string& link) {
   struct stat st {};
   if (::lstat(link.c_str(), &st) == 0) {
     if (!S_ISLNK(st.st_mode))
@@ -109,6 +101,10 @@ void make_link(const std::string& link, const std::string& target) {
   if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
     throw std::runtime_error(
         fmt::format("pty link {}: directory {} does not exist", link, dir.string()));
+}
+
+// Creates (or atomically replaces) the symlink `link` -> `target` (check_link_path() first).
+void make_link(const std::string& link, const std::string& target) {
   // symlink(2) to a temporary name, then rename(2) over the link: clients never see the path
   // missing while an old link is replaced.
   const std::string tmp = fmt::format("{}.navemu-{}", link, ::getpid());
@@ -122,9 +118,63 @@ void make_link(const std::string& link, const std::string& target) {
   }
 }
 
+// The lock that makes one port the owner of a link: LINK.lock beside it, a regular file with
+// the owner's pid in it, held with flock(2) for the port's lifetime. The kernel drops the lock
+// when its owner dies however it dies, so the link and lock file a killed instance leaves
+// behind are taken over; a live owner's are refused.
+class LinkLock {
+ public:
+  explicit LinkLock(const std::string& link) : path_(link + ".lock") {
+    // A previous owner removes the file at exit, possibly between our open(2) and our flock(2):
+    // then the lock we got is on a file nobody else will find, and we start again. Twice in a
+    // row takes three instances racing; five rounds are plenty.
+    for (int round = 0; round < 5; ++round) {
+      Fd f(::open(path_.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644));
+      if (f.fd < 0)
+        throw std::runtime_error(
+            fmt::format("pty link {}: lock file {}: {}", link, path_, errno_text(errno)));
+      struct stat held {}, named {};
+      if (::fstat(f.fd, &held) != 0 || !S_ISREG(held.st_mode))
+        throw std::runtime_error(
+            fmt::format("pty link {}: lock file {} is not a regular file", link, path_));
+      if (!try_lock_exclusive(f.fd, fmt::format("pty link {}: lock file {}", link, path_)))
+        throw std::runtime_error(
+            fmt::format("pty link {} is in use by {}", link, lock_holder(f.fd)));
+      if (::stat(path_.c_str(), &named) != 0 || named.st_dev != held.st_dev ||
+          named.st_ino != held.st_ino)
+        continue;
+      // The pid is for people (cat LINK.lock); the lock itself is what counts.
+      const std::string pid = fmt::format("{}\n", ::getpid());
+      [[maybe_unused]] const bool written =
+          ::ftruncate(f.fd, 0) == 0 && ::pwrite(f.fd, pid.data(), pid.size(), 0) > 0;
+      std::swap(fd_.fd, f.fd);
+      return;
+    }
+    throw std::runtime_error(
+        fmt::format("pty link {}: lock file {} keeps being replaced", link, path_));
+  }
+  LinkLock(const LinkLock&) = delete;
+  LinkLock& operator=(const LinkLock&) = delete;
+  // Removes the lock file while still holding the lock (Fd closes it afterwards).
+  ~LinkLock() {
+    if (fd_.fd >= 0) ::unlink(path_.c_str());
+  }
+
+ private:
+  std::string path_;
+  Fd fd_;
+};
+
 class PtyPort final : public BytePort {
  public:
-  explicit PtyPort(const PtyOptions& opt) : max_backlog_(opt.max_backlog_bytes) {
+  explicit PtyPort(const PtyOptions& opt)
+      : gpsd_socket_(opt.gpsd_socket), max_backlog_(opt.max_backlog_bytes) {
+    // The link is ours before anything else happens: a path that cannot be a link is refused
+    // first, then one that another port owns.
+    if (!opt.link_path.empty()) {
+      check_link_path(opt.link_path);
+      link_lock_.emplace(opt.link_path);
+    }
     // Master: non-blocking, close-on-exec, never our controlling terminal.
     master_.fd = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC | O_NONBLOCK);
     if (master_.fd < 0)
@@ -174,10 +224,21 @@ class PtyPort final : public BytePort {
       make_link(opt.link_path, slave_path_);
       link_path_ = opt.link_path;
     }
+    if (!gpsd_socket_.empty()) gpsd_status_ = announce_to_gpsd();
   }
 
   ~PtyPort() override {
-    // Remove the symlink only while it still names our slave (another instance may own it now).
+    // gpsd is told first (it closes its end of the pty), then the link goes, then (members) the
+    // pty and, last, the lock.
+    if (!gpsd_socket_.empty()) {
+      try {
+        gpsd_control(gpsd_socket_, "-" + client_path(), kGpsdTimeout);
+      } catch (const std::runtime_error&) {
+        // gpsd has gone: nothing to withdraw from.
+      }
+    }
+    // Remove the symlink only while it still names our slave (the lock keeps other navemu
+    // instances off it, but anything else may have replaced it).
     if (!link_path_.empty()) {
       std::array<char, 256> target{};
       const ssize_t n = ::readlink(link_path_.c_str(), target.data(), target.size() - 1);
@@ -241,13 +302,37 @@ class PtyPort final : public BytePort {
   }
 
   std::string describe() const override {
-    return link_path_.empty() ? "pty " + slave_path_ : "pty " + link_path_ + " -> " + slave_path_;
+    return (link_path_.empty() ? "pty " + slave_path_
+                               : "pty " + link_path_ + " -> " + slave_path_) +
+           gpsd_status_;
   }
 
   const std::string& slave_path() const { return slave_path_; }
 
  private:
   bool tail_pending() const { return tail_off_ < tail_.size(); }
+
+  // The path clients open: the link, or the slave when there is none.
+  const std::string& client_path() const { return link_path_.empty() ? slave_path_ : link_path_; }
+
+  // Puts the port into gpsd's device pool, as a hotplug script does for a new USB receiver
+  // (gpsd(8), "GPS DEVICE MANAGEMENT"). gpsd keeps a device it has read from in its pool after
+  // the pty hung up (a previous navemu exited, or was killed before it could remove the device)
+  // and never reopens it, and answers ERROR to "+" for a path already in the pool (gpsd 3.22,
+  // by experiment); so "-" first (ERROR when gpsd does not have it), then "+", whose answer
+  // gpsd gives only after probing the device with the data this port has yet to send, so it is
+  // not awaited. Returns the part of describe() that tells the outcome; a gpsd that cannot be
+  // reached is not an error.
+  std::string announce_to_gpsd() {
+    const std::string path = client_path();
+    try {
+      gpsd_control(gpsd_socket_, "-" + path, kGpsdTimeout);
+      gpsd_control(gpsd_socket_, "+" + path, std::chrono::milliseconds(0));
+      return fmt::format(", announced to gpsd ({})", gpsd_socket_);
+    } catch (const std::runtime_error& e) {
+      return fmt::format(", not announced to gpsd: {}", e.what());
+    }
+  }
 
   // One non-blocking write(2) on the master; -1 with errno on failure (EAGAIN not counted).
   ssize_t write_master(const std::uint8_t* data, std::size_t size) {
@@ -323,11 +408,14 @@ class PtyPort final : public BytePort {
     }
   }
 
+  std::optional<LinkLock> link_lock_;  // first: released last, after the link is gone
   Fd master_;
   Fd slave_;
   Fd inotify_;
   std::string slave_path_;
   std::string link_path_;
+  std::string gpsd_socket_;  // gpsd's control socket; empty: gpsd is not told
+  std::string gpsd_status_;  // ", announced to gpsd (...)" for describe()
   std::size_t max_backlog_;
   RecentBytes recent_;              // written lately, possibly not yet visible to FIONREAD
   std::vector<std::uint8_t> tail_;  // unsent end of the last chunk, reserved once

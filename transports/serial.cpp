@@ -5,6 +5,7 @@
 // SP_ERR_ARG from sp_get_port_by_name(); /dev/ptmx is found but sp_open() then fails with
 // ENOTTY (a pty has no modem-control lines for TIOCMGET). Ptys therefore go through pty.cpp.
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <libserialport.h>
 #include <sys/ioctl.h>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "transports/byte_port.hpp"
+#include "transports/file_lock.hpp"
 
 namespace navemu::transport {
 namespace {
@@ -28,6 +30,16 @@ std::string sp_error_text() {
   std::string text = msg != nullptr ? msg : "unknown error";
   sp_free_error_message(msg);
   return text;
+}
+
+// The error for a device that cannot be opened (errno `code`, libserialport's or the OS's
+// `text`).
+std::runtime_error open_error(const std::string& what, int code, const std::string& text) {
+  if (code == EBUSY)
+    return std::runtime_error(what + ": busy (in use by another program): " + text);
+  if (code == EACCES)
+    return std::runtime_error(what + ": permission denied (is the user in group dialout?)");
+  return std::runtime_error(what + ": cannot open: " + text);
 }
 
 class SerialPort final : public BytePort {
@@ -43,6 +55,13 @@ class SerialPort final : public BytePort {
       throw std::runtime_error(
           fmt::format("{}: {}", what, std::error_code(errno, std::generic_category()).message()));
     }
+    // One owner: an exclusive flock(2) on the device before libserialport configures it (its
+    // settings are the tty's, shared by every open file of it).
+    lock_.fd = ::open(device_.c_str(), O_RDONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (lock_.fd < 0)
+      throw open_error(what, errno, std::error_code(errno, std::generic_category()).message());
+    if (!try_lock_exclusive(lock_.fd, what))
+      throw std::runtime_error(fmt::format("{} is in use by {}", what, lock_holder(lock_.fd)));
     if (sp_get_port_by_name(device_.c_str(), &port_) != SP_OK || port_ == nullptr)
       throw std::runtime_error(what +
                                ": not a serial device known to libserialport (it looks devices up "
@@ -52,11 +71,7 @@ class SerialPort final : public BytePort {
       const std::string text = sp_error_text();
       sp_free_port(port_);
       port_ = nullptr;
-      if (code == EBUSY)
-        throw std::runtime_error(what + ": busy (in use by another program): " + text);
-      if (code == EACCES)
-        throw std::runtime_error(what + ": permission denied (is the user in group dialout?)");
-      throw std::runtime_error(what + ": cannot open: " + text);
+      throw open_error(what, code, text);
     }
     // 8N1 without flow control: what GNSS receivers and IMUs speak.
     if (sp_set_baudrate(port_, baud_) != SP_OK || sp_set_bits(port_, 8) != SP_OK ||
@@ -66,6 +81,9 @@ class SerialPort final : public BytePort {
       close_port();
       throw std::runtime_error(fmt::format("{}: cannot set {} baud 8N1: {}", what, baud_, text));
     }
+    // From now on other programs' open(2)s of the device fail with EBUSY (tty_ioctl(4)
+    // TIOCEXCL; root can still open it). Best effort: the flock above is the rule.
+    ::ioctl(lock_.fd, TIOCEXCL);
     tail_.reserve(kTailReserve);
   }
 
@@ -169,6 +187,7 @@ class SerialPort final : public BytePort {
     return false;
   }
 
+  Fd lock_;  // holds the flock(2) on the device (opened before, closed after port_)
   sp_port* port_ = nullptr;
   std::string device_;
   int baud_;

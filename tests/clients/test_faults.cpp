@@ -1,7 +1,8 @@
 // `navemu run` under faults a real installation meets: a client that closes and reopens the pty,
-// a pty nobody reads, broken truth datagrams, SIGTERM or SIGINT while it is sending, a full disk
-// under the IMU log, a TCP client that comes and goes, a client flooding garbage into a u-blox
-// port, and a truth stream that jumps 1000 km or stops for 2 s.
+// a pty nobody reads, broken truth datagrams, SIGTERM or SIGINT while it is sending, a second
+// navemu on the same pty link and a killed one's link left behind, a full disk under the IMU
+// log, a TCP client that comes and goes, a client flooding garbage into a u-blox port, and a
+// truth stream that jumps 1000 km or stops for 2 s.
 
 #include <gtest/gtest.h>
 #include <pwd.h>
@@ -367,6 +368,67 @@ void check_stop_signal_during_output(int sig, const std::string& name) {
 TEST(Faults, SigtermDuringOutputExitsCleanly) { check_stop_signal_during_output(SIGTERM, "sigterm"); }
 
 TEST(Faults, SigintDuringOutputExitsCleanly) { check_stop_signal_during_output(SIGINT, "sigint"); }
+
+// The pty slave navemu announced for `link` ("GNSS NMEA on pty LINK -> /dev/pts/N"); empty if
+// none.
+std::string announced_slave(const std::string& err, const fs::path& link) {
+  const std::string key = "on pty " + link.string() + " -> ";
+  const std::size_t at = err.find(key);
+  if (at == std::string::npos) return {};
+  const std::size_t from = at + key.size();
+  return err.substr(from, err.find_first_of(",\n", from) - from);
+}
+
+// (d2) One owner per pty link. A second navemu on the link of a running one stops at once with
+// one line naming the link and the owner's pid, and leaves the first one's link alone: a
+// client still gets its sentences. A navemu killed with SIGKILL cannot remove its link (nor
+// its lock file): the next navemu takes them over, and exits cleanly removing both.
+TEST(Faults, ASecondNavemuOnALinkIsRefusedAndAKilledOnesLinkIsTakenOver) {
+  TempDir dir("one-owner");
+  const fs::path link = dir / "gnss";
+  const fs::path lock = dir / "gnss.lock";
+  const std::string config = stationary_config(link, "garmin-18x-5hz");
+  NavemuRun first(dir, "first", config, 60);
+  ASSERT_TRUE(first.wait_for_pty(link, 5.0)) << first.diagnostics();
+  const std::string first_slave = announced_slave(first.err(), link);
+  ASSERT_EQ(fs::read_symlink(link).string(), first_slave) << first.diagnostics();
+
+  NavemuRun second(dir, "second", config, 60);
+  const std::optional<int> st = second.child().wait_exit(10.0);
+  ASSERT_TRUE(st) << "the second navemu is still running" << second.diagnostics();
+  EXPECT_TRUE(WIFEXITED(*st) && WEXITSTATUS(*st) == 1) << describe_status(st);
+  EXPECT_EQ(second.err(), fmt::format("navemu: error: pty link {} is in use by navemu (pid {})\n",
+                                      link.string(), first.child().pid()));
+
+  // RMCs a client of the link gets in 1.5 s (5 Hz: 7 or 8).
+  const auto rmcs_on_link = [&](const std::string& what) {
+    PtyReader reader;
+    if (!reader.open(link)) return 0;
+    reader.discard_queued();
+    std::vector<Received> lines;
+    reader.read_until(mono_s() + 1.5, lines);
+    return check_session(lines, what);
+  };
+  ASSERT_TRUE(first.child().running()) << first.diagnostics();
+  EXPECT_EQ(fs::read_symlink(link).string(), first_slave) << "the first navemu's link was touched";
+  EXPECT_GE(rmcs_on_link("the first navemu after the second one's attempt"), 6)
+      << first.diagnostics();
+
+  first.child().signal(SIGKILL);
+  ASSERT_TRUE(first.child().wait_exit(5.0));
+  ASSERT_TRUE(fs::is_symlink(link)) << "a killed navemu leaves its link behind";
+  ASSERT_TRUE(fs::exists(lock)) << "and its lock file";
+
+  NavemuRun third(dir, "third", config, 60);
+  ASSERT_TRUE(third.wait_for_pty(link, 5.0)) << third.diagnostics();
+  const std::string third_slave = announced_slave(third.err(), link);
+  EXPECT_EQ(fs::read_symlink(link).string(), third_slave) << third.diagnostics();
+  EXPECT_EQ(slurp(lock), fmt::format("{}\n", third.child().pid()));
+  EXPECT_GE(rmcs_on_link("the navemu that took the link over"), 6) << third.diagnostics();
+  third.stop_expecting_exit_0();
+  EXPECT_EQ(fs::symlink_status(link).type(), fs::file_type::not_found) << "pty link left behind";
+  EXPECT_EQ(fs::symlink_status(lock).type(), fs::file_type::not_found) << "lock file left behind";
+}
 
 // (e) The disk of the IMU log is full (/dev/full: every write fails with ENOSPC). navemu says so
 // once, in one line naming the log and the error, and goes on: the pty output keeps its 5 Hz

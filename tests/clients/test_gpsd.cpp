@@ -110,18 +110,25 @@ std::vector<LoggedEpoch> read_log(const fs::path& file, int& bad_sentences) {
   return epochs;
 }
 
+// A run configuration: the garmin-18x-5hz profile on a pty at `link` (with `pty_keys`, e.g.
+// ", gpsd_socket: '...'", added to its map), then any `extra_output` lines.
 std::string pty_config(const fs::path& link, const std::string& truth_yaml,
-                       const std::string& extra_output = "") {
+                       const std::string& extra_output = "", const std::string& pty_keys = "") {
   return fmt::format(
       "scenario: {{status_interval_s: 1}}\n"
       "truth: {}\n"
       "gnss:\n"
       "  profile: garmin-18x-5hz\n"
       "  outputs:\n"
-      "    - {{type: pty, link: '{}'}}\n"
+      "    - {{type: pty, link: '{}'{}}}\n"
       "{}"
       "imu: {{enabled: false}}\n",
-      truth_yaml, link.string(), extra_output);
+      truth_yaml, link.string(), pty_keys, extra_output);
+}
+
+std::string stationary_truth() {
+  return fmt::format("{{source: stationary, position: {{lat_deg: {}, lon_deg: {}, h_m: {}}}}}",
+                     kSite.lat_deg, kSite.lon_deg, kSite.h_m);
 }
 
 // (a) Stationary truth at a known point: gpsd reports a 3D fix within 10 s of navemu's start,
@@ -132,10 +139,7 @@ TEST(Gpsd, StationaryReceiverGives3dFixOnTheEpochGridNearTheTruth) {
   TempDir dir("gpsd-static");
   const fs::path link = dir / "gnss", log = dir / "gnss.nmea";
   NavemuRun nav(dir, "navemu",
-                pty_config(link,
-                           fmt::format("{{source: stationary, position: {{lat_deg: {}, lon_deg: "
-                                       "{}, h_m: {}}}}}",
-                                       kSite.lat_deg, kSite.lon_deg, kSite.h_m),
+                pty_config(link, stationary_truth(),
                            fmt::format("    - {{type: file, path: '{}'}}\n", log.string())),
                 60);
   ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
@@ -379,6 +383,105 @@ TEST(Gpsd, MovingVehicleFromUdpTruthSpeedTrackAndLossOfFix) {
               "regained it %.2f s after the resume\n",
               start_real - spawn_real, loss.arrival_real - pause_real,
               back.arrival_real - resume_real);
+}
+
+// (c) navemu restarts under a running gpsd (gpsd -n, as the README starts it). A pty hangs up
+// for good when navemu exits, and gpsd 3.22 then stops reading the device but keeps it in its
+// pool and never reopens it: after the restart gpsd stays silent (checked for 3 s). gpsd's way
+// to have a device opened is its control socket (gpsd(8), "GPS DEVICE MANAGEMENT"; gpsdctl(8)):
+// `gpsdctl remove LINK` then `gpsdctl add LINK` (an add alone is refused while the dead device
+// is in the pool) brings the fixes back to the same client, within 10 s. With gpsd_socket on
+// the pty output navemu does that itself: the client gets fixes from the next navemu with
+// nobody acting, and when that navemu exits gpsd reports the device gone.
+TEST(Gpsd, RestartedNavemuGivesFixesAgainToTheSameClient) {
+  NAVEMU_REQUIRE_GPSD(gpsd);
+  const std::string gpsdctl = find_program("gpsdctl"), env = find_program("env");
+  if (gpsdctl.empty()) GTEST_SKIP() << "gpsdctl not found (Debian's gpsd package has it)";
+  TempDir dir("gpsd-restart");
+  const fs::path link = dir / "gnss", sock = dir / "gpsd.sock";  // Gpsd: -F DIR/gpsd.sock
+  const std::string plain = pty_config(link, stationary_truth());
+  const std::string telling =
+      pty_config(link, stationary_truth(), "", fmt::format(", gpsd_socket: '{}'", sock.string()));
+
+  std::optional<NavemuRun> nav;
+  double launched_real = real_s();
+  nav.emplace(dir, "navemu-1", plain, 120);
+  ASSERT_TRUE(nav->wait_for_pty(link, 5.0)) << nav->diagnostics();
+  Gpsd g;
+  ASSERT_TRUE(g.start(gpsd, dir, link, 5.0)) << g.diagnostics() << nav->diagnostics();
+  GpsdClient client;
+  ASSERT_TRUE(client.connect_and_watch(g.port())) << g.diagnostics();
+
+  // Waits up to `timeout_s` for a 3D fix of an epoch after the latest navemu was launched;
+  // the seconds it took, or none.
+  const auto next_fix = [&](double timeout_s) -> std::optional<double> {
+    const double t0 = mono_s();
+    const auto launched_ms = static_cast<std::int64_t>(std::llround(launched_real * 1000.0));
+    while (const auto n = client.next(t0 + timeout_s)) {
+      if (str(*n, "class") == "TPV" && num(*n, "mode").value_or(0) == 3 &&
+          iso_unix_ms(str(*n, "time")) >= launched_ms)
+        return mono_s() - t0;
+    }
+    return std::nullopt;
+  };
+  const auto restart = [&](const char* name, const std::string& config) {
+    nav->stop_expecting_exit_0();
+    launched_real = real_s();
+    nav.emplace(dir, name, config, 120);
+    return nav->wait_for_pty(link, 5.0);
+  };
+  const auto run_gpsdctl = [&](const char* action) {
+    Child ctl({env, "GPSD_SOCKET=" + sock.string(), gpsdctl, action, link.string()},
+              dir / "gpsdctl.stdout", dir / "gpsdctl.stderr");
+    const std::optional<int> st = ctl.wait_exit(5.0);
+    EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0)
+        << "gpsdctl " << action << ": " << describe_status(st) << slurp(dir / "gpsdctl.stderr");
+  };
+
+  ASSERT_TRUE(next_fix(10.0)) << "no fix from the first navemu" << g.diagnostics();
+
+  // Restarted: gpsd is silent until told, through its control socket, to reopen the link.
+  ASSERT_TRUE(restart("navemu-2", plain)) << nav->diagnostics();
+  EXPECT_FALSE(next_fix(3.0)) << "gpsd reopened the link on its own: the README's procedure "
+                                 "describes gpsd 3.22, which does not";
+  run_gpsdctl("remove");
+  run_gpsdctl("add");
+  const std::optional<double> after_gpsdctl = next_fix(10.0);
+  ASSERT_TRUE(after_gpsdctl) << "no fix after gpsdctl remove + add" << g.diagnostics()
+                             << nav->diagnostics();
+
+  // Restarted with gpsd_socket: navemu tells gpsd (the device the previous navemu left in
+  // gpsd's pool is removed first), and the fixes come back by themselves.
+  ASSERT_TRUE(restart("navemu-3", telling)) << nav->diagnostics();
+  EXPECT_NE(nav->err().find(fmt::format("on pty {} -> /dev/pts/", link.string())),
+            std::string::npos);
+  EXPECT_NE(nav->err().find(fmt::format(", announced to gpsd ({})\n", sock.string())),
+            std::string::npos)
+      << nav->diagnostics();
+  const double since_launch = mono_s() - nav->started_mono();
+  const std::optional<double> told = next_fix(10.0);
+  ASSERT_TRUE(told) << "no fix from a navemu that told gpsd" << g.diagnostics()
+                    << nav->diagnostics();
+
+  // Its exit removes the device from gpsd's pool: gpsd tells its clients the device is gone.
+  nav->stop_expecting_exit_0();
+  bool gone = false;
+  while (const auto n = client.next(mono_s() + 3.0)) {
+    if (str(*n, "class") == "DEVICE" && str(*n, "path") == link.string() &&
+        str(*n, "activated") == "0") {
+      gone = true;
+      break;
+    }
+  }
+  EXPECT_TRUE(gone) << "gpsd did not report the device gone after navemu exited"
+                    << g.diagnostics();
+  EXPECT_TRUE(client.bad_lines().empty()) << client.bad_lines().front();
+  RecordProperty("fix_after_gpsdctl_s", fmt::format("{:.2f}", *after_gpsdctl));
+  RecordProperty("fix_after_restart_with_gpsd_socket_s",
+                 fmt::format("{:.2f}", since_launch + *told));
+  std::printf("fix %.2f s after gpsdctl remove + add; %.2f s after the launch of a navemu with "
+              "gpsd_socket\n",
+              *after_gpsdctl, since_launch + *told);
 }
 
 }  // namespace

@@ -1,18 +1,27 @@
-// The pty port: raw mode, permissions, symlink handling, reopening clients, stale output.
+// The pty port: raw mode, permissions, symlink handling and its lock, reopening clients, stale
+// output.
 
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -102,6 +111,22 @@ int open_client(const std::string& path) {
   return ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
 }
 
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Whether `port`'s output reaches a client that opens `path`: one short sentence, read back.
+void expect_output_reaches(BytePort& port, const std::string& path) {
+  const int c = open_client(path);
+  ASSERT_GE(c, 0) << path;
+  const std::string sentence = "$X*00\r\n";
+  ASSERT_TRUE(port.write(sentence));
+  EXPECT_EQ(read_until(c, [&](const std::string& d) { return d.size() >= sentence.size(); }),
+            sentence);
+  ::close(c);
+}
+
 // A fresh directory under /tmp, removed at the end of the test.
 struct TempDir {
   std::filesystem::path path;
@@ -153,31 +178,108 @@ TEST(Pty, SlaveIsWorldReadableAndWritable) {
   EXPECT_TRUE(S_ISCHR(st.st_mode));
 }
 
-TEST(Pty, SymlinkIsCreatedReplacedAndRemoved) {
+TEST(Pty, SymlinkIsCreatedAndRemovedWithItsLockFile) {
   TempDir dir;
   const std::string link = (dir.path / "gnss").string();
-  auto first = open_pty({link});
-  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*first));
-  EXPECT_EQ(first->describe(), "pty " + link + " -> " + pty_slave_path(*first));
-
-  // A second port takes the existing symlink over.
-  auto second = open_pty({link});
-  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*second));
-  // Closing the first leaves the link alone: it is no longer the first port's.
-  first.reset();
-  ASSERT_TRUE(std::filesystem::is_symlink(link));
-  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*second));
-  // The link reaches the slave: data written to the port is readable through it.
-  const int c = open_client(link);
-  ASSERT_GE(c, 0);
-  ASSERT_TRUE(second->write(std::string_view("$X*00\r\n")));
-  EXPECT_EQ(read_until(c, [](const std::string& d) { return d.size() >= 7; }), "$X*00\r\n");
-  ::close(c);
-  second.reset();
+  auto port = open_pty({link});
+  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*port));
+  EXPECT_EQ(port->describe(), "pty " + link + " -> " + pty_slave_path(*port));
+  EXPECT_EQ(read_file(link + ".lock"), fmt::format("{}\n", ::getpid()));
+  expect_output_reaches(*port, link);  // the link reaches the slave
+  port.reset();
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link)));
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link + ".lock")));
 }
 
-TEST(Pty, RefusesToReplaceARegularFileOrUseAMissingDirectory) {
+// Another process owning a link: a child process that opens a port on `link`, reports its
+// slave through a pipe and waits to be killed (SIGKILL: no destructor runs, as when navemu is
+// killed).
+class LinkOwner {
+ public:
+  explicit LinkOwner(const std::string& link) {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("pipe2");
+    const pid_t parent = ::getpid();
+    pid_ = ::fork();
+    if (pid_ < 0) throw std::runtime_error("fork");
+    if (pid_ == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != parent) ::_exit(1);
+      ::close(fds[0]);
+      try {
+        auto port = open_pty({link});
+        const std::string slave = pty_slave_path(*port) + "\n";
+        if (::write(fds[1], slave.data(), slave.size()) != static_cast<ssize_t>(slave.size()))
+          ::_exit(1);
+        for (;;) ::pause();
+      } catch (...) {
+        ::_exit(1);
+      }
+    }
+    ::close(fds[1]);
+    slave_ = read_until(fds[0], [](const std::string& d) { return d.find('\n') != d.npos; });
+    ::close(fds[0]);
+    if (!slave_.empty()) slave_.pop_back();
+  }
+  ~LinkOwner() { kill(); }
+  LinkOwner(const LinkOwner&) = delete;
+  LinkOwner& operator=(const LinkOwner&) = delete;
+  pid_t pid() const { return pid_; }
+  const std::string& slave() const { return slave_; }
+  void kill() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  std::string slave_;
+};
+
+// The text of a process's /proc/PID/comm (its program name, at most 15 characters).
+std::string program_name(pid_t pid) {
+  std::string name = read_file(fmt::format("/proc/{}/comm", pid));
+  if (!name.empty() && name.back() == '\n') name.pop_back();
+  return name;
+}
+
+TEST(Pty, ALinkInUseIsRefusedAndAKilledOwnersLinkIsTakenOver) {
+  TempDir dir;
+  const std::string link = (dir.path / "gnss").string();
+  LinkOwner owner(link);
+  ASSERT_EQ(owner.slave().rfind("/dev/pts/", 0), 0u) << "the child could not open its port";
+  ASSERT_EQ(std::filesystem::read_symlink(link).string(), owner.slave());
+
+  // A second port on the link, in another process: refused, naming the owner; the owner's link
+  // stays as it was.
+  try {
+    open_pty({link});
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), fmt::format("pty link {} is in use by {} (pid {})", link,
+                                                 program_name(owner.pid()), owner.pid()));
+  }
+  EXPECT_EQ(std::filesystem::read_symlink(link).string(), owner.slave());
+  EXPECT_EQ(read_file(link + ".lock"), fmt::format("{}\n", owner.pid()));
+
+  // Within one process too: the lock belongs to the port, not to the process.
+  auto mine = open_pty({(dir.path / "imu").string()});
+  EXPECT_THROW(open_pty({(dir.path / "imu").string()}), std::runtime_error);
+  mine.reset();
+
+  // The owner is killed: its link and lock file stay behind, stale, and the next port takes
+  // them over.
+  owner.kill();
+  ASSERT_TRUE(std::filesystem::is_symlink(link));
+  auto next = open_pty({link});
+  EXPECT_EQ(std::filesystem::read_symlink(link).string(), pty_slave_path(*next));
+  EXPECT_EQ(read_file(link + ".lock"), fmt::format("{}\n", ::getpid()));
+  expect_output_reaches(*next, link);
+}
+
+TEST(Pty, RefusesToReplaceARegularFileFollowALockSymlinkOrUseAMissingDirectory) {
   TempDir dir;
   const std::string file = (dir.path / "not-a-link").string();
   std::ofstream(file) << "keep me";
@@ -188,10 +290,20 @@ TEST(Pty, RefusesToReplaceARegularFileOrUseAMissingDirectory) {
     EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("not a symlink"), std::string::npos) << e.what();
   }
-  std::ifstream in(file);
-  std::string content;
-  std::getline(in, content);
-  EXPECT_EQ(content, "keep me");
+  EXPECT_EQ(read_file(file), "keep me");
+  EXPECT_FALSE(std::filesystem::exists(file + ".lock")) << "refused before taking the lock";
+
+  // A lock file path that is a symlink is not followed (it could point anywhere).
+  const std::string planted = (dir.path / "planted").string();
+  std::filesystem::create_symlink(file, planted + ".lock");
+  try {
+    open_pty({planted});
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(planted + ".lock"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(planted)));
+  EXPECT_EQ(read_file(file), "keep me");
 
   const std::string missing = (dir.path / "no-such-dir" / "gnss").string();
   try {
@@ -200,6 +312,87 @@ TEST(Pty, RefusesToReplaceARegularFileOrUseAMissingDirectory) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
   }
+}
+
+// A stand-in for gpsd's control socket (gpsd(8), "GPS DEVICE MANAGEMENT": one command line per
+// connection here, answered "OK"): records each command and whether `link` existed when it came.
+class FakeGpsdControl {
+ public:
+  FakeGpsdControl(const std::string& socket_path, const std::string& link) {
+    fd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", socket_path.c_str());
+    if (fd_ < 0 || ::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 ||
+        ::listen(fd_, 4) != 0)
+      throw std::runtime_error("cannot listen on " + socket_path);
+    thread_ = std::thread([this, link] {
+      while (!stop_) {
+        pollfd p{fd_, POLLIN, 0};
+        if (::poll(&p, 1, 10) <= 0) continue;
+        const int c = ::accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
+        if (c < 0) continue;
+        std::string line =
+            read_until(c, [](const std::string& d) { return d.find('\n') != d.npos; });
+        line = line.substr(0, line.find('\n'));
+        const bool link_there = std::filesystem::is_symlink(link);
+        ::send(c, "OK\n", 3, MSG_NOSIGNAL);  // the port may have gone already: no SIGPIPE
+        ::close(c);
+        std::lock_guard<std::mutex> lock(mutex_);
+        commands_.push_back(line + (link_there ? " (link there)" : " (no link)"));
+      }
+    });
+  }
+  ~FakeGpsdControl() {
+    stop_ = true;
+    thread_.join();
+    ::close(fd_);
+  }
+  // The commands received, once `n` have come (at most 2 s).
+  std::vector<std::string> commands(std::size_t n) {
+    const auto deadline = Clock::now() + milliseconds(2000);
+    for (;;) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (commands_.size() >= n || Clock::now() > deadline) return commands_;
+      }
+      std::this_thread::sleep_for(milliseconds(5));
+    }
+  }
+
+ private:
+  int fd_ = -1;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  std::mutex mutex_;
+  std::vector<std::string> commands_;
+};
+
+TEST(Pty, GpsdIsToldWhenTheLinkComesAndGoes) {
+  TempDir dir;
+  const std::string link = (dir.path / "gnss").string();
+  const std::string sock = (dir.path / "gpsd.sock").string();
+  {
+    FakeGpsdControl gpsd(sock, link);
+    auto port = open_pty({link, 4096, sock});
+    // Removed first (gpsd refuses to add a path it still has), then added, once the link is up.
+    EXPECT_EQ(gpsd.commands(2), (std::vector<std::string>{"-" + link + " (link there)",
+                                                          "+" + link + " (link there)"}));
+    EXPECT_EQ(port->describe(), fmt::format("pty {} -> {}, announced to gpsd ({})", link,
+                                            pty_slave_path(*port), sock));
+    port.reset();
+    // Removed again at close, before the link goes.
+    EXPECT_EQ(gpsd.commands(3).back(), "-" + link + " (link there)");
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link)));
+  }
+  // No gpsd listening: the port works all the same and says so.
+  std::filesystem::remove(sock);
+  auto port = open_pty({link, 4096, sock});
+  EXPECT_EQ(port->describe(),
+            fmt::format("pty {} -> {}, not announced to gpsd: gpsd control socket {}: No such "
+                        "file or directory",
+                        link, pty_slave_path(*port), sock));
+  expect_output_reaches(*port, link);
 }
 
 TEST(Pty, ClientClosesAndReopensMidStream) {
