@@ -62,7 +62,16 @@ struct NavData {
   std::optional<int> leap_seconds;  // GPS - UTC from the header, if given
   int skipped_records = 0;          // records of other systems (parsed past, not used)
   std::string source;               // file name
+  // Navigation data that never runs out: the built-in constellation uploads a new set every
+  // 2 h for ever, as the GPS control segment does (models/constellation.hpp). `gps` then holds
+  // the sets around one time and renewal(t) gives those in force from t to at least
+  // t + kRenewalSpan_s; whoever runs past that asks again. Null for a file, whose records are
+  // all there are.
+  NavData (*renewal)(GpsTime t) = nullptr;
 };
+
+// How far past its time renewal(t) provides records (see NavData::renewal).
+inline constexpr double kRenewalSpan_s = 24.0 * 3600.0;
 
 // How far from its toe a broadcast ephemeris is still used: twice the half-width of the
 // nominal 4 h curve-fit interval (IS-GPS-200 20.3.4.4), lenient for sparse files.

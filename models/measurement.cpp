@@ -138,8 +138,26 @@ struct MeasurementGenerator::State {
   std::optional<GpsTime> last;
   std::vector<int> prns;
   PrnTable<std::vector<const GpsEphemeris*>> records;  // each PRN's broadcast records
-  // Each PRN's record choice with the span of times it holds for (the records never change).
+  // Each PRN's record choice with the span of times it holds for (the records change only when
+  // renewed, which clears it).
   PrnTable<EphemerisSelection> selection;
+  // Navigation data that renews (NavData::renewal, the built-in constellation): the sets in
+  // use, and the ones before them, which the last epoch's measurements may still point to;
+  // renewed again from `renew_at` on.
+  std::array<std::vector<GpsEphemeris>, 2> renewed;
+  std::optional<GpsTime> renew_at;
+
+  // `records` and `prns` from a set of records.
+  void index(const std::vector<GpsEphemeris>& gps) {
+    for (int prn : prns) records.find(prn)->clear();
+    std::set<int> seen;
+    for (const GpsEphemeris& e : gps) {
+      seen.insert(e.prn);
+      records.try_emplace(e.prn).first.push_back(&e);
+    }
+    prns.assign(seen.begin(), seen.end());
+    selection.clear();
+  }
 };
 
 MeasurementGenerator::MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg)
@@ -147,12 +165,7 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
   if (cfg_.mode == ReceiverMode::kDualFrequency) cfg_.dual_frequency_signals = true;
   if (cfg_.iono_model == IonoModel::kKlobuchar && !nav_.klobuchar)
     cfg_.iono_model = IonoModel::kPaperVtec;
-  std::set<int> prns;
-  for (const GpsEphemeris& e : nav_.gps) {
-    prns.insert(e.prn);
-    state_->records.try_emplace(e.prn).first.push_back(&e);
-  }
-  state_->prns.assign(prns.begin(), prns.end());
+  state_->index(nav_.gps);
 }
 
 MeasurementGenerator::~MeasurementGenerator() = default;
@@ -208,6 +221,14 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   if ((p_rx - st.below_horizon_from).norm() > 10e3) {  // another horizon (a jump, a fast ride)
     st.below_horizon_until_s.clear();
     st.below_horizon_from = p_rx;
+  }
+  // Renewing data: the sets in force from this epoch on, once a day (the first epoch included,
+  // whatever time `nav_` was made for). The previous sets stay alive until the next renewal.
+  if (nav_.renewal != nullptr && (!st.renew_at || out.t_true >= *st.renew_at)) {
+    std::swap(st.renewed[0], st.renewed[1]);
+    st.renewed[0] = nav_.renewal(out.t_true).gps;
+    st.index(st.renewed[0]);
+    st.renew_at = out.t_true.plus_s(kRenewalSpan_s);
   }
   for (int prn : st.prns) {
     if (const double* until = st.below_horizon_until_s.find(prn); until && t_s < *until) continue;
