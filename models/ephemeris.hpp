@@ -100,4 +100,28 @@ struct EphemerisSelection {
 EphemerisSelection select_ephemeris_span(std::span<const GpsEphemeris* const> records_of_one_prn,
                                          GpsTime t);
 
+// A closed span of GPS time.
+struct TimeSpan {
+  GpsTime from, to;
+  bool contains(GpsTime t) const { return from <= t && t <= to; }
+};
+
+// Satellites a fix needs: three coordinates and the receiver clock offset are four unknowns, so
+// with fewer than four satellites' data no receiver anywhere can solve for its position.
+inline constexpr int kSatellitesForFix = 4;
+
+// The curve-fit interval of a record, over which its orbit and clock fit is specified. It starts
+// when the set's transmission starts (IS-GPS-200 20.3.4.4) and a regular set is transmitted for
+// the 2 h before its toe, so its 4 h fit interval (fit interval flag 0, 20.3.3.4.3.1) is
+// toe +- 2 h; longer fits (flag 1, Table 20-XII) are taken centred on toe alike, as RTKLIB's
+// MAXDTOE check does. The fit interval is never shorter than 4 h: a RINEX file that holds the
+// flag (0 or 1) in its hours field counts as 4 h.
+TimeSpan fit_interval(const GpsEphemeris& e);
+
+// The spans of time over which `nav` has data for a fix: at least `min_satellites` PRNs each
+// with a healthy record (SV health 0) inside its fit interval. Sorted and disjoint; empty when
+// never. Data that renews (NavData::renewal) covers all time: one span from the earliest to the
+// latest representable GpsTime.
+std::vector<TimeSpan> covered_spans(const NavData& nav, int min_satellites = kSatellitesForFix);
+
 }  // namespace navemu
