@@ -64,10 +64,10 @@ struct NavData {
   std::string source;               // file name
   // Navigation data that never runs out: the built-in constellation uploads a new set every
   // 2 h for ever, as the GPS control segment does (models/constellation.hpp). `gps` then holds
-  // the sets around one time and renewal(t) gives those in force from t to at least
-  // t + kRenewalSpan_s; whoever runs past that asks again. Null for a file, whose records are
-  // all there are.
-  NavData (*renewal)(GpsTime t) = nullptr;
+  // the sets around one time, and renewal(t, records) replaces `records` with those in force
+  // from t to at least t + kRenewalSpan_s (reusing their storage); whoever runs past that asks
+  // again. Null for a file, whose records are all there are.
+  void (*renewal)(GpsTime t, std::vector<GpsEphemeris>& records) = nullptr;
 };
 
 // How far past its time renewal(t) provides records (see NavData::renewal).

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "models/orbit.hpp"
 #include "models/prn_table.hpp"
@@ -147,15 +146,14 @@ struct MeasurementGenerator::State {
   std::array<std::vector<GpsEphemeris>, 2> renewed;
   std::optional<GpsTime> renew_at;
 
-  // `records` and `prns` from a set of records.
+  // `records` and `prns` from a set of records (reusing their storage: a renewal of as many
+  // records allocates nothing).
   void index(const std::vector<GpsEphemeris>& gps) {
     for (int prn : prns) records.find(prn)->clear();
-    std::set<int> seen;
-    for (const GpsEphemeris& e : gps) {
-      seen.insert(e.prn);
-      records.try_emplace(e.prn).first.push_back(&e);
-    }
-    prns.assign(seen.begin(), seen.end());
+    for (const GpsEphemeris& e : gps) records.try_emplace(e.prn).first.push_back(&e);
+    prns.clear();
+    for (int prn = 1; prn <= kMaxPrn; ++prn)
+      if (const auto* r = records.find(prn); r != nullptr && !r->empty()) prns.push_back(prn);
     selection.clear();
   }
 };
@@ -226,7 +224,8 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   // whatever time `nav_` was made for). The previous sets stay alive until the next renewal.
   if (nav_.renewal != nullptr && (!st.renew_at || out.t_true >= *st.renew_at)) {
     std::swap(st.renewed[0], st.renewed[1]);
-    st.renewed[0] = nav_.renewal(out.t_true).gps;
+    nav_.renewal(out.t_true, st.renewed[0]);
+    st.renewed[1].reserve(st.renewed[0].size());  // at the first renewal: none later
     st.index(st.renewed[0]);
     st.renew_at = out.t_true.plus_s(kRenewalSpan_s);
   }

@@ -276,7 +276,7 @@ TEST(NominalConstellation, GlobalCoverageAndPdop) {
 TEST(NominalConstellation, UploadsEveryTwoHoursContinueTheSameOrbit) {
   const GpsTime t = from_week_tow(2244, 604800.0 - 4 * 3600.0);  // Saturday 20:00 GPST
   const NavData nav = nominal_constellation(t);
-  ASSERT_EQ(nav.renewal, &nominal_constellation);
+  ASSERT_EQ(nav.renewal, &nominal_uploads);
   std::map<int, std::map<std::int64_t, const GpsEphemeris*>> by_prn;  // PRN -> toe -> record
   for (const GpsEphemeris& e : nav.gps) by_prn[e.prn][e.toe.ns] = &e;
   double max_dp = 0.0, max_dv = 0.0;
