@@ -289,7 +289,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   std::int64_t gnss_period_ns = std::llround(1e9 / prof.rate_hz);
   const std::int64_t gnss_latency_ns = std::llround(prof.output_latency_s * 1e9);
   if (cfg.gnss_enabled) {
-    nav = cfg.nav_file.empty() ? nominal_constellation(start) : read_rinex_nav(cfg.nav_file);
+    nav = load_scenario_nav(cfg.nav_file, start, opt.duration_s, log);
     ReceiverParams rp;
     rp.measurement.mode = cfg.gnss_mode;
     apply_receiver_class(rp.measurement, prof.receiver_class);
