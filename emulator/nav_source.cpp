@@ -156,7 +156,7 @@ NavData load_scenario_nav(const std::string& nav_file, GpsTime start,
   const ScenarioOptions options{"scenario.nav", "scenario.start or --start", "--start",
                                 duration_s ? "--duration" : nullptr};
   require_nav_coverage(nav, start, duration_s ? start.plus_s(*duration_s) : start, options);
-  if (!duration_s && nav.renewal == nullptr)
+  if (!duration_s && !nav.renews)
     for (const TimeSpan& s : covered_spans(nav))
       if (s.contains(start))
         fmt::print(log,

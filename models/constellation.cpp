@@ -71,19 +71,14 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 
 NavData nominal_constellation(GpsTime t) {
   NavData nav;
-  nav.renewal = &nominal_uploads;
+  nav.renews = true;
   nav.source = "nominal constellation (GPS SPS PS Table 3.2-1, epoch 1993-07-01)";
   // The broadcast ionosphere a receiver decodes from subframe 4 page 18: a real broadcast set
   // (2004-01-01, RTKLIB's default ion_default), so that the sky's ionosphere is the Klobuchar
   // model's and a receiver corrects it as a real one would.
   nav.klobuchar = KlobucharCoefficients{{0.1118e-07, -0.7451e-08, -0.5961e-07, 0.1192e-06},
                                         {0.1167e+06, -0.2294e+06, -0.1311e+06, 0.1049e+07}};
-  nominal_uploads(t, nav.gps);
-  return nav;
-}
 
-void nominal_uploads(GpsTime t, std::vector<GpsEphemeris>& records) {
-  records.clear();
   const double a = kSemiMajorAxis_m;
   const double n0 = std::sqrt(kGpsMu_m3ps2 / (a * a * a));
   const double delta_n = kArgLatRate_radps - n0;
@@ -133,10 +128,11 @@ void nominal_uploads(GpsTime t, std::vector<GpsEphemeris>& records) {
       e.tgd_s = 0.0;
       e.transmission_tow_s = toe_tow - 7200.0;  // 2 h before toe, relative to toe's week
       e.fit_interval_h = 4.0;
-      e.source = std::string("nominal slot ") + slot.name;  // 15 characters: no allocation
-      records.push_back(e);
+      e.source = std::string("nominal slot ") + slot.name;
+      nav.gps.push_back(e);
     }
   }
+  return nav;
 }
 
 }  // namespace navemu

@@ -12,12 +12,8 @@ namespace navemu {
 // (from t - 2 h to t + 26 h every 2 h, so any scenario date has a fresh set). Like the real
 // satellites, each slot gets a new upload every 2 h: a new toe/toc and a new IODE/IODC
 // (IS-GPS-200 20.3.4.4), the same orbit parametrised at the new toe, so positions agree across
-// the data set cutover. The data never run out: NavData::renewal is nominal_uploads, which a
-// user running past t + 24 h calls again (models/measurement.cpp does).
+// the data set cutover. The data never run out (NavData::renews): past t + 26 h each slot's
+// sets go on as reuploaded() continues them, the same orbit again.
 NavData nominal_constellation(GpsTime t);
-
-// The records of nominal_constellation(t) into `records`, replacing what it held; once its
-// storage has grown to their number, without allocating.
-void nominal_uploads(GpsTime t, std::vector<GpsEphemeris>& records);
 
 }  // namespace navemu

@@ -90,7 +90,7 @@ TimeSpan fit_interval(const GpsEphemeris& e) {
 }
 
 std::vector<TimeSpan> covered_spans(const NavData& nav, int min_satellites) {
-  if (nav.renewal != nullptr)
+  if (nav.renews)
     return {{GpsTime{std::numeric_limits<std::int64_t>::min()},
              GpsTime{std::numeric_limits<std::int64_t>::max()}}};
   min_satellites = std::max(min_satellites, 1);

@@ -62,16 +62,17 @@ struct NavData {
   std::optional<int> leap_seconds;  // GPS - UTC from the header, if given
   int skipped_records = 0;          // records of other systems (parsed past, not used)
   std::string source;               // file name
-  // Navigation data that never runs out: the built-in constellation uploads a new set every
-  // 2 h for ever, as the GPS control segment does (models/constellation.hpp). `gps` then holds
-  // the sets around one time, and renewal(t, records) replaces `records` with those in force
-  // from t to at least t + kRenewalSpan_s (reusing their storage); whoever runs past that asks
-  // again. Null for a file, whose records are all there are.
-  void (*renewal)(GpsTime t, std::vector<GpsEphemeris>& records) = nullptr;
+  // Navigation data that never run out: the built-in constellation's satellites get a new data
+  // set every 2 h for ever, as the GPS control segment uploads them (models/constellation.hpp).
+  // `gps` holds the sets around one time (edited or not); a user running past them continues
+  // each satellite's latest set with reuploaded() (models/orbit.hpp), as
+  // models/measurement.cpp does. False for a file, whose records are all there are.
+  bool renews = false;
 };
 
-// How far past its time renewal(t) provides records (see NavData::renewal).
-inline constexpr double kRenewalSpan_s = 24.0 * 3600.0;
+// The spacing of the built-in constellation's uploads: regular GPS data sets are each sent for
+// 2 h (IS-GPS-200 20.3.4.4), their toes on even GPS hours, as in real broadcast files.
+inline constexpr double kUploadInterval_s = 7200.0;
 
 // How far from its toe a broadcast ephemeris is still used: twice the half-width of the
 // nominal 4 h curve-fit interval (IS-GPS-200 20.3.4.4), lenient for sparse files.
@@ -120,7 +121,7 @@ TimeSpan fit_interval(const GpsEphemeris& e);
 
 // The spans of time over which `nav` has data for a fix: at least `min_satellites` PRNs each
 // with a healthy record (SV health 0) inside its fit interval. Sorted and disjoint; empty when
-// never. Data that renews (NavData::renewal) covers all time: one span from the earliest to the
+// never. Data that renew (NavData::renews) cover all time: one span from the earliest to the
 // latest representable GpsTime.
 std::vector<TimeSpan> covered_spans(const NavData& nav, int min_satellites = kSatellitesForFix);
 

@@ -309,5 +309,22 @@ TEST(Measurement, BuiltInConstellationRenewsForDays) {
               min_sats, max_age_s, prn_iode.size(), iodes.size(), max_err_m);
 }
 
+// Built-in data edited by their user (here: 8 of the 24 slots kept, as tools/paper_table1
+// keeps the 7 highest) go on as edited: the renewal continues the sets it was given.
+TEST(Measurement, EditedBuiltInDataKeepTheirSatellitesWhenRenewed) {
+  NavData nav = nominal_constellation(kStart);
+  std::erase_if(nav.gps, [](const GpsEphemeris& e) { return e.prn > 8; });
+  MeasurementGenerator gen(nav, all_off());
+  const Vec3 p = ecef_from_geodetic(kSite);
+  std::set<int> late;
+  for (double dt = 0.0; dt <= 2 * 86400.0; dt += 600.0) {
+    for (const SatMeasurement& m : gen.generate(kStart.plus_s(dt), p).sats) {
+      EXPECT_LE(m.prn, 8);
+      if (dt > 30 * 3600.0) late.insert(m.prn);
+    }
+  }
+  EXPECT_GE(late.size(), 6u);
+}
+
 }  // namespace
 }  // namespace navemu
