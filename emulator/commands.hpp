@@ -42,6 +42,31 @@ GpsTime time_option(const std::string& text, const std::string& field);
 // constellation around `t`.
 NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t);
 
+// What a user changes when navigation data do not cover the scenario: the option naming the
+// file (reported as the field), the scenario's start (its names, and the flag to give an example
+// with) and its duration (null: none to shorten).
+struct ScenarioOptions {
+  const char* nav = "--nav";
+  const char* start = "--start";
+  const char* start_flag = "--start";
+  const char* duration = "--duration";
+};
+
+// Unless `nav` has data for `min_satellites` satellites inside their fit intervals over all of
+// [from, to] (models/ephemeris.hpp covered_spans), an InputError of one line: the file, the
+// intervals it covers and the scenario's (ISO UTC and GPS week:TOW), and how to fix it (a start
+// inside the file's interval, a shorter duration, or a navigation file for the date).
+void require_nav_coverage(const NavData& nav, GpsTime from, GpsTime to,
+                          const ScenarioOptions& options,
+                          int min_satellites = kSatellitesForFix);
+
+// The navigation data of `navemu run` / `simulate` (scenario.nav, or the built-in constellation,
+// which never runs out), checked to give a fix over [start, start + duration]. Without a
+// duration (a run until stopped) only the start is checked, and `log` is told until when the
+// file lasts.
+NavData load_scenario_nav(const std::string& nav_file, GpsTime start,
+                          std::optional<double> duration_s, std::ostream& log);
+
 struct SkyOptions {
   std::string nav_file;  // empty: built-in constellation
   bool nominal = false;

@@ -484,7 +484,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
 
   // --- The GNSS receiver: its navigation data and models from the scenario's start on.
   if (cfg.gnss_enabled) {
-    nav = cfg.nav_file.empty() ? nominal_constellation(start) : read_rinex_nav(cfg.nav_file);
+    nav = load_scenario_nav(cfg.nav_file, start, opt.duration_s, log);
     ReceiverParams rp;
     rp.measurement.mode = cfg.gnss_mode;
     apply_receiver_class(rp.measurement, prof.receiver_class);

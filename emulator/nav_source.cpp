@@ -1,15 +1,19 @@
 #include <fmt/format.h>
+#include <fmt/ostream.h>
 
 #include <charconv>
 #include <cstdlib>
 #include <functional>
 #include <chrono>
 #include <cmath>
+#include <ostream>
+#include <set>
 #include <vector>
 
 #include "emulator/commands.hpp"
 #include "models/constellation.hpp"
 #include "models/errors.hpp"
+#include "models/ephemeris.hpp"
 #include "models/rinex.hpp"
 
 namespace navemu {
@@ -103,6 +107,95 @@ GpsTime time_option(const std::string& text, const std::string& field) {
 NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t) {
   if (nav_file.empty()) return nominal_constellation(t);
   return read_rinex_nav(nav_file);
+}
+
+namespace {
+
+std::string when(GpsTime t) { return fmt::format("{} ({})", format_iso_utc(t), format_week_tow(t)); }
+
+std::string satellites(int n) {
+  return n == 1 ? "1 satellite inside its fit interval"
+                : fmt::format("{} satellites inside their fit intervals", n);
+}
+
+GpsTime whole_second_at_or_after(GpsTime t) {
+  const std::int64_t r = ((t.ns % kNsPerS) + kNsPerS) % kNsPerS;
+  return r == 0 ? t : GpsTime{t.ns - r + kNsPerS};
+}
+
+// The IGS daily merged broadcast file of a date, as CDDIS serves it
+// (archive/gnss/data/daily/YYYY/brdc/).
+std::string brdc_name(GpsTime t) {
+  const CalendarTime c = utc_from_gps(t);
+  return fmt::format("BRDC00IGS_R_{:04}{:03}0000_01D_MN.rnx", c.year,
+                     day_of_year(c.year, c.month, c.day));
+}
+
+}  // namespace
+
+void require_nav_coverage(const NavData& nav, GpsTime from, GpsTime to,
+                          const ScenarioOptions& options, int min_satellites) {
+  const std::vector<TimeSpan> spans = covered_spans(nav, min_satellites);
+  const TimeSpan* started = nullptr;  // the interval the scenario starts in
+  const TimeSpan* fits = nullptr;     // the first one as long as the scenario, else the longest
+  for (const TimeSpan& s : spans) {
+    if (s.contains(from)) {
+      if (s.contains(to)) return;
+      started = &s;
+    }
+    const auto length = [](const TimeSpan& x) { return x.to.ns - x.from.ns; };
+    if (fits == nullptr || (length(*fits) < to.ns - from.ns && length(s) > length(*fits))) fits = &s;
+  }
+
+  std::string has;
+  if (spans.empty()) {
+    std::set<int> prns;
+    for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
+    has = fmt::format("has no time with {} ({} GPS records, {} satellites)",
+                      satellites(min_satellites), nav.gps.size(), prns.size());
+  } else {
+    has = fmt::format("has data for {} only", satellites(min_satellites));
+    constexpr std::size_t kShown = 3;
+    for (std::size_t i = 0; i < spans.size() && i < kShown; ++i)
+      has += fmt::format("{} from {} to {}", i == 0 ? "" : ",", when(spans[i].from), when(spans[i].to));
+    if (spans.size() > kShown) has += fmt::format(" and {} more intervals", spans.size() - kShown);
+  }
+  const std::string scenario = from == to ? fmt::format("the scenario starts at {}", when(from))
+                                          : fmt::format("the scenario runs from {} to {}",
+                                                        when(from), when(to));
+  // The fix: a shorter scenario when it starts inside an interval, otherwise a start inside one;
+  // or a file for the scenario's dates either way.
+  std::string fix;
+  if (started != nullptr && options.duration != nullptr)
+    fix = fmt::format("shorten {} to at most {:.0f} s, or ", options.duration,
+                      std::floor(seconds_between(started->to, from)));
+  else if (fits != nullptr)
+    fix = fmt::format("set {} inside {} (e.g. {} {}), or ", options.start,
+                      spans.size() == 1 ? "it" : "one", options.start_flag,
+                      format_iso_utc(whole_second_at_or_after(fits->from)));
+  fix += fmt::format("use a navigation file for the scenario's date{} (e.g. {}, the IGS daily "
+                     "broadcast ephemerides from CDDIS)",
+                     started != nullptr ? "s" : "", brdc_name(from));
+  throw InputError(nav.source, 0, options.nav,
+                   fmt::format("the file {}, but {}: {}", has, scenario, fix));
+}
+
+NavData load_scenario_nav(const std::string& nav_file, GpsTime start,
+                          std::optional<double> duration_s, std::ostream& log) {
+  NavData nav = load_nav_or_nominal(nav_file, start);
+  const ScenarioOptions options{"scenario.nav", "scenario.start or --start", "--start",
+                                duration_s ? "--duration" : nullptr};
+  require_nav_coverage(nav, start, duration_s ? start.plus_s(*duration_s) : start, options);
+  if (!duration_s && !nav.renews)
+    for (const TimeSpan& s : covered_spans(nav))
+      if (s.contains(start))
+        fmt::print(log,
+                   "navemu: navigation data {} has {} until {}, {:.1f} h after the start; "
+                   "past that the receiver is left with stale ephemerides, then none, and "
+                   "loses its fix\n",
+                   nav.source, satellites(kSatellitesForFix), when(s.to),
+                   seconds_between(s.to, start) / 3600.0);
+  return nav;
 }
 
 }  // namespace navemu

@@ -112,7 +112,8 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
   const GpsTime start = time_option(opt.start, "--start");
   const Geodetic rx = parse_geodetic(opt.at, "--at");
   const Vec3 p_rx = ecef_from_geodetic(rx);
-  const NavData nav = load_nav_or_nominal(opt.nav_file, start.plus_s(opt.duration_s / 2));
+  const NavData nav = load_nav_or_nominal(opt.nav_file, start);
+  require_nav_coverage(nav, start, start.plus_s(opt.duration_s), {});
 
   MeasurementConfig cfg;
   cfg.mode = kModes.at(opt.mode);

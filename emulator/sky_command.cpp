@@ -8,7 +8,6 @@
 #include <set>
 
 #include "emulator/commands.hpp"
-#include "models/errors.hpp"
 #include "models/atmosphere.hpp"
 #include "models/orbit.hpp"
 #include "models/solver.hpp"
@@ -58,6 +57,8 @@ int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {
   const Geodetic rx = parse_geodetic(opt.at, "--at");
   const Vec3 p_rx = ecef_from_geodetic(rx);
   const NavData nav = load_nav_or_nominal(opt.nav_file, t);
+  // The sky needs no fix: one satellite with data is a sky to show.
+  require_nav_coverage(nav, t, t, {"--nav", "--time", "--time", nullptr}, 1);
 
   std::set<int> prns;
   for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
@@ -93,10 +94,6 @@ int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {
                g.dir.el_rad * kRadToDeg, g.range_m, iono_m, tropo.total_m(), tropo.hydrostatic_m,
                tropo.wet_m);
   }
-  if (prns.empty() || stale == static_cast<int>(prns.size()))
-    throw InputError(nav.source, 0, "--time",
-                     fmt::format("no GPS ephemeris within {:.0f} h of {}", kMaxEphemerisAge_s / 3600,
-                                 format_iso_utc(t, nav.leap_seconds)));
   if (stale > 0)
     fmt::print(err, "navemu sky: {} satellites skipped: no ephemeris within {:.0f} h\n", stale,
                kMaxEphemerisAge_s / 3600);

@@ -71,6 +71,7 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 
 NavData nominal_constellation(GpsTime t) {
   NavData nav;
+  nav.renews = true;
   nav.source = "nominal constellation (GPS SPS PS Table 3.2-1, epoch 1993-07-01)";
   // The broadcast ionosphere a receiver decodes from subframe 4 page 18: a real broadcast set
   // (2004-01-01, RTKLIB's default ion_default), so that the sky's ionosphere is the Klobuchar

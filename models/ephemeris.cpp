@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <utility>
+#include <vector>
 
 namespace navemu {
 
@@ -77,6 +80,50 @@ EphemerisSelection select_ephemeris_span(std::span<const GpsEphemeris* const> re
       out.before_2ns = std::min(out.before_2ns, midpoint_2ns);
     else
       out.after_2ns = std::max(out.after_2ns, midpoint_2ns);
+  }
+  return out;
+}
+
+TimeSpan fit_interval(const GpsEphemeris& e) {
+  const double half_s = std::max(e.fit_interval_h, 4.0) * 3600.0 / 2.0;
+  return {e.toe.plus_s(-half_s), e.toe.plus_s(half_s)};
+}
+
+std::vector<TimeSpan> covered_spans(const NavData& nav, int min_satellites) {
+  if (nav.renews)
+    return {{GpsTime{std::numeric_limits<std::int64_t>::min()},
+             GpsTime{std::numeric_limits<std::int64_t>::max()}}};
+  min_satellites = std::max(min_satellites, 1);
+  std::map<int, std::vector<TimeSpan>> by_prn;
+  for (const GpsEphemeris& e : nav.gps)
+    if (e.health == 0) by_prn[e.prn].push_back(fit_interval(e));
+  // Each PRN's fit intervals merged (a satellite counts once however many of its records hold),
+  // then a sweep over where they begin (+1) and end (-1). At equal times beginnings come first,
+  // so satellites whose spans touch count together at that instant.
+  std::vector<std::pair<GpsTime, int>> events;
+  for (auto& [prn, spans] : by_prn) {
+    std::sort(spans.begin(), spans.end(), [](const TimeSpan& a, const TimeSpan& b) { return a.from < b.from; });
+    TimeSpan cur = spans.front();
+    for (const TimeSpan& s : spans) {
+      if (s.from > cur.to) {
+        events.insert(events.end(), {{cur.from, +1}, {cur.to, -1}});
+        cur = s;
+      } else {
+        cur.to = std::max(cur.to, s.to);
+      }
+    }
+    events.insert(events.end(), {{cur.from, +1}, {cur.to, -1}});
+  }
+  std::sort(events.begin(), events.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first < b.first : a.second > b.second;
+  });
+  std::vector<TimeSpan> out;
+  int count = 0;
+  for (const auto& [t, step] : events) {
+    const bool was = count >= min_satellites;
+    count += step;
+    if (!was && count >= min_satellites) out.push_back({t, t});
+    if (was && count < min_satellites) out.back().to = t;
   }
   return out;
 }

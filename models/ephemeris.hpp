@@ -62,7 +62,17 @@ struct NavData {
   std::optional<int> leap_seconds;  // GPS - UTC from the header, if given
   int skipped_records = 0;          // records of other systems (parsed past, not used)
   std::string source;               // file name
+  // Navigation data that never run out: the built-in constellation's satellites get a new data
+  // set every 2 h for ever, as the GPS control segment uploads them (models/constellation.hpp).
+  // `gps` holds the sets around one time (edited or not); a user running past them continues
+  // each satellite's latest set with reuploaded() (models/orbit.hpp), as
+  // models/measurement.cpp does. False for a file, whose records are all there are.
+  bool renews = false;
 };
+
+// The spacing of the built-in constellation's uploads: regular GPS data sets are each sent for
+// 2 h (IS-GPS-200 20.3.4.4), their toes on even GPS hours, as in real broadcast files.
+inline constexpr double kUploadInterval_s = 7200.0;
 
 // How far from its toe a broadcast ephemeris is still used: twice the half-width of the
 // nominal 4 h curve-fit interval (IS-GPS-200 20.3.4.4), lenient for sparse files.
@@ -90,5 +100,29 @@ struct EphemerisSelection {
 };
 EphemerisSelection select_ephemeris_span(std::span<const GpsEphemeris* const> records_of_one_prn,
                                          GpsTime t);
+
+// A closed span of GPS time.
+struct TimeSpan {
+  GpsTime from, to;
+  bool contains(GpsTime t) const { return from <= t && t <= to; }
+};
+
+// Satellites a fix needs: three coordinates and the receiver clock offset are four unknowns, so
+// with fewer than four satellites' data no receiver anywhere can solve for its position.
+inline constexpr int kSatellitesForFix = 4;
+
+// The curve-fit interval of a record, over which its orbit and clock fit is specified. It starts
+// when the set's transmission starts (IS-GPS-200 20.3.4.4) and a regular set is transmitted for
+// the 2 h before its toe, so its 4 h fit interval (fit interval flag 0, 20.3.3.4.3.1) is
+// toe +- 2 h; longer fits (flag 1, Table 20-XII) are taken centred on toe alike, as RTKLIB's
+// MAXDTOE check does. The fit interval is never shorter than 4 h: a RINEX file that holds the
+// flag (0 or 1) in its hours field counts as 4 h.
+TimeSpan fit_interval(const GpsEphemeris& e);
+
+// The spans of time over which `nav` has data for a fix: at least `min_satellites` PRNs each
+// with a healthy record (SV health 0) inside its fit interval. Sorted and disjoint; empty when
+// never. Data that renew (NavData::renews) cover all time: one span from the earliest to the
+// latest representable GpsTime.
+std::vector<TimeSpan> covered_spans(const NavData& nav, int min_satellites = kSatellitesForFix);
 
 }  // namespace navemu

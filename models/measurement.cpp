@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
+#include <limits>
 
 #include "models/orbit.hpp"
 #include "models/prn_table.hpp"
@@ -138,8 +138,59 @@ struct MeasurementGenerator::State {
   std::optional<GpsTime> last;
   std::vector<int> prns;
   PrnTable<std::vector<const GpsEphemeris*>> records;  // each PRN's broadcast records
-  // Each PRN's record choice with the span of times it holds for (the records never change).
+  // Each PRN's record choice with the span of times it holds for (the records change only when
+  // renewed, which clears it).
   PrnTable<EphemerisSelection> selection;
+  // Data that renew (NavData::renews, the built-in constellation): from `renew_at` on, each
+  // PRN's latest set goes on with a new upload every 2 h (reuploaded()) for the next day. The
+  // sets in use are renewed[0]; renewed[1] keeps the ones before them, which the last epoch's
+  // measurements may still point to, until the next renewal.
+  std::array<std::vector<GpsEphemeris>, 2> renewed;
+  GpsTime renew_at{std::numeric_limits<std::int64_t>::max()};
+  // The uploads a renewal at t holds per PRN: toe from t - 2 h (the set in use) to t + 26 h.
+  static constexpr double kRenewFrom_s = -kUploadInterval_s, kRenewTo_s = 26 * 3600.0;
+  static constexpr std::size_t kRenewedPerPrn =
+      static_cast<std::size_t>((kRenewTo_s - kRenewFrom_s) / kUploadInterval_s) + 1;
+
+  // `records` and `prns` from a set of records (reusing their storage: a renewal of as many
+  // records allocates nothing), and when renewing data would run short.
+  void index(const std::vector<GpsEphemeris>& gps, bool renews) {
+    for (int prn : prns) records.find(prn)->clear();
+    for (const GpsEphemeris& e : gps) records.try_emplace(e.prn).first.push_back(&e);
+    prns.clear();
+    for (int prn = 1; prn <= kMaxPrn; ++prn)
+      if (const auto* r = records.find(prn); r != nullptr && !r->empty()) prns.push_back(prn);
+    selection.clear();
+    if (!renews) return;
+    // An upload before the earliest of the PRNs' latest toes: the nearest toe stays within 1 h.
+    renew_at = GpsTime{std::numeric_limits<std::int64_t>::max()};
+    for (int prn : prns) renew_at = std::min(renew_at, latest(prn).toe.plus_s(-kUploadInterval_s));
+  }
+
+  const GpsEphemeris& latest(int prn) const {
+    const auto& r = *records.find(prn);
+    return **std::max_element(r.begin(), r.end(), [](const GpsEphemeris* a, const GpsEphemeris* b) {
+      return a->toe < b->toe;
+    });
+  }
+
+  // The sets in force from t on: those held with toe from t - 2 h on, then each PRN's latest
+  // set uploaded anew every 2 h to t + 26 h.
+  void renew(GpsTime t) {
+    std::vector<GpsEphemeris>& next = renewed[1];  // nothing points into it any more
+    next.clear();
+    const GpsTime from = t.plus_s(kRenewFrom_s), to = t.plus_s(kRenewTo_s);
+    for (int prn : prns) {
+      for (const GpsEphemeris* e : *records.find(prn))
+        if (e->toe >= from) next.push_back(*e);
+      const GpsEphemeris& newest = latest(prn);
+      const double k0 = std::max(1.0, std::ceil(seconds_between(from, newest.toe) / kUploadInterval_s));
+      for (double k = k0; newest.toe.plus_s(k * kUploadInterval_s) <= to; ++k)
+        next.push_back(reuploaded(newest, newest.toe.plus_s(k * kUploadInterval_s)));
+    }
+    std::swap(renewed[0], renewed[1]);
+    index(renewed[0], true);
+  }
 };
 
 MeasurementGenerator::MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg)
@@ -147,12 +198,9 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
   if (cfg_.mode == ReceiverMode::kDualFrequency) cfg_.dual_frequency_signals = true;
   if (cfg_.iono_model == IonoModel::kKlobuchar && !nav_.klobuchar)
     cfg_.iono_model = IonoModel::kPaperVtec;
-  std::set<int> prns;
-  for (const GpsEphemeris& e : nav_.gps) {
-    prns.insert(e.prn);
-    state_->records.try_emplace(e.prn).first.push_back(&e);
-  }
-  state_->prns.assign(prns.begin(), prns.end());
+  state_->index(nav_.gps, nav_.renews);
+  if (nav_.renews)  // a steady run renews without allocating
+    for (auto& r : state_->renewed) r.reserve(state_->prns.size() * State::kRenewedPerPrn);
 }
 
 MeasurementGenerator::~MeasurementGenerator() = default;
@@ -209,6 +257,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     st.below_horizon_until_s.clear();
     st.below_horizon_from = p_rx;
   }
+  if (out.t_true >= st.renew_at) st.renew(out.t_true);  // renewing data (the built-in sky)
   for (int prn : st.prns) {
     if (const double* until = st.below_horizon_until_s.find(prn); until && t_s < *until) continue;
     EphemerisSelection& chosen = st.selection.try_emplace(prn).first;

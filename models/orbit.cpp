@@ -70,6 +70,31 @@ double gps_sat_clock_poly_s(const GpsEphemeris& eph, GpsTime t) {
   return eph.af0_s + eph.af1_sps * dt + eph.af2_sps2 * dt * dt;
 }
 
+GpsEphemeris reuploaded(const GpsEphemeris& eph, GpsTime toe) {
+  GpsEphemeris e = eph;
+  const double dt = seconds_between(toe, eph.toe);
+  const double a = eph.sqrt_a_sqrtm * eph.sqrt_a_sqrtm;
+  const double n = std::sqrt(kGpsMu_m3ps2 / (a * a * a)) + eph.delta_n_radps;
+  const double tow_old = to_week_tow(eph.toe).tow_s, tow_new = to_week_tow(toe).tow_s;
+  const double kTwoPi = 2.0 * kPi;
+  e.toe = toe;
+  e.toc = eph.toc.plus_s(dt);
+  e.m0_rad = std::remainder(eph.m0_rad + n * dt, kTwoPi);
+  // Omega_k = Omega0 + (Omega_dot - omega_e) tk - omega_e toe_tow must stay the same function
+  // of time.
+  e.omega0_rad = std::remainder(eph.omega0_rad + (eph.omega_dot_radps - kOmegaEarth_radps) * dt +
+                                    kOmegaEarth_radps * (tow_new - tow_old),
+                                kTwoPi);
+  e.i0_rad = eph.i0_rad + eph.idot_radps * dt;
+  e.af0_s = eph.af0_s + eph.af1_sps * dt + eph.af2_sps2 * dt * dt;
+  e.af1_sps = eph.af1_sps + 2.0 * eph.af2_sps2 * dt;
+  const auto uploads = static_cast<int>(std::llround(dt / kUploadInterval_s));
+  e.iode = (((eph.iode + uploads) % 256) + 256) % 256;
+  e.iodc = (eph.iodc & ~0xFF) | e.iode;
+  e.transmission_tow_s = eph.transmission_tow_s + (tow_new - tow_old);
+  return e;
+}
+
 // IS-GPS-200 Table 20-IV (user algorithm for ephemeris determination) with the
 // velocity equations of its later revisions.
 SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {

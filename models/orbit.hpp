@@ -23,6 +23,15 @@ SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t);
 // time into GPS system time (IS-GPS-200 20.3.3.3.3.1).
 double gps_sat_clock_poly_s(const GpsEphemeris& eph, GpsTime t);
 
+// The data set a satellite would get in a new upload with reference time `toe`, when its orbit
+// and clock go on as `eph` describes them: the same Keplerian orbit and clock polynomial
+// parametrised at the new toe (IS-GPS-200 Table 20-IV: M0 advanced by n dt, Omega0 so that the
+// node's longitude is unchanged at every time, i0 by IDOT dt; Table 20-III clock: af0, af1 at
+// the new toc), so the two agree in position and clock at every time. toe and toc move by
+// the same whole number of 2 h uploads k; IODE and the 8 LSBs of IODC go up by k (mod 256) and
+// the transmission time keeps its offset from toe.
+GpsEphemeris reuploaded(const GpsEphemeris& eph, GpsTime toe);
+
 // Rotation of an ECEF vector by the Earth's rotation during `dt_s` (the Sagnac correction):
 // a vector fixed in inertial space, expressed in the ECEF frame at t, expressed in the ECEF
 // frame at t + dt_s.

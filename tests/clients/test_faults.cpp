@@ -975,8 +975,8 @@ TEST(Faults, ATruthDatagramAnHourAheadIsRejectedAsFutureAndTheStreamGoesOn) {
   bool seen_ok = false, seen_future = false;
   for (const StatusLine& sl : status_lines(nav.err())) {
     seen_ok = seen_ok || sl.truth == "ok";
-    if (seen_ok) {
-      EXPECT_EQ(sl.truth, "ok") << nav.diagnostics();
+    if (seen_ok) {  // ok, or extrapolating when a busy machine delays a datagram
+      EXPECT_TRUE(sl.truth_ok) << nav.diagnostics();
     }
     seen_future = seen_future || sl.truth_counts.find("future 1") != std::string::npos;
   }

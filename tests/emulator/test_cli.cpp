@@ -395,5 +395,63 @@ TEST(Cli, RunWithAnUnusableCanOutputFailsAtStartUp) {
       << bad.err;
 }
 
+// Navigation data that do not cover the scenario stop navemu at start with one line: the file,
+// the interval it has data for a fix in and the scenario's (ISO UTC and GPS week:TOW), and what
+// to do. The GEONET file's data sets have toe from 2005-04-02 00:00 to 2005-04-03 00:00 GPS
+// time (the file's records), each inside its fit interval for 2 h either side: 2005-04-01 22:00
+// GPST = 21:59:47 UTC (GPS - UTC = 13 s) = week 1316, 511200 s, to 2005-04-03 02:00 GPST =
+// week 1317, 7200 s. Before the check, a run of a later date printed "no fix" for ever and
+// simulate exited 0 with no fix.
+TEST(Cli, NavigationDataOutsideTheScenarioAreAnErrorSayingWhatTheyCover) {
+  NAVEMU_REQUIRE_SHARED();
+  const std::string nav = test::shared_data("gnss/rtklib_geonet_20050402/07590920.05n").string();
+  const std::string covers =
+      "07590920.05n: scenario.nav: the file has data for 4 satellites inside their fit intervals "
+      "only from 2005-04-01T21:59:47Z (1316:511200.000) to 2005-04-03T01:59:47Z (1317:7200.000), "
+      "but the scenario ";
+  // The station's own place (Miura, Japan): the file holds the satellites it saw.
+  const auto cfg = write_temp("geonet.yaml", "scenario: {nav: '" + nav + "'}\n"
+                                             "truth: {source: stationary, position: {lat_deg: 35.16, lon_deg: 139.61, h_m: 68}}\n"
+                                             "gnss: {outputs: []}\nimu: {enabled: false}\n");
+  const auto out = std::filesystem::path(::testing::TempDir()) / "cli_geonet";
+
+  const CliRun later = navemu({"simulate", cfg.string(), "--start", "2024-01-01T00:00:00Z",
+                               "--duration", "60", "--out", out.string()});
+  expect_one_line_error(later, covers + "runs from 2024-01-01T00:00:00Z (2295:86418.000) to "
+                                        "2024-01-01T00:01:00Z (2295:86478.000): set scenario.start "
+                                        "or --start inside it (e.g. --start 2005-04-01T21:59:47Z), "
+                                        "or use a navigation file for the scenario's date (e.g. "
+                                        "BRDC00IGS_R_20240010000_01D_MN.rnx,");
+  EXPECT_EQ(later.code, 1);
+  // What it suggests works: every epoch has a fix.
+  const CliRun inside = navemu({"simulate", cfg.string(), "--start", "2005-04-01T21:59:47Z",
+                                "--duration", "60", "--out", out.string()});
+  EXPECT_EQ(inside.code, 0) << inside.err;
+  EXPECT_NE(inside.err.find("300 GNSS epochs (300 with a fix)"), std::string::npos) << inside.err;
+  // Starting inside and running past the end: 12:00:13 GPST to 02:00 GPST is 50387 s.
+  expect_one_line_error(navemu({"simulate", cfg.string(), "--start", "2005-04-02T12:00:00Z",
+                                "--duration", "86400", "--out", out.string()}),
+                        covers + "runs from 2005-04-02T12:00:00Z (1316:561613.000) to "
+                                 "2005-04-03T12:00:00Z (1317:43213.000): shorten --duration to at "
+                                 "most 50387 s, or use a navigation file for the scenario's dates");
+  // The real-time run of the issue (start now): stopped at start, not a run without a fix.
+  const CliRun now = navemu({"run", cfg.string(), "--duration", "30"});
+  expect_one_line_error(now, covers + "runs from ");
+  EXPECT_NE(now.err.find("(e.g. --start 2005-04-01T21:59:47Z)"), std::string::npos) << now.err;
+  // sky needs one satellite, obs a fix, and they name their own options.
+  const CliRun sky = navemu({"sky", "--nav", nav, "--time", "2024-01-01T00:00:00Z"});
+  expect_one_line_error(sky, "07590920.05n: --nav: the file has data for 1 satellite inside its fit interval only from ");
+  EXPECT_NE(sky.err.find("to 2005-04-03T01:59:47Z (1317:7200.000), but the scenario starts at "
+                         "2024-01-01T00:00:00Z (2295:86418.000): set --time inside it (e.g. --time "
+                         "2005-04-01T2"),
+            std::string::npos)
+      << sky.err;
+  EXPECT_TRUE(sky.out.empty()) << sky.out;
+  const CliRun obs = navemu({"obs", "--nav", nav, "--at", "35.16,139.61,68", "--start", "2024-01-01T00:00:00Z",
+                             "--duration", "60", "--out", (out / "x.rnx").string()});
+  expect_one_line_error(obs, "07590920.05n: --nav: the file has data for 4 satellites inside their fit intervals only from ");
+  EXPECT_NE(obs.err.find("(e.g. --start 2005-04-01T21:59:47Z)"), std::string::npos) << obs.err;
+}
+
 }  // namespace
 }  // namespace navemu

@@ -7,10 +7,15 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include "models/time.hpp"
+#include "protocols/gps_lnav.hpp"
 #include "protocols/nmea.hpp"
+#include "protocols/ubx.hpp"
+#include "protocols/ubx_messages.hpp"
 #include "tests/can_capture.hpp"
 #include "tests/test_support.hpp"
 
@@ -328,6 +333,90 @@ TEST(Simulate, RejectsAStreamedTruth) {
   const auto r = simulate(cfg, dir / "out", 10);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.out.find("simulate needs a generator or a CSV truth"), std::string::npos) << r.out;
+}
+
+// Every RXM-SFRBX subframe in a u-blox byte stream, by PRN in the order sent.
+std::map<int, std::vector<lnav::LnavSubframe>> sfrbx_subframes(const std::string& bytes) {
+  std::map<int, std::vector<lnav::LnavSubframe>> out;
+  ubx::Parser parser(65535);
+  const auto* p = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  parser.feed(std::span<const std::uint8_t>(p, bytes.size()), [&](ubx::Parser::Result r) {
+    ubx::RxmSfrbx m;
+    if (r != ubx::Parser::Result::kFrame || ubx::MsgId{parser.cls(), parser.id()} != ubx::kRxmSfrbx ||
+        !ubx::decode(parser.payload(), m) || m.words.size() != 10)
+      return;
+    lnav::LnavSubframe words{};
+    std::copy(m.words.begin(), m.words.end(), words.begin());
+    out[m.sv_id].push_back(words);
+  });
+  return out;
+}
+
+// The built-in constellation over more than a day (30 h; the data made for the start alone
+// last 29 h): a u-blox M8 sending RXM-SFRBX keeps its 3D fix at every epoch, and its subframes
+// decode (parity, and the IODC/IODE of subframes 1-3 agreeing: no data set cutover inside a
+// frame, IS-GPS-200 20.3.4.4) into data sets uploaded every 2 h: each PRN's IODE goes up by one
+// per upload, and a set is sent from 1 h before its toe to 1 h after.
+TEST(Simulate, BuiltInConstellationKeepsAFixForThirtyHoursWithNewUploads) {
+  const fs::path d = temp_dir("30h");
+  std::string profile = slurp(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-m8.yaml");
+  profile = std::regex_replace(profile, std::regex(R"(\n  messages: \{\}[^\n]*)"), "\n  messages: {RXM-SFRBX: 1}");
+  profile = std::regex_replace(profile, std::regex(R"(\n  nmea_out: true)"), "\n  nmea_out: false");
+  ASSERT_NE(profile.find("{RXM-SFRBX: 1}"), std::string::npos);
+  ASSERT_NE(profile.find("nmea_out: false"), std::string::npos);
+  std::ofstream(d / "m8.yaml") << profile;
+  std::ofstream(d / "30h.yaml") << "truth: {source: stationary, position: {lat_deg: 32.3, lon_deg: -90.9, h_m: 60}}\n"
+                                   "gnss: {profile: '" << (d / "m8.yaml").string() << "', outputs: []}\n"
+                                   "imu: {enabled: false}\n";
+  const auto r = simulate(d / "30h.yaml", d / "out", 108000);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("108000 GNSS epochs (108000 with a fix)"), std::string::npos) << r.out;
+  const auto gnss = csv_rows(d / "out" / "gnss.csv");
+  ASSERT_EQ(gnss.size(), 108001u);
+  int fixes = 0;
+  for (std::size_t i = 1; i < gnss.size(); ++i) fixes += gnss[i][6] == "3";
+  EXPECT_EQ(fixes, 108000);
+
+  int frames = 0, failed = 0, uploads = 0;
+  std::set<int> iodes;
+  double max_from_toe_s = 0.0;
+  for (const auto& [prn, subframes] : sfrbx_subframes(slurp(d / "out" / "ubx.bin"))) {
+    std::optional<lnav::LnavEphemeris> last;
+    std::uint32_t last_tow = 0;
+    for (std::size_t i = 0; i + 2 < subframes.size(); ++i) {
+      const lnav::LnavTlmHow how = lnav::decode_tlm_how(subframes[i]);
+      if (how.subframe_id != 1 || lnav::decode_tlm_how(subframes[i + 2]).tow_count != how.tow_count + 2)
+        continue;  // not the start of a whole frame
+      ++frames;
+      const auto eph = lnav::decode_ephemeris(subframes[i], subframes[i + 1], subframes[i + 2], 1610);
+      if (!eph) {
+        ++failed;
+        continue;
+      }
+      iodes.insert(eph->iode);
+      // The frame began 6 s before subframe 1's HOW count (the next subframe's start).
+      const double frame_tow_s = 6.0 * (how.tow_count - 1);
+      max_from_toe_s = std::max(max_from_toe_s, std::abs(frame_tow_s - eph->toe_s));
+      if (last && eph->iode != last->iode) {
+        ++uploads;
+        EXPECT_EQ(eph->toe_s - last->toe_s, 7200.0 * ((eph->iode - last->iode + 256) % 256)) << "PRN " << prn;
+        if (how.tow_count - last_tow < 7200 / 6) {  // seen without a gap: the next upload
+          EXPECT_EQ(eph->iode, (last->iode + 1) % 256) << "PRN " << prn;
+        }
+      }
+      last = eph;
+      last_tow = how.tow_count;
+    }
+  }
+  EXPECT_GT(frames, 10000);  // ~9 satellites, a frame every 30 s
+  EXPECT_EQ(failed, 0);
+  // From 13:00 to 19:00 the next day: the sets with toe 14:00 (taken from 13:00, midway to the
+  // one of 12:00) to 18:00, every 2 h.
+  EXPECT_EQ(iodes.size(), 15u);
+  EXPECT_GT(uploads, 100);
+  EXPECT_LE(max_from_toe_s, 3600.0);
+  std::printf("[ 30 h ] %d frames decoded, %zu IODEs, %d uploads seen, max |frame - toe| %.0f s\n",
+              frames, iodes.size(), uploads, max_from_toe_s);
 }
 
 }  // namespace

@@ -267,5 +267,78 @@ TEST(NominalConstellation, GlobalCoverageAndPdop) {
               samples, min_visible, 100.0 * availability, worst_pdop);
 }
 
+// Each slot gets a new data set every 2 h, as from the GPS control segment: a new toe = toc and a
+// new IODE = IODC (IS-GPS-200 20.3.4.4). The new set is the same orbit parametrised at the new
+// toe: over the 2 h between two toes (the cutover, where select_ephemeris changes sets, lies
+// midway) both give the same position and velocity, far closer than real consecutive uploads
+// agree (two curve fits of the real orbit: up to 1.6 m on the GEONET day, test_orbit.cpp).
+// Across a GPS week rollover too; the sets made a day later are those already given for the
+// same toe, and so are the ones a receiver renews with past the window (reuploaded()).
+TEST(NominalConstellation, UploadsEveryTwoHoursContinueTheSameOrbit) {
+  const GpsTime t = from_week_tow(2244, 604800.0 - 4 * 3600.0);  // Saturday 20:00 GPST
+  const NavData nav = nominal_constellation(t);
+  EXPECT_TRUE(nav.renews);
+  std::map<int, std::map<std::int64_t, const GpsEphemeris*>> by_prn;  // PRN -> toe -> record
+  for (const GpsEphemeris& e : nav.gps) by_prn[e.prn][e.toe.ns] = &e;
+  double max_dp = 0.0, max_dv = 0.0;
+  int cutovers = 0, week_rollovers = 0;
+  for (const auto& [prn, sets] : by_prn) {
+    for (auto it = sets.begin(); std::next(it) != sets.end(); ++it) {
+      const GpsEphemeris& a = *it->second;
+      const GpsEphemeris& b = *std::next(it)->second;
+      EXPECT_EQ(seconds_between(b.toe, a.toe), 7200.0);
+      EXPECT_EQ(b.iode, (a.iode + 1) % 256);
+      EXPECT_EQ(b.iodc, b.iode);
+      if (to_week_tow(b.toe).week != to_week_tow(a.toe).week) ++week_rollovers;
+      for (double tk = 0.0; tk <= 7200.0; tk += 300.0) {
+        const GpsTime ti = a.toe.plus_s(tk);
+        const SatState sa = gps_sat_state(a, ti), sb = gps_sat_state(b, ti);
+        max_dp = std::max(max_dp, (sa.p_ecef_m - sb.p_ecef_m).norm());
+        max_dv = std::max(max_dv, (sa.v_ecef_mps - sb.v_ecef_mps).norm());
+      }
+      const GpsTime cutover = a.toe.plus_s(3600.0);
+      EXPECT_EQ(select_ephemeris(nav, prn, cutover.plus_s(-1.0)), &a);
+      EXPECT_EQ(select_ephemeris(nav, prn, cutover.plus_s(1.0)), &b);
+      ++cutovers;
+    }
+  }
+  EXPECT_EQ(week_rollovers, 24);
+  EXPECT_LT(max_dp, 1e-3);
+  EXPECT_LT(max_dv, 1e-6);
+  std::printf("[ nominal ] %d cutovers (%d across the week rollover): max position difference "
+              "%.2e m, velocity %.2e m/s\n",
+              cutovers, week_rollovers, max_dp, max_dv);
+
+  // A renewal a day later: the sets of the same toe are the same, field for field.
+  const NavData later = nominal_constellation(t.plus_s(86400.0));
+  int same_toe = 0;
+  for (const GpsEphemeris& e : later.gps) {
+    const auto it = by_prn[e.prn].find(e.toe.ns);
+    if (it == by_prn[e.prn].end()) continue;
+    ++same_toe;
+    EXPECT_EQ(e.iode, it->second->iode);
+    EXPECT_EQ(e.m0_rad, it->second->m0_rad);
+    EXPECT_EQ(e.omega0_rad, it->second->omega0_rad);
+  }
+  EXPECT_EQ(same_toe, 24 * 3);  // toe t + 22 h, t + 24 h, t + 26 h
+
+  // Past the window, each slot's latest set uploaded anew (what a receiver renews with) is the
+  // set the constellation makes for that toe: same IODE and the same orbit.
+  double max_reupload = 0.0;
+  for (const GpsEphemeris& e : later.gps) {
+    const GpsEphemeris& last = *by_prn[e.prn].rbegin()->second;
+    if (e.toe <= last.toe) continue;
+    const GpsEphemeris r = reuploaded(last, e.toe);
+    EXPECT_EQ(r.iode, e.iode);
+    EXPECT_EQ(r.iodc, e.iodc);
+    EXPECT_EQ(r.toc, e.toc);
+    EXPECT_EQ(r.transmission_tow_s, e.transmission_tow_s);
+    for (double tk = -3600.0; tk <= 3600.0; tk += 1800.0)
+      max_reupload = std::max(max_reupload, (gps_sat_state(r, e.toe.plus_s(tk)).p_ecef_m -
+                                             gps_sat_state(e, e.toe.plus_s(tk)).p_ecef_m).norm());
+  }
+  EXPECT_LT(max_reupload, 1e-3);
+}
+
 }  // namespace
 }  // namespace navemu

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "models/constellation.hpp"
 #include "models/rinex.hpp"
@@ -269,6 +270,60 @@ TEST(Measurement, RisingSatelliteIsTrackedAfterTheReacquisitionTime) {
     }
   }
   EXPECT_GT(risers, 0);
+}
+
+// The built-in constellation never runs out: over three days (the data made for the start hold
+// 28 h), every epoch has the satellites above the horizon with a data set at most 1 h from its
+// toe (the 2 h uploads), their IODEs move on as new sets are uploaded, and with every error
+// source off the position comes back to the millimetre.
+TEST(Measurement, BuiltInConstellationRenewsForDays) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementGenerator gen(nav, all_off());
+  const Vec3 p = ecef_from_geodetic(kSite);
+  SolverOptions o;
+  o.elevation_mask_deg = 0.0;
+  std::set<std::pair<int, int>> prn_iode;
+  std::size_t min_sats = 99;
+  double max_age_s = 0.0, max_err_m = 0.0;
+  for (double dt = 0.0; dt <= 3 * 86400.0; dt += 300.0) {
+    const GpsTime t = kStart.plus_s(dt);
+    const EpochMeasurements e = gen.generate(t, p);
+    min_sats = std::min(min_sats, e.sats.size());
+    for (const SatMeasurement& m : e.sats) {
+      max_age_s = std::max(max_age_s, std::abs(seconds_between(t, m.eph->toe)));
+      prn_iode.insert({m.prn, m.eph->iode});
+    }
+    const Solution s = solve(gen.solver_input(e), e.t_receiver, o);
+    ASSERT_EQ(s.fix, FixType::k3D) << "t + " << dt << " s";
+    max_err_m = std::max(max_err_m, (s.p_ecef_m - p).norm());
+  }
+  EXPECT_GE(min_sats, 4u);
+  EXPECT_LE(max_age_s, 3600.0);
+  EXPECT_LT(max_err_m, 1e-3);
+  // Satellites above a site at some time of each 2 h data set: 3 days of 12 uploads each.
+  std::set<int> iodes;
+  for (const auto& [prn, iode] : prn_iode) iodes.insert(iode);
+  EXPECT_GE(iodes.size(), 36u);
+  std::printf("[ renewal ] 3 days: min %zu satellites, max |t - toe| %.0f s, %zu (PRN, IODE) "
+              "sets, %zu IODEs, max position error %.1e m\n",
+              min_sats, max_age_s, prn_iode.size(), iodes.size(), max_err_m);
+}
+
+// Built-in data edited by their user (here: 8 of the 24 slots kept, as tools/paper_table1
+// keeps the 7 highest) go on as edited: the renewal continues the sets it was given.
+TEST(Measurement, EditedBuiltInDataKeepTheirSatellitesWhenRenewed) {
+  NavData nav = nominal_constellation(kStart);
+  std::erase_if(nav.gps, [](const GpsEphemeris& e) { return e.prn > 8; });
+  MeasurementGenerator gen(nav, all_off());
+  const Vec3 p = ecef_from_geodetic(kSite);
+  std::set<int> late;
+  for (double dt = 0.0; dt <= 2 * 86400.0; dt += 600.0) {
+    for (const SatMeasurement& m : gen.generate(kStart.plus_s(dt), p).sats) {
+      EXPECT_LE(m.prn, 8);
+      if (dt > 30 * 3600.0) late.insert(m.prn);
+    }
+  }
+  EXPECT_GE(late.size(), 6u);
 }
 
 }  // namespace

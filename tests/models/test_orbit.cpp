@@ -5,7 +5,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "models/orbit.hpp"
@@ -111,6 +113,92 @@ TEST(OrbitEarthRotation, RotatesByOmegaTimesDt) {
   EXPECT_NEAR(r.x(), std::cos(th), 1e-15);
   EXPECT_NEAR(r.y(), -std::sin(th), 1e-15);  // a fixed vector appears to turn westward
   EXPECT_DOUBLE_EQ(r.z(), 5.0);
+}
+
+// Largest position (m) and clock (s) difference between two records over [from, from + span].
+std::pair<double, double> max_difference(const GpsEphemeris& a, const GpsEphemeris& b, GpsTime from,
+                                         double span_s) {
+  double dp = 0.0, dc = 0.0;
+  for (double dt = 0.0; dt <= span_s; dt += 300.0) {
+    const SatState sa = gps_sat_state(a, from.plus_s(dt)), sb = gps_sat_state(b, from.plus_s(dt));
+    dp = std::max(dp, (sa.p_ecef_m - sb.p_ecef_m).norm());
+    dc = std::max(dc, std::abs(sa.clock_bias_s - sb.clock_bias_s));
+  }
+  return {dp, dc};
+}
+
+// A data set uploaded anew at a later toe is the same orbit and clock: on real broadcast records
+// (eccentric orbits, harmonic corrections, IDOT, clock drift) it agrees with the old one over the
+// 2 h between their toes far more closely than the satellites' own consecutive uploads agree
+// (two curve fits of the real orbit: the GEONET station's day, toe 2 h apart); IODE and IODC
+// move on by one per 2 h.
+TEST(Reuploaded, SameOrbitAndClockAtTheNewToe) {
+  NAVEMU_REQUIRE_SHARED();
+  const NavData nav = read_rinex_nav(test::shared_data("gnss/rtklib_geonet_20050402/07590920.05n"));
+  std::map<int, std::map<std::int64_t, const GpsEphemeris*>> by_prn;
+  for (const GpsEphemeris& e : nav.gps) by_prn[e.prn][e.toe.ns] = &e;
+  double ours_p = 0.0, ours_c = 0.0, real_p = 0.0, real_c = 0.0;
+  int pairs = 0;
+  for (const auto& [prn, sets] : by_prn) {
+    for (auto it = sets.begin(); std::next(it) != sets.end(); ++it) {
+      const GpsEphemeris& a = *it->second;
+      const GpsEphemeris& real_next = *std::next(it)->second;
+      if (seconds_between(real_next.toe, a.toe) != 7200.0) continue;
+      ++pairs;
+      const GpsEphemeris b = reuploaded(a, real_next.toe);
+      EXPECT_EQ(b.toe, real_next.toe);
+      EXPECT_EQ(seconds_between(b.toc, a.toc), 7200.0);
+      EXPECT_EQ(b.iode, (a.iode + 1) % 256);
+      EXPECT_EQ(b.iodc & 0xFF, b.iode);
+      // Sent as long before its toe as the old set (seconds of the toe's week, RINEX 2.11 6.8).
+      EXPECT_EQ(b.transmission_tow_s - to_week_tow(b.toe).tow_s,
+                a.transmission_tow_s - to_week_tow(a.toe).tow_s);
+      const auto [dp, dc] = max_difference(a, b, a.toe, 7200.0);
+      ours_p = std::max(ours_p, dp);
+      ours_c = std::max(ours_c, dc);
+      const auto [rp, rc] = max_difference(a, real_next, a.toe, 7200.0);
+      real_p = std::max(real_p, rp);
+      real_c = std::max(real_c, rc);
+    }
+  }
+  EXPECT_GT(pairs, 50);
+  EXPECT_LT(ours_p, 1e-3);
+  EXPECT_LT(ours_c, 1e-13);  // 0.03 mm of range
+  EXPECT_GT(real_p, 0.1);
+  std::printf("[ reupload ] %d pairs of sets 2 h apart; over the 2 h: reuploaded %.1e m, %.1e s, "
+              "the satellites' next upload %.2f m, %.1e s\n",
+              pairs, ours_p, ours_c, real_p, real_c);
+}
+
+// Across the end of a GPS week (toe 2244:601200 to 2245:1800, IODE 255 to 0) the node stays
+// where it was: Omega0 refers to the week's start (IS-GPS-200 Table 20-IV).
+TEST(Reuploaded, AcrossAWeekRollover) {
+  GpsEphemeris a;
+  a.prn = 5;
+  a.toe = a.toc = from_week_tow(2244, 601200.0);
+  a.sqrt_a_sqrtm = 5153.7;
+  a.e = 0.012;
+  a.i0_rad = 0.96;
+  a.omega_rad = 1.1;
+  a.m0_rad = -2.3;
+  a.omega0_rad = 0.4;
+  a.omega_dot_radps = -8e-9;
+  a.idot_radps = 2e-10;
+  a.delta_n_radps = 4.5e-9;
+  a.cuc_rad = 1e-6;
+  a.crs_m = 40.0;
+  a.af0_s = 2e-4;
+  a.af1_sps = -5e-12;
+  a.af2_sps2 = 1e-19;
+  a.iode = 254;
+  a.iodc = 0x300 | 254;
+  const GpsEphemeris b = reuploaded(a, a.toe.plus_s(4 * 3600.0));
+  EXPECT_EQ(to_week_tow(b.toe).week, 2245);
+  EXPECT_EQ(b.iode, 0);
+  EXPECT_EQ(b.iodc, 0x300);
+  const auto [dp, dc] = max_difference(a, b, a.toe, 4 * 3600.0);
+  EXPECT_LT(dp, 1e-3);
+  EXPECT_LT(dc, 1e-13);
 }
 
 }  // namespace

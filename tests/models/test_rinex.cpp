@@ -1011,5 +1011,84 @@ TEST(SelectEphemeris, OnGeonetNavigationFile) {
   EXPECT_EQ(c->iode, 83);
 }
 
+// ---------------------------------------------------------------------------------------------
+// covered_spans: where navigation data has at least 4 satellites inside their fit intervals
+
+TEST(CoveredSpans, FitIntervalsOfFourSatellitesMerged) {
+  const GpsTime t0 = from_week_tow(2244, 36000.0);
+  NavData nav;
+  for (int prn = 1; prn <= 4; ++prn)
+    nav.gps.insert(nav.gps.end(), {eph(prn, t0), eph(prn, t0.plus_s(7200.0))});
+  // toe +- 2 h (IS-GPS-200 4 h fit), the two uploads of each PRN joined.
+  std::vector<TimeSpan> spans = covered_spans(nav);
+  ASSERT_EQ(spans.size(), 1u);
+  EXPECT_EQ(spans[0].from, t0.plus_s(-7200.0));
+  EXPECT_EQ(spans[0].to, t0.plus_s(14400.0));
+  // Three satellites are not enough; one is, when asked for one.
+  nav.gps.resize(6);  // PRN 4 gone
+  EXPECT_TRUE(covered_spans(nav).empty());
+  EXPECT_EQ(covered_spans(nav, 1).size(), 1u);
+  EXPECT_EQ(covered_spans(nav, 3).size(), 1u);
+}
+
+TEST(CoveredSpans, GapsUnhealthyRecordsAndFitIntervalFlags) {
+  const GpsTime t0 = from_week_tow(2244, 36000.0);
+  NavData nav;
+  for (int prn = 1; prn <= 4; ++prn)
+    nav.gps.insert(nav.gps.end(), {eph(prn, t0), eph(prn, t0.plus_s(6 * 3600.0))});
+  std::vector<TimeSpan> spans = covered_spans(nav);
+  ASSERT_EQ(spans.size(), 2u);  // [t0 - 2 h, t0 + 2 h] and [t0 + 4 h, t0 + 8 h]
+  EXPECT_EQ(spans[0].to, t0.plus_s(7200.0));
+  EXPECT_EQ(spans[1].from, t0.plus_s(4 * 3600.0));
+  EXPECT_TRUE(spans[0].contains(t0.plus_s(7200.0)));
+  EXPECT_FALSE(spans[0].contains(t0.plus_s(7201.0)));
+  // An unhealthy record does not count: PRN 4 at 6 h marked unhealthy.
+  nav.gps[7].health = 1;
+  spans = covered_spans(nav);
+  ASSERT_EQ(spans.size(), 1u);
+  EXPECT_EQ(spans[0].to, t0.plus_s(7200.0));
+  // A 6 h fit interval (fit flag 1) reaches 3 h from toe; the flag written as hours (1) counts
+  // as the 4 h minimum.
+  for (GpsEphemeris& e : nav.gps) e.fit_interval_h = e.toe == t0 ? 6.0 : 1.0;
+  spans = covered_spans(nav);
+  ASSERT_EQ(spans.size(), 1u);
+  EXPECT_EQ(spans[0].from, t0.plus_s(-3 * 3600.0));
+  EXPECT_EQ(spans[0].to, t0.plus_s(3 * 3600.0));
+  EXPECT_TRUE(covered_spans(NavData{}).empty());
+}
+
+// Broadcast files as they come: the GEONET station's day holds data sets (toe, GPS time) from
+// 2005-04-02 00:00 every 2 h to 2005-04-03 00:00, the ESBC station's from 2020-06-24 22:00 to
+// 2020-06-26 00:00, the Spirent simulator's at 10:00, 12:00 and 14:00 of 2023-01-08 (the
+// records' epochs in the files), each with 9 or more satellites per set: covered from the first
+// toe - 2 h to the last toe + 2 h. Also prints how long reading and the check take.
+TEST(CoveredSpans, BroadcastFiles) {
+  NAVEMU_REQUIRE_SHARED();
+  struct Case {
+    const char* file;
+    GpsTime from, to;
+  };
+  const Case cases[] = {
+      {"rtklib_geonet_20050402/07590920.05n", gps(2005, 4, 1, 22, 0, 0.0), gps(2005, 4, 3, 2, 0, 0.0)},
+      {"esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx", gps(2020, 6, 24, 20, 0, 0.0),
+       gps(2020, 6, 26, 2, 0, 0.0)},
+      {"spirent_simgen_static_20230108/Spirent_RINEX_GN.23N", gps(2023, 1, 8, 8, 0, 0.0),
+       gps(2023, 1, 8, 16, 0, 0.0)},
+  };
+  for (const Case& c : cases) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const NavData nav = read_rinex_nav(shared_data(std::string("gnss/") + c.file));
+    const auto t1 = std::chrono::steady_clock::now();
+    const std::vector<TimeSpan> spans = covered_spans(nav);
+    const auto t2 = std::chrono::steady_clock::now();
+    ASSERT_EQ(spans.size(), 1u) << c.file;
+    EXPECT_EQ(spans[0].from, c.from) << c.file;
+    EXPECT_EQ(spans[0].to, c.to) << c.file;
+    using ms = std::chrono::duration<double, std::milli>;
+    std::printf("[ coverage ] %s: %zu GPS records (%d of other systems): read %.1f ms, coverage %.3f ms\n",
+                c.file, nav.gps.size(), nav.skipped_records, ms(t1 - t0).count(), ms(t2 - t1).count());
+  }
+}
+
 }  // namespace
 }  // namespace navemu
