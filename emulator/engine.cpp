@@ -363,8 +363,12 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
     for (const char* name : {"nmea.log", "ubx.bin", "can.log"}) std::filesystem::remove(opt.out_dir / name, ec);
   }
 
-  // --- GNSS outputs (the receiver itself comes once the start is known).
+  // --- Navigation data, checked against the scenario before any port opens (in lockstep the
+  // start is known only at the first datagram).
   NavData nav;
+  if (cfg.gnss_enabled && !lockstep) nav = load_scenario_nav(cfg.nav_file, start, opt.duration_s, log);
+
+  // --- GNSS outputs (the receiver itself comes once the start is known).
   std::unique_ptr<Receiver> receiver;
   std::unique_ptr<GnssDevice> device;
   std::vector<std::unique_ptr<transport::BytePort>> ports;
@@ -484,7 +488,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
 
   // --- The GNSS receiver: its navigation data and models from the scenario's start on.
   if (cfg.gnss_enabled) {
-    nav = load_scenario_nav(cfg.nav_file, start, opt.duration_s, log);
+    if (lockstep) nav = load_scenario_nav(cfg.nav_file, start, opt.duration_s, log);
     ReceiverParams rp;
     rp.measurement.mode = cfg.gnss_mode;
     apply_receiver_class(rp.measurement, prof.receiver_class);
