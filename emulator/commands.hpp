@@ -64,8 +64,11 @@ void require_nav_coverage(const NavData& nav, GpsTime from, GpsTime to,
 // which never runs out), checked to give a fix over [start, start + duration]. Without a
 // duration (a run until stopped) only the start is checked, and `log` is told until when the
 // file lasts.
-NavData load_scenario_nav(const std::string& nav_file, GpsTime start,
-                          std::optional<double> duration_s, std::ostream& log);
+void check_scenario_nav(const NavData& nav, GpsTime start, std::optional<double> duration_s,
+                        std::ostream& log);
+// load_nav_or_nominal(), then check_scenario_nav().
+NavData load_scenario_nav(const std::string& nav_file, GpsTime start, std::optional<double> duration_s,
+                          std::ostream& log);
 
 struct SkyOptions {
   std::string nav_file;  // empty: built-in constellation

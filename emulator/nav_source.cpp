@@ -180,9 +180,8 @@ void require_nav_coverage(const NavData& nav, GpsTime from, GpsTime to,
                    fmt::format("the file {}, but {}: {}", has, scenario, fix));
 }
 
-NavData load_scenario_nav(const std::string& nav_file, GpsTime start,
-                          std::optional<double> duration_s, std::ostream& log) {
-  NavData nav = load_nav_or_nominal(nav_file, start);
+void check_scenario_nav(const NavData& nav, GpsTime start, std::optional<double> duration_s,
+                        std::ostream& log) {
   const ScenarioOptions options{"scenario.nav", "scenario.start or --start", "--start",
                                 duration_s ? "--duration" : nullptr};
   require_nav_coverage(nav, start, duration_s ? start.plus_s(*duration_s) : start, options);
@@ -195,6 +194,12 @@ NavData load_scenario_nav(const std::string& nav_file, GpsTime start,
                    "loses its fix\n",
                    nav.source, satellites(kSatellitesForFix), when(s.to),
                    seconds_between(s.to, start) / 3600.0);
+}
+
+NavData load_scenario_nav(const std::string& nav_file, GpsTime start, std::optional<double> duration_s,
+                          std::ostream& log) {
+  NavData nav = load_nav_or_nominal(nav_file, start);
+  check_scenario_nav(nav, start, duration_s, log);
   return nav;
 }
 

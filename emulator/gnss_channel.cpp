@@ -1,0 +1,168 @@
+#include "emulator/gnss_channel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "models/geodesy.hpp"
+
+namespace navemu {
+
+namespace {
+
+const char* fix_name(FixType f) {
+  switch (f) {
+    case FixType::kNone: return "no fix";
+    case FixType::kDeadReckoning: return "DR";
+    case FixType::k2D: return "2D";
+    case FixType::k3D: return "3D";
+  }
+  return "?";
+}
+
+// Smallest multiple of `period` at or after t.
+std::int64_t first_index_at_or_after(GpsTime t, std::int64_t period_ns) {
+  return t.ns / period_ns + (t.ns % period_ns != 0 ? 1 : 0);
+}
+
+}  // namespace
+
+void GnssPorts::service() {
+  for (auto& p : ports) p->service();
+}
+
+GnssChannel::GnssChannel(std::unique_ptr<NavData> nav, const ReceiverParams& receiver,
+                         const GnssProfile& profile, ReceiverMode mode, GnssPorts ports,
+                         std::vector<std::unique_ptr<EpochRecorder>> recorders)
+    : nav_(std::move(nav)),
+      receiver_(std::make_unique<Receiver>(*nav_, receiver)),
+      device_(make_gnss_device(profile, mode, *nav_)),
+      io_(std::move(ports)),
+      recorders_(std::move(recorders)),
+      period_ns_(device_->period_ns()),
+      latency_ns_(std::llround(profile.output_latency_s * 1e9)),
+      nominal_rate_hz_(profile.rate_hz) {
+  chunk_.reserve(65536);
+  replies_.reserve(4096);
+  last_fix_.satellites.reserve(kMaxPrn);  // copied every epoch: no allocation
+}
+
+void GnssChannel::begin(GpsTime start) {
+  start_ = start;
+  k_ = first_index_at_or_after(start, period_ns_);
+}
+
+std::optional<SensorChannel::Event> GnssChannel::next_event(GpsTime end) const {
+  const GpsTime epoch{k_ * period_ns_};
+  if (!(epoch < end)) return std::nullopt;
+  const GpsTime deadline{epoch.ns + latency_ns_};
+  return Event{GpsTime{deadline.ns - std::min(kComputeLead_ns, period_ns_ / 2)}, deadline};
+}
+
+void GnssChannel::skip_event() {
+  ++k_;
+  ++skipped_;
+}
+
+// Compute ahead, write at the deadline.
+bool GnssChannel::run_event(EventContext& ctx) {
+  const GpsTime te{k_ * period_ns_};
+  const std::optional<ImuTruth> tr = ctx.truth.at(te);
+  const ReceiverFix& fix = receiver_->update(te, tr ? &*tr : nullptr);
+  chunk_.clear();
+  device_->encode_epoch(fix, receiver_->measurements(), k_, chunk_);
+  const GpsTime deadline{te.ns + latency_ns_};
+  const bool realtime = ctx.clock.realtime();
+  if (realtime && ctx.clock.wait_until(deadline) == Clock::Wait::kStopped) return false;
+  for (auto& p : io_.ports) {
+    p->service();
+    if (!p->write(chunk_)) ++chunks_dropped_;
+  }
+  if (io_.capture_out) io_.capture_out->write(chunk_);
+  if (realtime) {
+    const double late_ms = static_cast<double>(ctx.clock.monotonic_now() - ctx.clock.mono_of(deadline)) * 1e-6;
+    ctx.lateness.add(late_ms);
+    if (late_ms > 0.5 * static_cast<double>(period_ns_) * 1e-6) ++late_;
+  }
+  ++epochs_;
+  ++interval_epochs_;
+  if (!tr) interval_truth_lost_ = true;
+  if (fix.fix != FixType::kNone) ++fixes_;
+  last_fix_ = fix;
+  last_fix_truth_ = tr;
+  const EpochRecord record{te, seconds_between(te, start_), tr, fix};
+  for (auto& r : recorders_) r->record(record);
+  ++k_;
+  // A client changed the navigation rate (u-blox CFG-RATE): the next epoch lies on the new
+  // grid, after this one.
+  if (device_->period_ns() != period_ns_) {
+    period_ns_ = device_->period_ns();
+    k_ = te.ns / period_ns_ + 1;
+  }
+  return true;
+}
+
+// Commands from the clients, answered on the port they came from.
+void GnssChannel::service() {
+  for (auto& p : io_.ports) {
+    for (int n = 0; n < 16; ++n) {  // bounded: a flooding client cannot hold the loop
+      const std::size_t len = p->read(input_);
+      if (len == 0) break;
+      replies_.clear();
+      const std::span<const std::uint8_t> in(input_.data(), len);
+      device_->receive(in, replies_);
+      if (io_.capture_in) io_.capture_in->write(in);
+      if (!replies_.empty()) {
+        p->write(replies_);
+        if (io_.capture_out) io_.capture_out->write(replies_);
+      }
+    }
+  }
+  if (const std::optional<int> baud = device_->take_baud_change())
+    for (auto& p : io_.ports) transport::set_serial_baud(*p, *baud);
+}
+
+void GnssChannel::status(fmt::memory_buffer& out, ChannelStatus& st) {
+  const auto o = std::back_inserter(out);
+  fmt::format_to(o, "gnss {} ep (", epochs_);
+  if (interval_epochs_ == 0) {
+    fmt::format_to(o, "no epoch");
+  } else {
+    fmt::format_to(o, "{} {}/{} sv", fix_name(last_fix_.fix), last_fix_.num_used, last_fix_.satellites.size());
+    if (last_fix_.fix != FixType::kNone) {
+      fmt::format_to(o, " PDOP {:.1f}", last_fix_.dops.pdop);
+      if (last_fix_truth_) {
+        const Vec3 e = enu_from_ecef(last_fix_.p_ecef_m, last_fix_truth_->position);
+        fmt::format_to(o, " err {:.1f} m h {:.1f} m v", std::hypot(e.x(), e.y()), std::abs(e.z()));
+      }
+    }
+  }
+  out.push_back(')');
+  st.late += static_cast<std::uint64_t>(late_);
+  st.skipped += static_cast<std::uint64_t>(skipped_);
+  for (const auto& p : io_.ports) st.chunks_dropped += p->counters().chunks_dropped;
+  st.truth_lost = st.truth_lost || !last_fix_truth_ || interval_truth_lost_;
+  interval_epochs_ = 0;
+  interval_truth_lost_ = false;
+}
+
+void GnssChannel::flush_logs() {
+  for (transport::BytePort* l : {io_.capture_out.get(), io_.capture_in.get()})
+    if (l != nullptr) l->service();
+}
+
+void GnssChannel::finish(EngineSummary& sum) {
+  for (auto& r : recorders_) r->close();
+  sum.gnss_epochs = epochs_;
+  sum.gnss_fixes = fixes_;
+  sum.gnss_skipped = skipped_;
+  sum.gnss_late = late_;
+  sum.output_chunks_dropped = chunks_dropped_;
+  for (const auto& p : io_.ports) {
+    sum.client_bytes_read += p->counters().bytes_read;
+    sum.stale_flushes += p->counters().stale_flushes;
+    sum.stale_bytes_flushed += p->counters().stale_bytes_flushed;
+  }
+  sum.scenario_s = std::max(sum.scenario_s, static_cast<double>(epochs_) / nominal_rate_hz_);
+}
+
+}  // namespace navemu

@@ -1,0 +1,168 @@
+#include "emulator/imu_channel.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace navemu {
+
+namespace {
+
+// Smallest multiple of `period` at or after t.
+std::int64_t first_index_at_or_after(GpsTime t, std::int64_t period_ns) {
+  return t.ns / period_ns + (t.ns % period_ns != 0 ? 1 : 0);
+}
+
+std::int64_t whole_steps_per_output(const ImuParams& p) {
+  const std::int64_t n = std::llround(p.internal_rate_hz / p.output_rate_hz);
+  if (n < 1 || std::fabs(static_cast<double>(n) * p.output_rate_hz - p.internal_rate_hz) >
+                   1e-9 * p.internal_rate_hz)
+    throw std::invalid_argument("internal_rate_hz must be a whole multiple of output_rate_hz");
+  return n;
+}
+
+}  // namespace
+
+ImuPipeline::ImuPipeline(const ImuParams& params, std::uint64_t seed, GpsTime origin, const IdealImu& initial)
+    : model_(params, seed),
+      origin_(origin),
+      out_ns_(std::llround(1e9 / params.output_rate_hz)),
+      steps_per_out_(whole_steps_per_output(params)),
+      last_ideal_(initial) {}
+
+GpsTime ImuPipeline::step_time(std::int64_t n) const {
+  return GpsTime{origin_.ns + n / steps_per_out_ * out_ns_ + n % steps_per_out_ * out_ns_ / steps_per_out_};
+}
+
+bool ImuPipeline::run_to(std::int64_t last, TruthSource& truth, ImuSample& sample, bool& valid) {
+  valid = true;
+  bool emitted = false;
+  for (; next_ <= last; ++next_) {
+    const std::int64_t n = next_;
+    const GpsTime t = step_time(n);
+    if (window_n_ == n - 1) {
+      before_ = std::move(now_);
+      now_ = std::move(after_);
+    } else {
+      before_ = truth.at(step_time(n - 1));
+      now_ = truth.at(t);
+    }
+    after_ = truth.at(step_time(n + 1));
+    window_n_ = n;
+    double temperature_c = model_.params().reference_temperature_c;
+    if (now_ && now_->f_body_mps2 && now_->w_ib_body_radps) {
+      last_ideal_ = IdealImu{*now_->f_body_mps2, *now_->w_ib_body_radps};
+    } else if (now_ && (before_ || after_)) {
+      last_ideal_ = ideal_imu_from_kinematics(before_ ? *before_ : *now_, *now_, after_ ? *after_ : *now_);
+    } else {
+      valid = false;  // no truth: the last ideal output is held and the sample flagged
+    }
+    if (now_ && now_->temperature_c) temperature_c = *now_->temperature_c;
+    if (model_.step(t, last_ideal_, temperature_c, sample)) emitted = true;
+  }
+  return emitted;
+}
+
+ImuChannel::ImuChannel(const ImuParams& params, std::uint64_t seed, const IdealImu& initial,
+                       std::unique_ptr<ImuCanOutputs> can, std::vector<std::unique_ptr<SampleRecorder>> recorders,
+                       bool offline)
+    : pipe_(params, seed, GpsTime{0}, initial),
+      can_(std::move(can)),
+      recorders_(std::move(recorders)),
+      offline_(offline),
+      latency_ns_(std::llround(params.latency_s * 1e9)) {}
+
+void ImuChannel::begin(GpsTime start) {
+  start_ = start;
+  j_ = j0_ = first_index_at_or_after(start, pipe_.output_period_ns());
+  pipe_.resume_at(j_ * pipe_.steps_per_output());
+}
+
+std::optional<SensorChannel::Event> ImuChannel::next_event(GpsTime end) const {
+  if (!(GpsTime{j_ * pipe_.output_period_ns()} < end)) return std::nullopt;
+  const GpsTime due{j_ * pipe_.output_period_ns() + latency_ns_};
+  return Event{due, due};
+}
+
+std::int64_t ImuChannel::max_lateness_ns() const { return std::max(kImuCatchUp_ns, pipe_.output_period_ns()); }
+
+void ImuChannel::skip_event() {
+  ++j_;
+  ++skipped_;
+}
+
+// The internal steps up to the sample's measurement time, then out.
+bool ImuChannel::run_event(EventContext& ctx) {
+  const GpsTime t_meas{j_ * pipe_.output_period_ns()};
+  // After skipped samples, resume at this sample's own internal steps.
+  pipe_.resume_at((j_ - 1) * pipe_.steps_per_output() + 1);
+  bool valid = true;
+  if (pipe_.run_to(j_ * pipe_.steps_per_output(), ctx.truth, sample_, valid)) {
+    // One per output period, so that a sample skipped after a stall leaves a gap in the
+    // sequence, as a frame lost on the bus does (protocols/can_frames.hpp; wraps).
+    const auto sequence = static_cast<std::uint16_t>(j_ - j0_);
+    ++samples_;
+    if (!valid) {
+      ++flagged_;
+      interval_truth_lost_ = true;
+    }
+    if (can_) {
+      can::ImuSample cs;
+      cs.gps_time_ns = t_meas.ns;
+      cs.sequence = sequence;
+      for (int i = 0; i < 3; ++i) {
+        cs.w_body_radps[static_cast<std::size_t>(i)] = sample_.w_body_radps[i];
+        cs.f_body_mps2[static_cast<std::size_t>(i)] = sample_.f_body_mps2[i];
+      }
+      cs.latency_s = pipe_.params().latency_s;
+      cs.truth_lost = !valid;
+      cs.gyro_saturated = sample_.gyro_saturated;
+      cs.accel_saturated = sample_.accel_saturated;
+      // Live frames are stamped when they leave; offline ones at their scheduled time.
+      can_->send(cs, offline_ ? unix_ns_from_gps(sample_.t) : realtime_ns());
+    }
+    const SampleRecord record{sample_, seconds_between(sample_.t, start_), valid, t_meas, sequence};
+    for (auto& r : recorders_) r->record(record);
+  }
+  ++j_;
+  return true;
+}
+
+void ImuChannel::service() {
+  if (can_) can_->service();
+}
+
+void ImuChannel::status(fmt::memory_buffer& out, ChannelStatus& st) {
+  fmt::format_to(std::back_inserter(out), "imu {} smp", samples_);
+  if (flagged_) fmt::format_to(std::back_inserter(out), " ({} flagged)", flagged_);
+  st.skipped += static_cast<std::uint64_t>(skipped_);
+  if (can_) {
+    const CanOutputTotals t = can_->totals();
+    st.frames_dropped += t.frames_dropped + t.frames_failed;
+    st.frames_held += t.frames_held;
+  }
+  st.truth_lost = st.truth_lost || interval_truth_lost_;
+  interval_truth_lost_ = false;
+}
+
+void ImuChannel::flush_logs() {
+  for (auto& r : recorders_) r->flush();
+}
+
+void ImuChannel::finish(EngineSummary& sum) {
+  for (auto& r : recorders_) r->close();
+  sum.imu_samples = samples_;
+  sum.imu_flagged = flagged_;
+  sum.imu_skipped = skipped_;
+  if (can_) {
+    const CanOutputTotals t = can_->totals();
+    sum.can_frames_written = t.frames_written;
+    sum.can_frames_dropped = t.frames_dropped;
+    sum.can_frames_held = t.frames_held;
+    sum.can_frames_failed = t.frames_failed;
+    sum.can_bus_errors = t.bus_errors;
+  }
+  sum.scenario_s = std::max(sum.scenario_s, static_cast<double>(samples_) * 1e-9 *
+                                                static_cast<double>(pipe_.output_period_ns()));
+}
+
+}  // namespace navemu
