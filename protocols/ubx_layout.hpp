@@ -145,6 +145,7 @@ struct ArrayOf<std::array<T, N>> : std::true_type {
 // (U1[n]) or a string (CH[n], n = chars).
 template <Wire W, class V, std::size_t Chars>
 struct Value {
+  using Value_t = V;
   static constexpr std::size_t size() {
     if constexpr (W == Wire::kCh) return Chars;
     else if constexpr (ArrayOf<V>::value) return ArrayOf<V>::kSize * wire_size(W);
@@ -350,6 +351,16 @@ struct IsKeyValues : std::false_type {};
 template <class S, class KV>
 struct IsKeyValues<KeyValues<S, KV>> : std::true_type {};
 
+// True for rows holding NUL-padded text (CH), whose bytes after the NUL a decoder drops.
+template <class Row>
+constexpr bool has_text() {
+  if constexpr (IsBlock<Row>::value)
+    return []<class... R>(std::tuple<R...>*) { return (has_text<R>() || ...); }(
+        static_cast<decltype(Row::rows)*>(nullptr));
+  else if constexpr (requires { Row::V::size(); }) return std::is_same_v<typename Row::V::Value_t, std::string>;
+  else return false;
+}
+
 template <class Row>
 constexpr std::size_t block_size_of() {
   if constexpr (IsBlock<Row>::value) return Row::kBlockSize;
@@ -383,6 +394,7 @@ struct Layout {
   static constexpr bool kHasBlock = (layout::IsBlock<Rows>::value || ...);
   static constexpr bool kHasOptional = (layout::IsOptional<Rows>::value || ...);
   static constexpr bool kHasKeyValues = (layout::IsKeyValues<Rows>::value || ...);
+  static constexpr bool kHasText = (layout::has_text<Rows>() || ...);
   // Size of one repeated block (0: none).
   static constexpr std::size_t kBlockSize = [] {
     std::size_t n = 0;

@@ -34,7 +34,8 @@ struct Registry {
   static_assert((sizes_agree<T>() && ...), "a description's length differs from its struct's");
   template <class L>
   static constexpr MessageInfo info(const L& l, decltype(&reencode<typename L::Struct>) hook) {
-    return {l.id, l.name, l.length, L::kHeaderSize, L::kBlockSize, L::kCountOffset, hook};
+    return {l.id,           l.name,           l.length,          L::kHeaderSize, L::kBlockSize,
+            L::kCountOffset, L::kHasKeyValues, L::kHasText, hook};
   }
   static constexpr std::array<MessageInfo, sizeof...(T)> kAll{
       info(layout_of<T>, &reencode<T>)...};

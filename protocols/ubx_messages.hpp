@@ -1126,6 +1126,8 @@ struct MessageInfo {
   std::size_t header_size;   // the fixed part (the whole payload without a block)
   std::size_t block_size;    // one repeated block; 0: none, or of variable size
   std::size_t count_offset;  // the U1 count of the blocks; header_size: not counted
+  bool key_values;           // key/value pairs to the end (CFG-VALGET answer, CFG-VALSET)
+  bool text;                 // NUL-padded strings: what follows a NUL is not kept
   bool (*reencode)(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
 };
 
