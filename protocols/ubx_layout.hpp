@@ -488,8 +488,8 @@ struct Layout {
 
 // ---- building descriptions -----------------------------------------------------------------
 // The rows a description is written with, one per wire type and named as in the tables:
-// u4(&NavPvt::i_tow_ms, "iTOW", 1e-3). Describe<T> specialisations derive from Describing, so the
-// names are in scope there and nowhere else.
+// u4(&NavPvt::i_tow_ms, "iTOW", 1e-3). The table of descriptions (ubx::Descriptions) derives
+// from Describing, so the names are in scope there and nowhere else.
 
 template <Wire W>
 struct FieldOf {
@@ -559,15 +559,13 @@ struct Describing {
   }
 };
 
-// The description of message struct T: a specialisation of Describe<T>, derived from Describing, with
-// a static constexpr member kLayout (see protocols/ubx_messages.hpp).
-template <class T>
-struct Describe;
-
-template <class T>
-concept Described = requires { Describe<T>::kLayout; };
-
-template <class T>
-inline constexpr const auto& layout_of = Describe<T>::kLayout;
+// The index in a tuple of layouts of the one describing T (the tuple's size when none does).
+template <class T, class Tuple, std::size_t I = 0>
+constexpr std::size_t layout_index() {
+  using All = std::remove_cvref_t<Tuple>;
+  if constexpr (I == std::tuple_size_v<All>) return I;
+  else if constexpr (std::is_same_v<typename std::tuple_element_t<I, All>::Struct, T>) return I;
+  else return layout_index<T, Tuple, I + 1>();
+}
 
 }  // namespace navemu::ubx

@@ -29,39 +29,33 @@ constexpr bool sizes_agree() {
   return ok;
 }
 
-template <Described... T>
-struct Registry {
-  static_assert((sizes_agree<T>() && ...), "a description's length differs from its struct's");
-  template <class L>
-  static constexpr MessageInfo info(const L& l, decltype(&reencode<typename L::Struct>) hook) {
-    return {l.id,           l.name,           l.length,          L::kHeaderSize, L::kBlockSize,
-            L::kCountOffset, L::kHasKeyValues, L::kHasText, hook};
-  }
-  static constexpr std::array<MessageInfo, sizeof...(T)> kAll{
-      info(layout_of<T>, &reencode<T>)...};
-};
+template <class L>
+constexpr MessageInfo info(const L& l) {
+  using T = typename L::Struct;
+  static_assert(sizes_agree<T>(), "a description's length differs from its struct's");
+  return {l.id,           l.name,           l.length,          L::kHeaderSize, L::kBlockSize,
+          L::kCountOffset, L::kHasKeyValues, L::kHasText,      &reencode<T>};
+}
 
-// Every struct with a description, in the order of protocols/ubx_messages.hpp.
-using All = Registry<NavPvt, NavPosllh, NavPosecef, NavVelned, NavVelecef, NavStatus, NavSol,
-                     NavSvinfo, NavDop, NavSat, NavTimegps, NavTimeutc, NavClock, NavEoe,
-                     RxmRawx, RxmSfrbx, AckAck, AckNak, MonVer, MonHw, CfgPrtPoll, CfgPrt,
-                     CfgMsgPoll, CfgMsgCurrentPort, CfgMsg, CfgRate, CfgNav5, CfgGnss, CfgCfg,
-                     CfgRst, CfgValgetRequest, CfgValgetResponse, CfgValset, CfgValdel>;
+// Every description, in the order of the tables.
+constexpr auto kAll = std::apply(
+    [](const auto&... l) { return std::array<MessageInfo, sizeof...(l)>{info(l)...}; },
+    Descriptions::kAll);
 
 }  // namespace
 
-std::span<const MessageInfo> messages() { return All::kAll; }
+std::span<const MessageInfo> messages() { return kAll; }
 
 const MessageInfo* find_message(MsgId id) {
-  const auto it = std::find_if(All::kAll.begin(), All::kAll.end(),
+  const auto it = std::find_if(kAll.begin(), kAll.end(),
                                [&](const MessageInfo& m) { return m.id == id; });
-  return it == All::kAll.end() ? nullptr : &*it;
+  return it == kAll.end() ? nullptr : &*it;
 }
 
 const MessageInfo* find_message(std::string_view name) {
-  const auto it = std::find_if(All::kAll.begin(), All::kAll.end(),
+  const auto it = std::find_if(kAll.begin(), kAll.end(),
                                [&](const MessageInfo& m) { return name == m.name; });
-  return it == All::kAll.end() ? nullptr : &*it;
+  return it == kAll.end() ? nullptr : &*it;
 }
 
 void append_poll(MsgId msg, std::vector<std::uint8_t>& out) {

@@ -2,16 +2,16 @@
 // Typed UBX messages: one struct per message, fields named as in the u-blox interface
 // description with the wire unit in the name (lon_1e7deg is longitude in 1e-7 deg, p_dop_0p01
 // is PDOP in units of 0.01, pr_res_dm is a residual in decimetres); after each struct its
-// description, Describe<X>::kLayout (protocols/ubx_layout.hpp): class/ID, name and the payload
-// table in wire order (wire type, field name, member, scale, repeated block). The description
-// alone drives, for each struct,
+// description in the payload tables further down (protocols/ubx_layout.hpp): class/ID, name and
+// the payload table in wire order (wire type, field name, member, scale, repeated block). The
+// description alone drives, for each struct,
 //
 //   void append(const X&, std::vector<std::uint8_t>& out);            // a complete frame
 //   bool decode(std::span<const std::uint8_t> payload, X&);           // length-checked
 //
 // and the registry messages() (class, ID, name, length rule, a round-trip hook) that tables
-// dispatch on and the generic tests walk. append() writes the frame straight into `out` (no allocation once `out` has capacity).
-// decode() takes the payload of a frame (Parser::payload()), checks its length against the
+// dispatch on and the generic tests walk. append() writes the frame straight into `out` (no
+// allocation once `out` has capacity). decode() takes the payload of a frame (Parser::payload()), checks its length against the
 // message's layout and returns false, leaving the struct in an unspecified state, when it does
 // not fit. Fixed-layout output messages accept a payload longer than their layout (u-blox may
 // append fields to a message in later protocol versions; UBX-13003221 section 32.3 "UBX
@@ -171,26 +171,6 @@ struct NavPvt {
   std::int16_t mag_dec_1e2deg = 0;
   std::uint16_t mag_acc_1e2deg = 0;
 };
-template <>
-struct Describe<NavPvt> : Describing {
-  static constexpr auto kLayout = describe<NavPvt>(kNavPvt, "NAV-PVT", Length::kAtLeast,
-      u4(&NavPvt::i_tow_ms, "iTOW", 1e-3), u2(&NavPvt::year, "year"),
-      u1(&NavPvt::month, "month"), u1(&NavPvt::day, "day"), u1(&NavPvt::hour, "hour"),
-      u1(&NavPvt::min, "min"), u1(&NavPvt::sec, "sec"), x1(&NavPvt::valid, "valid"),
-      u4(&NavPvt::t_acc_ns, "tAcc", 1e-9), i4(&NavPvt::nano_ns, "nano", 1e-9),
-      u1(&NavPvt::fix_type, "fixType"), x1(&NavPvt::flags, "flags"),
-      x1(&NavPvt::flags2, "flags2"), u1(&NavPvt::num_sv, "numSV"),
-      i4(&NavPvt::lon_1e7deg, "lon", 1e-7), i4(&NavPvt::lat_1e7deg, "lat", 1e-7),
-      i4(&NavPvt::height_mm, "height", 1e-3), i4(&NavPvt::h_msl_mm, "hMSL", 1e-3),
-      u4(&NavPvt::h_acc_mm, "hAcc", 1e-3), u4(&NavPvt::v_acc_mm, "vAcc", 1e-3),
-      i4(&NavPvt::vel_n_mmps, "velN", 1e-3), i4(&NavPvt::vel_e_mmps, "velE", 1e-3),
-      i4(&NavPvt::vel_d_mmps, "velD", 1e-3), i4(&NavPvt::g_speed_mmps, "gSpeed", 1e-3),
-      i4(&NavPvt::head_mot_1e5deg, "headMot", 1e-5), u4(&NavPvt::s_acc_mmps, "sAcc", 1e-3),
-      u4(&NavPvt::head_acc_1e5deg, "headAcc", 1e-5), u2(&NavPvt::p_dop_0p01, "pDOP", 0.01),
-      x2(&NavPvt::flags3, "flags3"), u1(&NavPvt::reserved1, "reserved1"),
-      i4(&NavPvt::head_veh_1e5deg, "headVeh", 1e-5), i2(&NavPvt::mag_dec_1e2deg, "magDec", 1e-2),
-      u2(&NavPvt::mag_acc_1e2deg, "magAcc", 1e-2));
-};
 
 // UBX-NAV-POSLLH (0x01 0x02), 28 bytes.
 struct NavPosllh {
@@ -204,14 +184,6 @@ struct NavPosllh {
   std::uint32_t h_acc_mm = 0;
   std::uint32_t v_acc_mm = 0;
 };
-template <>
-struct Describe<NavPosllh> : Describing {
-  static constexpr auto kLayout = describe<NavPosllh>(kNavPosllh, "NAV-POSLLH", Length::kAtLeast,
-      u4(&NavPosllh::i_tow_ms, "iTOW", 1e-3), i4(&NavPosllh::lon_1e7deg, "lon", 1e-7),
-      i4(&NavPosllh::lat_1e7deg, "lat", 1e-7), i4(&NavPosllh::height_mm, "height", 1e-3),
-      i4(&NavPosllh::h_msl_mm, "hMSL", 1e-3), u4(&NavPosllh::h_acc_mm, "hAcc", 1e-3),
-      u4(&NavPosllh::v_acc_mm, "vAcc", 1e-3));
-};
 
 // UBX-NAV-POSECEF (0x01 0x01), 20 bytes.
 struct NavPosecef {
@@ -222,13 +194,6 @@ struct NavPosecef {
   std::int32_t ecef_y_cm = 0;
   std::int32_t ecef_z_cm = 0;
   std::uint32_t p_acc_cm = 0;
-};
-template <>
-struct Describe<NavPosecef> : Describing {
-  static constexpr auto kLayout = describe<NavPosecef>(kNavPosecef, "NAV-POSECEF", Length::kAtLeast,
-      u4(&NavPosecef::i_tow_ms, "iTOW", 1e-3), i4(&NavPosecef::ecef_x_cm, "ecefX", 1e-2),
-      i4(&NavPosecef::ecef_y_cm, "ecefY", 1e-2), i4(&NavPosecef::ecef_z_cm, "ecefZ", 1e-2),
-      u4(&NavPosecef::p_acc_cm, "pAcc", 1e-2));
 };
 
 // UBX-NAV-VELNED (0x01 0x12), 36 bytes.
@@ -245,15 +210,6 @@ struct NavVelned {
   std::uint32_t s_acc_cmps = 0;
   std::uint32_t c_acc_1e5deg = 0;
 };
-template <>
-struct Describe<NavVelned> : Describing {
-  static constexpr auto kLayout = describe<NavVelned>(kNavVelned, "NAV-VELNED", Length::kAtLeast,
-      u4(&NavVelned::i_tow_ms, "iTOW", 1e-3), i4(&NavVelned::vel_n_cmps, "velN", 1e-2),
-      i4(&NavVelned::vel_e_cmps, "velE", 1e-2), i4(&NavVelned::vel_d_cmps, "velD", 1e-2),
-      u4(&NavVelned::speed_cmps, "speed", 1e-2), u4(&NavVelned::g_speed_cmps, "gSpeed", 1e-2),
-      i4(&NavVelned::heading_1e5deg, "heading", 1e-5), u4(&NavVelned::s_acc_cmps, "sAcc", 1e-2),
-      u4(&NavVelned::c_acc_1e5deg, "cAcc", 1e-5));
-};
 
 // UBX-NAV-VELECEF (0x01 0x11), 20 bytes.
 struct NavVelecef {
@@ -264,13 +220,6 @@ struct NavVelecef {
   std::int32_t ecef_vy_cmps = 0;
   std::int32_t ecef_vz_cmps = 0;
   std::uint32_t s_acc_cmps = 0;
-};
-template <>
-struct Describe<NavVelecef> : Describing {
-  static constexpr auto kLayout = describe<NavVelecef>(kNavVelecef, "NAV-VELECEF", Length::kAtLeast,
-      u4(&NavVelecef::i_tow_ms, "iTOW", 1e-3), i4(&NavVelecef::ecef_vx_cmps, "ecefVX", 1e-2),
-      i4(&NavVelecef::ecef_vy_cmps, "ecefVY", 1e-2), i4(&NavVelecef::ecef_vz_cmps, "ecefVZ", 1e-2),
-      u4(&NavVelecef::s_acc_cmps, "sAcc", 1e-2));
 };
 
 // UBX-NAV-STATUS (0x01 0x03), 16 bytes.
@@ -287,14 +236,6 @@ struct NavStatus {
   std::uint8_t flags2 = 0;
   std::uint32_t ttff_ms = 0;
   std::uint32_t msss_ms = 0;  // milliseconds since startup or reset
-};
-template <>
-struct Describe<NavStatus> : Describing {
-  static constexpr auto kLayout = describe<NavStatus>(kNavStatus, "NAV-STATUS", Length::kAtLeast,
-      u4(&NavStatus::i_tow_ms, "iTOW", 1e-3), u1(&NavStatus::gps_fix, "gpsFix"),
-      x1(&NavStatus::flags, "flags"), x1(&NavStatus::fix_stat, "fixStat"),
-      x1(&NavStatus::flags2, "flags2"), u4(&NavStatus::ttff_ms, "ttff", 1e-3),
-      u4(&NavStatus::msss_ms, "msss", 1e-3));
 };
 
 // UBX-NAV-SOL (0x01 0x06), 52 bytes (u-blox 8; not in protocol 27+).
@@ -322,18 +263,6 @@ struct NavSol {
   std::uint8_t num_sv = 0;
   std::array<std::uint8_t, 4> reserved2{};
 };
-template <>
-struct Describe<NavSol> : Describing {
-  static constexpr auto kLayout = describe<NavSol>(kNavSol, "NAV-SOL", Length::kAtLeast,
-      u4(&NavSol::i_tow_ms, "iTOW", 1e-3), i4(&NavSol::f_tow_ns, "fTOW", 1e-9),
-      i2(&NavSol::week, "week"), u1(&NavSol::gps_fix, "gpsFix"), x1(&NavSol::flags, "flags"),
-      i4(&NavSol::ecef_x_cm, "ecefX", 1e-2), i4(&NavSol::ecef_y_cm, "ecefY", 1e-2),
-      i4(&NavSol::ecef_z_cm, "ecefZ", 1e-2), u4(&NavSol::p_acc_cm, "pAcc", 1e-2),
-      i4(&NavSol::ecef_vx_cmps, "ecefVX", 1e-2), i4(&NavSol::ecef_vy_cmps, "ecefVY", 1e-2),
-      i4(&NavSol::ecef_vz_cmps, "ecefVZ", 1e-2), u4(&NavSol::s_acc_cmps, "sAcc", 1e-2),
-      u2(&NavSol::p_dop_0p01, "pDOP", 0.01), u1(&NavSol::reserved1, "reserved1"),
-      u1(&NavSol::num_sv, "numSV"), u1(&NavSol::reserved2, "reserved2"));
-};
 
 // UBX-NAV-SVINFO (0x01 0x30), 8 + 12 * numCh bytes (u-blox 8; replaced by NAV-SAT).
 struct NavSvinfoChannel {
@@ -358,17 +287,6 @@ struct NavSvinfo {
   std::array<std::uint8_t, 2> reserved1{};
   std::vector<NavSvinfoChannel> channels;  // numCh = channels.size() (at most 255)
 };
-template <>
-struct Describe<NavSvinfo> : Describing {
-  static constexpr auto kLayout = describe<NavSvinfo>(kNavSvinfo, "NAV-SVINFO", Length::kExact,
-      u4(&NavSvinfo::i_tow_ms, "iTOW", 1e-3), count("numCh"),
-      x1(&NavSvinfo::global_flags, "globalFlags"), u1(&NavSvinfo::reserved1, "reserved1"),
-      block(&NavSvinfo::channels, u1(&NavSvinfoChannel::chn, "chn"),
-            u1(&NavSvinfoChannel::svid, "svid"), x1(&NavSvinfoChannel::flags, "flags"),
-            x1(&NavSvinfoChannel::quality, "quality"), u1(&NavSvinfoChannel::cno_dbhz, "cno"),
-            i1(&NavSvinfoChannel::elev_deg, "elev"), i2(&NavSvinfoChannel::azim_deg, "azim"),
-            i4(&NavSvinfoChannel::pr_res_cm, "prRes", 1e-2)));
-};
 
 // UBX-NAV-DOP (0x01 0x04), 18 bytes.
 struct NavDop {
@@ -382,14 +300,6 @@ struct NavDop {
   std::uint16_t h_dop_0p01 = 0;
   std::uint16_t n_dop_0p01 = 0;
   std::uint16_t e_dop_0p01 = 0;
-};
-template <>
-struct Describe<NavDop> : Describing {
-  static constexpr auto kLayout = describe<NavDop>(kNavDop, "NAV-DOP", Length::kAtLeast,
-      u4(&NavDop::i_tow_ms, "iTOW", 1e-3), u2(&NavDop::g_dop_0p01, "gDOP", 0.01),
-      u2(&NavDop::p_dop_0p01, "pDOP", 0.01), u2(&NavDop::t_dop_0p01, "tDOP", 0.01),
-      u2(&NavDop::v_dop_0p01, "vDOP", 0.01), u2(&NavDop::h_dop_0p01, "hDOP", 0.01),
-      u2(&NavDop::n_dop_0p01, "nDOP", 0.01), u2(&NavDop::e_dop_0p01, "eDOP", 0.01));
 };
 
 // UBX-NAV-SAT (0x01 0x35), 8 + 12 * numSvs bytes.
@@ -417,16 +327,6 @@ struct NavSat {
   std::array<std::uint8_t, 2> reserved1{};
   std::vector<NavSatSv> svs;  // numSvs = svs.size() (at most 255)
 };
-template <>
-struct Describe<NavSat> : Describing {
-  static constexpr auto kLayout = describe<NavSat>(kNavSat, "NAV-SAT", Length::kExact,
-      u4(&NavSat::i_tow_ms, "iTOW", 1e-3), u1(&NavSat::version, "version"), count("numSvs"),
-      u1(&NavSat::reserved1, "reserved1"),
-      block(&NavSat::svs, u1(&NavSatSv::gnss_id, "gnssId"), u1(&NavSatSv::sv_id, "svId"),
-            u1(&NavSatSv::cno_dbhz, "cno"), i1(&NavSatSv::elev_deg, "elev"),
-            i2(&NavSatSv::azim_deg, "azim"), i2(&NavSatSv::pr_res_dm, "prRes", 0.1),
-            x4(&NavSatSv::flags, "flags")));
-};
 
 // UBX-NAV-TIMEGPS (0x01 0x20), 16 bytes.
 struct NavTimegps {
@@ -440,13 +340,6 @@ struct NavTimegps {
   std::int8_t leap_s = 0;  // GPS - UTC
   std::uint8_t valid = 0;
   std::uint32_t t_acc_ns = 0;
-};
-template <>
-struct Describe<NavTimegps> : Describing {
-  static constexpr auto kLayout = describe<NavTimegps>(kNavTimegps, "NAV-TIMEGPS", Length::kAtLeast,
-      u4(&NavTimegps::i_tow_ms, "iTOW", 1e-3), i4(&NavTimegps::f_tow_ns, "fTOW", 1e-9),
-      i2(&NavTimegps::week, "week"), i1(&NavTimegps::leap_s, "leapS"),
-      x1(&NavTimegps::valid, "valid"), u4(&NavTimegps::t_acc_ns, "tAcc", 1e-9));
 };
 
 // UBX-NAV-TIMEUTC (0x01 0x21), 20 bytes.
@@ -462,14 +355,6 @@ struct NavTimeutc {
   std::uint8_t month = 0, day = 0, hour = 0, min = 0, sec = 0;
   std::uint8_t valid = 0;
 };
-template <>
-struct Describe<NavTimeutc> : Describing {
-  static constexpr auto kLayout = describe<NavTimeutc>(kNavTimeutc, "NAV-TIMEUTC", Length::kAtLeast,
-      u4(&NavTimeutc::i_tow_ms, "iTOW", 1e-3), u4(&NavTimeutc::t_acc_ns, "tAcc", 1e-9),
-      i4(&NavTimeutc::nano_ns, "nano", 1e-9), u2(&NavTimeutc::year, "year"),
-      u1(&NavTimeutc::month, "month"), u1(&NavTimeutc::day, "day"), u1(&NavTimeutc::hour, "hour"),
-      u1(&NavTimeutc::min, "min"), u1(&NavTimeutc::sec, "sec"), x1(&NavTimeutc::valid, "valid"));
-};
 
 // UBX-NAV-CLOCK (0x01 0x22), 20 bytes.
 struct NavClock {
@@ -481,24 +366,12 @@ struct NavClock {
   std::uint32_t t_acc_ns = 0;
   std::uint32_t f_acc_psps = 0;  // frequency accuracy, ps/s
 };
-template <>
-struct Describe<NavClock> : Describing {
-  static constexpr auto kLayout = describe<NavClock>(kNavClock, "NAV-CLOCK", Length::kAtLeast,
-      u4(&NavClock::i_tow_ms, "iTOW", 1e-3), i4(&NavClock::clk_b_ns, "clkB", 1e-9),
-      i4(&NavClock::clk_d_nsps, "clkD", 1e-9), u4(&NavClock::t_acc_ns, "tAcc", 1e-9),
-      u4(&NavClock::f_acc_psps, "fAcc", 1e-12));
-};
 
 // UBX-NAV-EOE (0x01 0x61), 4 bytes: end of the epoch's navigation output.
 struct NavEoe {
   static constexpr MsgId kMsg = kNavEoe;
   static constexpr std::size_t kPayloadSize = 4;
   std::uint32_t i_tow_ms = 0;
-};
-template <>
-struct Describe<NavEoe> : Describing {
-  static constexpr auto kLayout = describe<NavEoe>(kNavEoe, "NAV-EOE", Length::kAtLeast,
-      u4(&NavEoe::i_tow_ms, "iTOW", 1e-3));
 };
 
 // ---- RXM -----------------------------------------------------------------------------------
@@ -538,21 +411,6 @@ struct RxmRawx {
   std::array<std::uint8_t, 2> reserved1{};
   std::vector<RxmRawxMeas> meas;  // numMeas = meas.size() (at most 255)
 };
-template <>
-struct Describe<RxmRawx> : Describing {
-  static constexpr auto kLayout = describe<RxmRawx>(kRxmRawx, "RXM-RAWX", Length::kExact,
-      r8(&RxmRawx::rcv_tow_s, "rcvTow"), u2(&RxmRawx::week, "week"),
-      i1(&RxmRawx::leap_s, "leapS"), count("numMeas"), x1(&RxmRawx::rec_stat, "recStat"),
-      u1(&RxmRawx::version, "version"), u1(&RxmRawx::reserved1, "reserved1"),
-      block(&RxmRawx::meas, r8(&RxmRawxMeas::pr_mes_m, "prMes"),
-            r8(&RxmRawxMeas::cp_mes_cycles, "cpMes"), r4(&RxmRawxMeas::do_mes_hz, "doMes"),
-            u1(&RxmRawxMeas::gnss_id, "gnssId"), u1(&RxmRawxMeas::sv_id, "svId"),
-            u1(&RxmRawxMeas::sig_id, "sigId"), u1(&RxmRawxMeas::freq_id, "freqId"),
-            u2(&RxmRawxMeas::locktime_ms, "locktime", 1e-3), u1(&RxmRawxMeas::cno_dbhz, "cno"),
-            x1(&RxmRawxMeas::pr_stdev, "prStdev"), x1(&RxmRawxMeas::cp_stdev, "cpStdev"),
-            x1(&RxmRawxMeas::do_stdev, "doStdev"), x1(&RxmRawxMeas::trk_stat, "trkStat"),
-            u1(&RxmRawxMeas::reserved3, "reserved3")));
-};
 
 // UBX-RXM-SFRBX (0x02 0x13), 8 + 4 * numWords bytes: broadcast navigation data subframe. For
 // GPS L1 C/A: 10 words, each holding the 30-bit word (24 data bits, 6 parity bits) in bits
@@ -570,15 +428,6 @@ struct RxmSfrbx {
   std::uint8_t reserved2 = 0;
   std::vector<std::uint32_t> words;  // numWords = words.size() (at most 255)
 };
-template <>
-struct Describe<RxmSfrbx> : Describing {
-  static constexpr auto kLayout = describe<RxmSfrbx>(kRxmSfrbx, "RXM-SFRBX", Length::kExact,
-      u1(&RxmSfrbx::gnss_id, "gnssId"), u1(&RxmSfrbx::sv_id, "svId"),
-      u1(&RxmSfrbx::sig_id, "sigId"), u1(&RxmSfrbx::freq_id, "freqId"), count("numWords"),
-      u1(&RxmSfrbx::chn, "chn"), u1(&RxmSfrbx::version, "version"),
-      u1(&RxmSfrbx::reserved2, "reserved2"),
-      block(&RxmSfrbx::words, self<Wire::kU4, std::uint32_t>("dwrd")));
-};
 
 // ---- ACK -----------------------------------------------------------------------------------
 
@@ -589,21 +438,11 @@ struct AckAck {
   std::uint8_t cls_id = 0;
   std::uint8_t msg_id = 0;
 };
-template <>
-struct Describe<AckAck> : Describing {
-  static constexpr auto kLayout = describe<AckAck>(kAckAck, "ACK-ACK", Length::kExact,
-      u1(&AckAck::cls_id, "clsID"), u1(&AckAck::msg_id, "msgID"));
-};
 struct AckNak {
   static constexpr MsgId kMsg = kAckNak;
   static constexpr std::size_t kPayloadSize = 2;
   std::uint8_t cls_id = 0;
   std::uint8_t msg_id = 0;
-};
-template <>
-struct Describe<AckNak> : Describing {
-  static constexpr auto kLayout = describe<AckNak>(kAckNak, "ACK-NAK", Length::kExact,
-      u1(&AckNak::cls_id, "clsID"), u1(&AckNak::msg_id, "msgID"));
 };
 
 // ---- MON -----------------------------------------------------------------------------------
@@ -618,14 +457,6 @@ struct MonVer {
   std::string sw_version;
   std::string hw_version;
   std::vector<std::string> extensions;
-};
-template <>
-struct Describe<MonVer> : Describing {
-  static constexpr auto kLayout = describe<MonVer>(kMonVer, "MON-VER", Length::kExact,
-      ch<MonVer::kSwSize>(&MonVer::sw_version, "swVersion"),
-      ch<MonVer::kHwSize>(&MonVer::hw_version, "hwVersion"),
-      block_to_end<Repeat::kFitLength>(
-          &MonVer::extensions, self<Wire::kCh, std::string, MonVer::kExtensionSize>("extension")));
 };
 
 // UBX-MON-HW (0x0A 0x09), 60 bytes (u-blox 7/8 layout; u-blox 6 sent 68 bytes with a longer
@@ -654,17 +485,6 @@ struct MonHw {
   std::uint32_t pull_h = 0;
   std::uint32_t pull_l = 0;
 };
-template <>
-struct Describe<MonHw> : Describing {
-  static constexpr auto kLayout = describe<MonHw>(kMonHw, "MON-HW", Length::kExact,
-      x4(&MonHw::pin_sel, "pinSel"), x4(&MonHw::pin_bank, "pinBank"),
-      x4(&MonHw::pin_dir, "pinDir"), x4(&MonHw::pin_val, "pinVal"),
-      u2(&MonHw::noise_per_ms, "noisePerMS"), u2(&MonHw::agc_cnt, "agcCnt"),
-      u1(&MonHw::a_status, "aStatus"), u1(&MonHw::a_power, "aPower"), x1(&MonHw::flags, "flags"),
-      u1(&MonHw::reserved1, "reserved1"), x4(&MonHw::used_mask, "usedMask"),
-      u1(&MonHw::vp, "VP"), u1(&MonHw::jam_ind, "jamInd"), u1(&MonHw::reserved2, "reserved2"),
-      x4(&MonHw::pin_irq, "pinIrq"), x4(&MonHw::pull_h, "pullH"), x4(&MonHw::pull_l, "pullL"));
-};
 
 // ---- CFG -----------------------------------------------------------------------------------
 // Every CFG message the receiver accepts is answered with ACK-ACK, or ACK-NAK when rejected; a
@@ -690,11 +510,6 @@ struct CfgPrtPoll {
   bool has_port_id = false;
   std::uint8_t port_id = 0;
 };
-template <>
-struct Describe<CfgPrtPoll> : Describing {
-  static constexpr auto kLayout = describe<CfgPrtPoll>(kCfgPrt, "CFG-PRT", Length::kExact,
-      optional_u1(&CfgPrtPoll::has_port_id, &CfgPrtPoll::port_id, "portID"));
-};
 
 // UBX-CFG-PRT (0x06 0x00), 20 bytes: port configuration (set, or the answer to a poll). For
 // UART ports `mode` is the character framing (0x08C0 = 8N1) and `baud_rate` the bit rate; for
@@ -713,15 +528,6 @@ struct CfgPrt {
   std::uint16_t flags = 0;  // extendedTxTimeout bit 1
   std::array<std::uint8_t, 2> reserved2{};
 };
-template <>
-struct Describe<CfgPrt> : Describing {
-  static constexpr auto kLayout = describe<CfgPrt>(kCfgPrt, "CFG-PRT", Length::kExact,
-      u1(&CfgPrt::port_id, "portID"), u1(&CfgPrt::reserved1, "reserved1"),
-      x2(&CfgPrt::tx_ready, "txReady"), x4(&CfgPrt::mode, "mode"),
-      u4(&CfgPrt::baud_rate, "baudRate"), x2(&CfgPrt::in_proto_mask, "inProtoMask"),
-      x2(&CfgPrt::out_proto_mask, "outProtoMask"), x2(&CfgPrt::flags, "flags"),
-      u1(&CfgPrt::reserved2, "reserved2"));
-};
 
 // UBX-CFG-MSG (0x06 0x01): three forms told apart by length.
 //   2 bytes: poll the rates of one message (answer: the 8-byte form, then ACK-ACK);
@@ -734,11 +540,6 @@ struct CfgMsgPoll {
   std::uint8_t msg_class = 0;
   std::uint8_t msg_id = 0;
 };
-template <>
-struct Describe<CfgMsgPoll> : Describing {
-  static constexpr auto kLayout = describe<CfgMsgPoll>(kCfgMsg, "CFG-MSG", Length::kExact,
-      u1(&CfgMsgPoll::msg_class, "msgClass"), u1(&CfgMsgPoll::msg_id, "msgID"));
-};
 struct CfgMsgCurrentPort {
   static constexpr MsgId kMsg = kCfgMsg;
   static constexpr std::size_t kPayloadSize = 3;
@@ -746,24 +547,12 @@ struct CfgMsgCurrentPort {
   std::uint8_t msg_id = 0;
   std::uint8_t rate = 0;
 };
-template <>
-struct Describe<CfgMsgCurrentPort> : Describing {
-  static constexpr auto kLayout = describe<CfgMsgCurrentPort>(kCfgMsg, "CFG-MSG", Length::kExact,
-      u1(&CfgMsgCurrentPort::msg_class, "msgClass"), u1(&CfgMsgCurrentPort::msg_id, "msgID"),
-      u1(&CfgMsgCurrentPort::rate, "rate"));
-};
 struct CfgMsg {
   static constexpr MsgId kMsg = kCfgMsg;
   static constexpr std::size_t kPayloadSize = 8;
   std::uint8_t msg_class = 0;
   std::uint8_t msg_id = 0;
   std::array<std::uint8_t, kNumPorts> rate{};  // indexed by port ID
-};
-template <>
-struct Describe<CfgMsg> : Describing {
-  static constexpr auto kLayout = describe<CfgMsg>(kCfgMsg, "CFG-MSG", Length::kExact,
-      u1(&CfgMsg::msg_class, "msgClass"), u1(&CfgMsg::msg_id, "msgID"),
-      u1(&CfgMsg::rate, "rate"));
 };
 
 // UBX-CFG-RATE (0x06 0x08), 6 bytes (poll: empty).
@@ -776,12 +565,6 @@ struct CfgRate {
   std::uint16_t meas_rate_ms = 1000;
   std::uint16_t nav_rate_cycles = 1;  // measurements per navigation solution
   std::uint16_t time_ref = kTimeRefGps;
-};
-template <>
-struct Describe<CfgRate> : Describing {
-  static constexpr auto kLayout = describe<CfgRate>(kCfgRate, "CFG-RATE", Length::kExact,
-      u2(&CfgRate::meas_rate_ms, "measRate", 1e-3), u2(&CfgRate::nav_rate_cycles, "navRate"),
-      u2(&CfgRate::time_ref, "timeRef"));
 };
 
 // UBX-CFG-NAV5 (0x06 0x24), 36 bytes (poll: empty): navigation engine settings. Only the
@@ -819,22 +602,6 @@ struct CfgNav5 {
   std::uint8_t utc_standard = 0;
   std::array<std::uint8_t, 5> reserved2{};
 };
-template <>
-struct Describe<CfgNav5> : Describing {
-  static constexpr auto kLayout = describe<CfgNav5>(kCfgNav5, "CFG-NAV5", Length::kExact,
-      x2(&CfgNav5::mask, "mask"), u1(&CfgNav5::dyn_model, "dynModel"),
-      u1(&CfgNav5::fix_mode, "fixMode"), i4(&CfgNav5::fixed_alt_cm, "fixedAlt", 1e-2),
-      u4(&CfgNav5::fixed_alt_var_1e4m2, "fixedAltVar", 1e-4),
-      i1(&CfgNav5::min_elev_deg, "minElev"), u1(&CfgNav5::dr_limit_s, "drLimit"),
-      u2(&CfgNav5::p_dop_0p1, "pDop", 0.1), u2(&CfgNav5::t_dop_0p1, "tDop", 0.1),
-      u2(&CfgNav5::p_acc_m, "pAcc"), u2(&CfgNav5::t_acc_m, "tAcc"),
-      u1(&CfgNav5::static_hold_thresh_cmps, "staticHoldThresh", 1e-2),
-      u1(&CfgNav5::dgnss_timeout_s, "dgnssTimeout"),
-      u1(&CfgNav5::cno_thresh_num_svs, "cnoThreshNumSVs"),
-      u1(&CfgNav5::cno_thresh_dbhz, "cnoThresh"), u1(&CfgNav5::reserved1, "reserved1"),
-      u2(&CfgNav5::static_hold_max_dist_m, "staticHoldMaxDist"),
-      u1(&CfgNav5::utc_standard, "utcStandard"), u1(&CfgNav5::reserved2, "reserved2"));
-};
 
 // UBX-CFG-GNSS (0x06 0x3E), 4 + 8 * numConfigBlocks bytes (poll: empty).
 struct CfgGnssBlock {
@@ -855,15 +622,6 @@ struct CfgGnss {
   std::uint8_t num_trk_ch_use = 0;
   std::vector<CfgGnssBlock> blocks;  // numConfigBlocks = blocks.size() (at most 255)
 };
-template <>
-struct Describe<CfgGnss> : Describing {
-  static constexpr auto kLayout = describe<CfgGnss>(kCfgGnss, "CFG-GNSS", Length::kExact,
-      u1(&CfgGnss::msg_ver, "msgVer"), u1(&CfgGnss::num_trk_ch_hw, "numTrkChHw"),
-      u1(&CfgGnss::num_trk_ch_use, "numTrkChUse"), count("numConfigBlocks"),
-      block(&CfgGnss::blocks, u1(&CfgGnssBlock::gnss_id, "gnssId"),
-            u1(&CfgGnssBlock::res_trk_ch, "resTrkCh"), u1(&CfgGnssBlock::max_trk_ch, "maxTrkCh"),
-            u1(&CfgGnssBlock::reserved1, "reserved1"), x4(&CfgGnssBlock::flags, "flags")));
-};
 
 // UBX-CFG-CFG (0x06 0x09), 12 or 13 bytes: clear, save or load configuration sections; the
 // optional deviceMask selects the storage (BBR 0x01, flash 0x02, EEPROM 0x04, SPI flash 0x10).
@@ -874,13 +632,6 @@ struct CfgCfg {
   std::uint32_t load_mask = 0;
   bool has_device_mask = false;
   std::uint8_t device_mask = 0;
-};
-template <>
-struct Describe<CfgCfg> : Describing {
-  static constexpr auto kLayout = describe<CfgCfg>(kCfgCfg, "CFG-CFG", Length::kExact,
-      x4(&CfgCfg::clear_mask, "clearMask"), x4(&CfgCfg::save_mask, "saveMask"),
-      x4(&CfgCfg::load_mask, "loadMask"),
-      optional_u1(&CfgCfg::has_device_mask, &CfgCfg::device_mask, "deviceMask"));
 };
 
 // UBX-CFG-RST (0x06 0x04), 4 bytes: reset (not acknowledged by the receiver).
@@ -897,12 +648,6 @@ struct CfgRst {
   std::uint16_t nav_bbr_mask = 0;
   std::uint8_t reset_mode = 0;
   std::uint8_t reserved1 = 0;
-};
-template <>
-struct Describe<CfgRst> : Describing {
-  static constexpr auto kLayout = describe<CfgRst>(kCfgRst, "CFG-RST", Length::kExact,
-      x2(&CfgRst::nav_bbr_mask, "navBbrMask"), u1(&CfgRst::reset_mode, "resetMode"),
-      u1(&CfgRst::reserved1, "reserved1"));
 };
 
 // ---- configuration interface (protocol 27+: CFG-VALGET / VALSET / VALDEL) ------------------
@@ -952,13 +697,6 @@ struct CfgValgetRequest {
   std::uint16_t position = 0;  // skip this many values of the answer
   std::vector<std::uint32_t> keys;
 };
-template <>
-struct Describe<CfgValgetRequest> : Describing {
-  static constexpr auto kLayout = describe<CfgValgetRequest>(kCfgValget, "CFG-VALGET", Length::kExact,
-      u1(&CfgValgetRequest::version, "version").only(0, 0),
-      u1(&CfgValgetRequest::layer, "layer"), u2(&CfgValgetRequest::position, "position"),
-      block_to_end<Repeat::kAll>(&CfgValgetRequest::keys, self<Wire::kU4, std::uint32_t>("keys")));
-};
 // UBX-CFG-VALGET (0x06 0x8B) answer, version 1: header + key/value pairs.
 struct CfgValgetResponse {
   static constexpr MsgId kMsg = kCfgValget;
@@ -966,13 +704,6 @@ struct CfgValgetResponse {
   std::uint8_t layer = kLayerRam;
   std::uint16_t position = 0;
   std::vector<CfgKeyValue> values;
-};
-template <>
-struct Describe<CfgValgetResponse> : Describing {
-  static constexpr auto kLayout = describe<CfgValgetResponse>(kCfgValget, "CFG-VALGET", Length::kExact,
-      u1(&CfgValgetResponse::version, "version").only(1, 1),
-      u1(&CfgValgetResponse::layer, "layer"), u2(&CfgValgetResponse::position, "position"),
-      key_values(&CfgValgetResponse::values, &cfg_value_size));
 };
 // UBX-CFG-VALSET (0x06 0x8A): version 0 (transactionless: bytes 2..3 reserved) or version 1
 // (byte 2 = transaction: 0 none, 1 begin, 2 continue, 3 apply and end), then key/value pairs
@@ -985,13 +716,6 @@ struct CfgValset {
   std::uint8_t reserved0 = 0;
   std::vector<CfgKeyValue> values;
 };
-template <>
-struct Describe<CfgValset> : Describing {
-  static constexpr auto kLayout = describe<CfgValset>(kCfgValset, "CFG-VALSET", Length::kExact,
-      u1(&CfgValset::version, "version").only(0, 1), x1(&CfgValset::layers, "layers"),
-      u1(&CfgValset::transaction, "transaction"), u1(&CfgValset::reserved0, "reserved0"),
-      key_values(&CfgValset::values, &cfg_value_size));
-};
 // UBX-CFG-VALDEL (0x06 0x8C): as VALSET, with keys only (layers BBR and/or flash).
 struct CfgValdel {
   static constexpr MsgId kMsg = kCfgValdel;
@@ -1000,13 +724,6 @@ struct CfgValdel {
   std::uint8_t transaction = 0;  // version 0: reserved
   std::uint8_t reserved0 = 0;
   std::vector<std::uint32_t> keys;
-};
-template <>
-struct Describe<CfgValdel> : Describing {
-  static constexpr auto kLayout = describe<CfgValdel>(kCfgValdel, "CFG-VALDEL", Length::kExact,
-      u1(&CfgValdel::version, "version").only(0, 1), x1(&CfgValdel::layers, "layers"),
-      u1(&CfgValdel::transaction, "transaction"), u1(&CfgValdel::reserved0, "reserved0"),
-      block_to_end<Repeat::kAll>(&CfgValdel::keys, self<Wire::kU4, std::uint32_t>("keys")));
 };
 
 // Key IDs (UBX-18010854 section 6, configuration reference; the size code in bits 28..30
@@ -1093,6 +810,206 @@ inline constexpr std::uint32_t kMsgoutNmeaIdVtgUsb = 0x209100B3;
 inline constexpr std::uint32_t kMsgoutNmeaIdZdaUart1 = 0x209100D9;
 inline constexpr std::uint32_t kMsgoutNmeaIdZdaUsb = 0x209100DB;
 }  // namespace cfgkey
+
+// ---- the payload tables -------------------------------------------------------------------
+// One description per message struct above, in wire order (protocols/ubx_layout.hpp): class/ID,
+// name, length rule, then each row's wire type, name in the interface description's table,
+// member and, where the member's unit is not the quantity's, the value of one LSB (1e-7 deg,
+// 1e-3 m, ...). Adding a message is its struct and one entry here.
+
+struct Descriptions : Describing {
+  static constexpr auto kAll = std::tuple{
+      describe<NavPvt>(kNavPvt, "NAV-PVT", Length::kAtLeast,
+          u4(&NavPvt::i_tow_ms, "iTOW", 1e-3), u2(&NavPvt::year, "year"),
+          u1(&NavPvt::month, "month"), u1(&NavPvt::day, "day"), u1(&NavPvt::hour, "hour"),
+          u1(&NavPvt::min, "min"), u1(&NavPvt::sec, "sec"), x1(&NavPvt::valid, "valid"),
+          u4(&NavPvt::t_acc_ns, "tAcc", 1e-9), i4(&NavPvt::nano_ns, "nano", 1e-9),
+          u1(&NavPvt::fix_type, "fixType"), x1(&NavPvt::flags, "flags"),
+          x1(&NavPvt::flags2, "flags2"), u1(&NavPvt::num_sv, "numSV"),
+          i4(&NavPvt::lon_1e7deg, "lon", 1e-7), i4(&NavPvt::lat_1e7deg, "lat", 1e-7),
+          i4(&NavPvt::height_mm, "height", 1e-3), i4(&NavPvt::h_msl_mm, "hMSL", 1e-3),
+          u4(&NavPvt::h_acc_mm, "hAcc", 1e-3), u4(&NavPvt::v_acc_mm, "vAcc", 1e-3),
+          i4(&NavPvt::vel_n_mmps, "velN", 1e-3), i4(&NavPvt::vel_e_mmps, "velE", 1e-3),
+          i4(&NavPvt::vel_d_mmps, "velD", 1e-3), i4(&NavPvt::g_speed_mmps, "gSpeed", 1e-3),
+          i4(&NavPvt::head_mot_1e5deg, "headMot", 1e-5), u4(&NavPvt::s_acc_mmps, "sAcc", 1e-3),
+          u4(&NavPvt::head_acc_1e5deg, "headAcc", 1e-5), u2(&NavPvt::p_dop_0p01, "pDOP", 0.01),
+          x2(&NavPvt::flags3, "flags3"), u1(&NavPvt::reserved1, "reserved1"),
+          i4(&NavPvt::head_veh_1e5deg, "headVeh", 1e-5), i2(&NavPvt::mag_dec_1e2deg, "magDec", 1e-2),
+          u2(&NavPvt::mag_acc_1e2deg, "magAcc", 1e-2)),
+      describe<NavPosllh>(kNavPosllh, "NAV-POSLLH", Length::kAtLeast,
+          u4(&NavPosllh::i_tow_ms, "iTOW", 1e-3), i4(&NavPosllh::lon_1e7deg, "lon", 1e-7),
+          i4(&NavPosllh::lat_1e7deg, "lat", 1e-7), i4(&NavPosllh::height_mm, "height", 1e-3),
+          i4(&NavPosllh::h_msl_mm, "hMSL", 1e-3), u4(&NavPosllh::h_acc_mm, "hAcc", 1e-3),
+          u4(&NavPosllh::v_acc_mm, "vAcc", 1e-3)),
+      describe<NavPosecef>(kNavPosecef, "NAV-POSECEF", Length::kAtLeast,
+          u4(&NavPosecef::i_tow_ms, "iTOW", 1e-3), i4(&NavPosecef::ecef_x_cm, "ecefX", 1e-2),
+          i4(&NavPosecef::ecef_y_cm, "ecefY", 1e-2), i4(&NavPosecef::ecef_z_cm, "ecefZ", 1e-2),
+          u4(&NavPosecef::p_acc_cm, "pAcc", 1e-2)),
+      describe<NavVelned>(kNavVelned, "NAV-VELNED", Length::kAtLeast,
+          u4(&NavVelned::i_tow_ms, "iTOW", 1e-3), i4(&NavVelned::vel_n_cmps, "velN", 1e-2),
+          i4(&NavVelned::vel_e_cmps, "velE", 1e-2), i4(&NavVelned::vel_d_cmps, "velD", 1e-2),
+          u4(&NavVelned::speed_cmps, "speed", 1e-2), u4(&NavVelned::g_speed_cmps, "gSpeed", 1e-2),
+          i4(&NavVelned::heading_1e5deg, "heading", 1e-5), u4(&NavVelned::s_acc_cmps, "sAcc", 1e-2),
+          u4(&NavVelned::c_acc_1e5deg, "cAcc", 1e-5)),
+      describe<NavVelecef>(kNavVelecef, "NAV-VELECEF", Length::kAtLeast,
+          u4(&NavVelecef::i_tow_ms, "iTOW", 1e-3), i4(&NavVelecef::ecef_vx_cmps, "ecefVX", 1e-2),
+          i4(&NavVelecef::ecef_vy_cmps, "ecefVY", 1e-2), i4(&NavVelecef::ecef_vz_cmps, "ecefVZ", 1e-2),
+          u4(&NavVelecef::s_acc_cmps, "sAcc", 1e-2)),
+      describe<NavStatus>(kNavStatus, "NAV-STATUS", Length::kAtLeast,
+          u4(&NavStatus::i_tow_ms, "iTOW", 1e-3), u1(&NavStatus::gps_fix, "gpsFix"),
+          x1(&NavStatus::flags, "flags"), x1(&NavStatus::fix_stat, "fixStat"),
+          x1(&NavStatus::flags2, "flags2"), u4(&NavStatus::ttff_ms, "ttff", 1e-3),
+          u4(&NavStatus::msss_ms, "msss", 1e-3)),
+      describe<NavSol>(kNavSol, "NAV-SOL", Length::kAtLeast,
+          u4(&NavSol::i_tow_ms, "iTOW", 1e-3), i4(&NavSol::f_tow_ns, "fTOW", 1e-9),
+          i2(&NavSol::week, "week"), u1(&NavSol::gps_fix, "gpsFix"), x1(&NavSol::flags, "flags"),
+          i4(&NavSol::ecef_x_cm, "ecefX", 1e-2), i4(&NavSol::ecef_y_cm, "ecefY", 1e-2),
+          i4(&NavSol::ecef_z_cm, "ecefZ", 1e-2), u4(&NavSol::p_acc_cm, "pAcc", 1e-2),
+          i4(&NavSol::ecef_vx_cmps, "ecefVX", 1e-2), i4(&NavSol::ecef_vy_cmps, "ecefVY", 1e-2),
+          i4(&NavSol::ecef_vz_cmps, "ecefVZ", 1e-2), u4(&NavSol::s_acc_cmps, "sAcc", 1e-2),
+          u2(&NavSol::p_dop_0p01, "pDOP", 0.01), u1(&NavSol::reserved1, "reserved1"),
+          u1(&NavSol::num_sv, "numSV"), u1(&NavSol::reserved2, "reserved2")),
+      describe<NavSvinfo>(kNavSvinfo, "NAV-SVINFO", Length::kExact,
+          u4(&NavSvinfo::i_tow_ms, "iTOW", 1e-3), count("numCh"),
+          x1(&NavSvinfo::global_flags, "globalFlags"), u1(&NavSvinfo::reserved1, "reserved1"),
+          block(&NavSvinfo::channels, u1(&NavSvinfoChannel::chn, "chn"),
+                u1(&NavSvinfoChannel::svid, "svid"), x1(&NavSvinfoChannel::flags, "flags"),
+                x1(&NavSvinfoChannel::quality, "quality"), u1(&NavSvinfoChannel::cno_dbhz, "cno"),
+                i1(&NavSvinfoChannel::elev_deg, "elev"), i2(&NavSvinfoChannel::azim_deg, "azim"),
+                i4(&NavSvinfoChannel::pr_res_cm, "prRes", 1e-2))),
+      describe<NavDop>(kNavDop, "NAV-DOP", Length::kAtLeast,
+          u4(&NavDop::i_tow_ms, "iTOW", 1e-3), u2(&NavDop::g_dop_0p01, "gDOP", 0.01),
+          u2(&NavDop::p_dop_0p01, "pDOP", 0.01), u2(&NavDop::t_dop_0p01, "tDOP", 0.01),
+          u2(&NavDop::v_dop_0p01, "vDOP", 0.01), u2(&NavDop::h_dop_0p01, "hDOP", 0.01),
+          u2(&NavDop::n_dop_0p01, "nDOP", 0.01), u2(&NavDop::e_dop_0p01, "eDOP", 0.01)),
+      describe<NavSat>(kNavSat, "NAV-SAT", Length::kExact,
+          u4(&NavSat::i_tow_ms, "iTOW", 1e-3), u1(&NavSat::version, "version"), count("numSvs"),
+          u1(&NavSat::reserved1, "reserved1"),
+          block(&NavSat::svs, u1(&NavSatSv::gnss_id, "gnssId"), u1(&NavSatSv::sv_id, "svId"),
+                u1(&NavSatSv::cno_dbhz, "cno"), i1(&NavSatSv::elev_deg, "elev"),
+                i2(&NavSatSv::azim_deg, "azim"), i2(&NavSatSv::pr_res_dm, "prRes", 0.1),
+                x4(&NavSatSv::flags, "flags"))),
+      describe<NavTimegps>(kNavTimegps, "NAV-TIMEGPS", Length::kAtLeast,
+          u4(&NavTimegps::i_tow_ms, "iTOW", 1e-3), i4(&NavTimegps::f_tow_ns, "fTOW", 1e-9),
+          i2(&NavTimegps::week, "week"), i1(&NavTimegps::leap_s, "leapS"),
+          x1(&NavTimegps::valid, "valid"), u4(&NavTimegps::t_acc_ns, "tAcc", 1e-9)),
+      describe<NavTimeutc>(kNavTimeutc, "NAV-TIMEUTC", Length::kAtLeast,
+          u4(&NavTimeutc::i_tow_ms, "iTOW", 1e-3), u4(&NavTimeutc::t_acc_ns, "tAcc", 1e-9),
+          i4(&NavTimeutc::nano_ns, "nano", 1e-9), u2(&NavTimeutc::year, "year"),
+          u1(&NavTimeutc::month, "month"), u1(&NavTimeutc::day, "day"), u1(&NavTimeutc::hour, "hour"),
+          u1(&NavTimeutc::min, "min"), u1(&NavTimeutc::sec, "sec"), x1(&NavTimeutc::valid, "valid")),
+      describe<NavClock>(kNavClock, "NAV-CLOCK", Length::kAtLeast,
+          u4(&NavClock::i_tow_ms, "iTOW", 1e-3), i4(&NavClock::clk_b_ns, "clkB", 1e-9),
+          i4(&NavClock::clk_d_nsps, "clkD", 1e-9), u4(&NavClock::t_acc_ns, "tAcc", 1e-9),
+          u4(&NavClock::f_acc_psps, "fAcc", 1e-12)),
+      describe<NavEoe>(kNavEoe, "NAV-EOE", Length::kAtLeast,
+          u4(&NavEoe::i_tow_ms, "iTOW", 1e-3)),
+      describe<RxmRawx>(kRxmRawx, "RXM-RAWX", Length::kExact,
+          r8(&RxmRawx::rcv_tow_s, "rcvTow"), u2(&RxmRawx::week, "week"),
+          i1(&RxmRawx::leap_s, "leapS"), count("numMeas"), x1(&RxmRawx::rec_stat, "recStat"),
+          u1(&RxmRawx::version, "version"), u1(&RxmRawx::reserved1, "reserved1"),
+          block(&RxmRawx::meas, r8(&RxmRawxMeas::pr_mes_m, "prMes"),
+                r8(&RxmRawxMeas::cp_mes_cycles, "cpMes"), r4(&RxmRawxMeas::do_mes_hz, "doMes"),
+                u1(&RxmRawxMeas::gnss_id, "gnssId"), u1(&RxmRawxMeas::sv_id, "svId"),
+                u1(&RxmRawxMeas::sig_id, "sigId"), u1(&RxmRawxMeas::freq_id, "freqId"),
+                u2(&RxmRawxMeas::locktime_ms, "locktime", 1e-3), u1(&RxmRawxMeas::cno_dbhz, "cno"),
+                x1(&RxmRawxMeas::pr_stdev, "prStdev"), x1(&RxmRawxMeas::cp_stdev, "cpStdev"),
+                x1(&RxmRawxMeas::do_stdev, "doStdev"), x1(&RxmRawxMeas::trk_stat, "trkStat"),
+                u1(&RxmRawxMeas::reserved3, "reserved3"))),
+      describe<RxmSfrbx>(kRxmSfrbx, "RXM-SFRBX", Length::kExact,
+          u1(&RxmSfrbx::gnss_id, "gnssId"), u1(&RxmSfrbx::sv_id, "svId"),
+          u1(&RxmSfrbx::sig_id, "sigId"), u1(&RxmSfrbx::freq_id, "freqId"), count("numWords"),
+          u1(&RxmSfrbx::chn, "chn"), u1(&RxmSfrbx::version, "version"),
+          u1(&RxmSfrbx::reserved2, "reserved2"),
+          block(&RxmSfrbx::words, self<Wire::kU4, std::uint32_t>("dwrd"))),
+      describe<AckAck>(kAckAck, "ACK-ACK", Length::kExact,
+          u1(&AckAck::cls_id, "clsID"), u1(&AckAck::msg_id, "msgID")),
+      describe<AckNak>(kAckNak, "ACK-NAK", Length::kExact,
+          u1(&AckNak::cls_id, "clsID"), u1(&AckNak::msg_id, "msgID")),
+      describe<MonVer>(kMonVer, "MON-VER", Length::kExact,
+          ch<MonVer::kSwSize>(&MonVer::sw_version, "swVersion"),
+          ch<MonVer::kHwSize>(&MonVer::hw_version, "hwVersion"),
+          block_to_end<Repeat::kFitLength>(
+              &MonVer::extensions, self<Wire::kCh, std::string, MonVer::kExtensionSize>("extension"))),
+      describe<MonHw>(kMonHw, "MON-HW", Length::kExact,
+          x4(&MonHw::pin_sel, "pinSel"), x4(&MonHw::pin_bank, "pinBank"),
+          x4(&MonHw::pin_dir, "pinDir"), x4(&MonHw::pin_val, "pinVal"),
+          u2(&MonHw::noise_per_ms, "noisePerMS"), u2(&MonHw::agc_cnt, "agcCnt"),
+          u1(&MonHw::a_status, "aStatus"), u1(&MonHw::a_power, "aPower"), x1(&MonHw::flags, "flags"),
+          u1(&MonHw::reserved1, "reserved1"), x4(&MonHw::used_mask, "usedMask"),
+          u1(&MonHw::vp, "VP"), u1(&MonHw::jam_ind, "jamInd"), u1(&MonHw::reserved2, "reserved2"),
+          x4(&MonHw::pin_irq, "pinIrq"), x4(&MonHw::pull_h, "pullH"), x4(&MonHw::pull_l, "pullL")),
+      describe<CfgPrtPoll>(kCfgPrt, "CFG-PRT", Length::kExact,
+          optional_u1(&CfgPrtPoll::has_port_id, &CfgPrtPoll::port_id, "portID")),
+      describe<CfgPrt>(kCfgPrt, "CFG-PRT", Length::kExact,
+          u1(&CfgPrt::port_id, "portID"), u1(&CfgPrt::reserved1, "reserved1"),
+          x2(&CfgPrt::tx_ready, "txReady"), x4(&CfgPrt::mode, "mode"),
+          u4(&CfgPrt::baud_rate, "baudRate"), x2(&CfgPrt::in_proto_mask, "inProtoMask"),
+          x2(&CfgPrt::out_proto_mask, "outProtoMask"), x2(&CfgPrt::flags, "flags"),
+          u1(&CfgPrt::reserved2, "reserved2")),
+      describe<CfgMsgPoll>(kCfgMsg, "CFG-MSG", Length::kExact,
+          u1(&CfgMsgPoll::msg_class, "msgClass"), u1(&CfgMsgPoll::msg_id, "msgID")),
+      describe<CfgMsgCurrentPort>(kCfgMsg, "CFG-MSG", Length::kExact,
+          u1(&CfgMsgCurrentPort::msg_class, "msgClass"), u1(&CfgMsgCurrentPort::msg_id, "msgID"),
+          u1(&CfgMsgCurrentPort::rate, "rate")),
+      describe<CfgMsg>(kCfgMsg, "CFG-MSG", Length::kExact,
+          u1(&CfgMsg::msg_class, "msgClass"), u1(&CfgMsg::msg_id, "msgID"),
+          u1(&CfgMsg::rate, "rate")),
+      describe<CfgRate>(kCfgRate, "CFG-RATE", Length::kExact,
+          u2(&CfgRate::meas_rate_ms, "measRate", 1e-3), u2(&CfgRate::nav_rate_cycles, "navRate"),
+          u2(&CfgRate::time_ref, "timeRef")),
+      describe<CfgNav5>(kCfgNav5, "CFG-NAV5", Length::kExact,
+          x2(&CfgNav5::mask, "mask"), u1(&CfgNav5::dyn_model, "dynModel"),
+          u1(&CfgNav5::fix_mode, "fixMode"), i4(&CfgNav5::fixed_alt_cm, "fixedAlt", 1e-2),
+          u4(&CfgNav5::fixed_alt_var_1e4m2, "fixedAltVar", 1e-4),
+          i1(&CfgNav5::min_elev_deg, "minElev"), u1(&CfgNav5::dr_limit_s, "drLimit"),
+          u2(&CfgNav5::p_dop_0p1, "pDop", 0.1), u2(&CfgNav5::t_dop_0p1, "tDop", 0.1),
+          u2(&CfgNav5::p_acc_m, "pAcc"), u2(&CfgNav5::t_acc_m, "tAcc"),
+          u1(&CfgNav5::static_hold_thresh_cmps, "staticHoldThresh", 1e-2),
+          u1(&CfgNav5::dgnss_timeout_s, "dgnssTimeout"),
+          u1(&CfgNav5::cno_thresh_num_svs, "cnoThreshNumSVs"),
+          u1(&CfgNav5::cno_thresh_dbhz, "cnoThresh"), u1(&CfgNav5::reserved1, "reserved1"),
+          u2(&CfgNav5::static_hold_max_dist_m, "staticHoldMaxDist"),
+          u1(&CfgNav5::utc_standard, "utcStandard"), u1(&CfgNav5::reserved2, "reserved2")),
+      describe<CfgGnss>(kCfgGnss, "CFG-GNSS", Length::kExact,
+          u1(&CfgGnss::msg_ver, "msgVer"), u1(&CfgGnss::num_trk_ch_hw, "numTrkChHw"),
+          u1(&CfgGnss::num_trk_ch_use, "numTrkChUse"), count("numConfigBlocks"),
+          block(&CfgGnss::blocks, u1(&CfgGnssBlock::gnss_id, "gnssId"),
+                u1(&CfgGnssBlock::res_trk_ch, "resTrkCh"), u1(&CfgGnssBlock::max_trk_ch, "maxTrkCh"),
+                u1(&CfgGnssBlock::reserved1, "reserved1"), x4(&CfgGnssBlock::flags, "flags"))),
+      describe<CfgCfg>(kCfgCfg, "CFG-CFG", Length::kExact,
+          x4(&CfgCfg::clear_mask, "clearMask"), x4(&CfgCfg::save_mask, "saveMask"),
+          x4(&CfgCfg::load_mask, "loadMask"),
+          optional_u1(&CfgCfg::has_device_mask, &CfgCfg::device_mask, "deviceMask")),
+      describe<CfgRst>(kCfgRst, "CFG-RST", Length::kExact,
+          x2(&CfgRst::nav_bbr_mask, "navBbrMask"), u1(&CfgRst::reset_mode, "resetMode"),
+          u1(&CfgRst::reserved1, "reserved1")),
+      describe<CfgValgetRequest>(kCfgValget, "CFG-VALGET", Length::kExact,
+          u1(&CfgValgetRequest::version, "version").only(0, 0),
+          u1(&CfgValgetRequest::layer, "layer"), u2(&CfgValgetRequest::position, "position"),
+          block_to_end<Repeat::kAll>(&CfgValgetRequest::keys, self<Wire::kU4, std::uint32_t>("keys"))),
+      describe<CfgValgetResponse>(kCfgValget, "CFG-VALGET", Length::kExact,
+          u1(&CfgValgetResponse::version, "version").only(1, 1),
+          u1(&CfgValgetResponse::layer, "layer"), u2(&CfgValgetResponse::position, "position"),
+          key_values(&CfgValgetResponse::values, &cfg_value_size)),
+      describe<CfgValset>(kCfgValset, "CFG-VALSET", Length::kExact,
+          u1(&CfgValset::version, "version").only(0, 1), x1(&CfgValset::layers, "layers"),
+          u1(&CfgValset::transaction, "transaction"), u1(&CfgValset::reserved0, "reserved0"),
+          key_values(&CfgValset::values, &cfg_value_size)),
+      describe<CfgValdel>(kCfgValdel, "CFG-VALDEL", Length::kExact,
+          u1(&CfgValdel::version, "version").only(0, 1), x1(&CfgValdel::layers, "layers"),
+          u1(&CfgValdel::transaction, "transaction"), u1(&CfgValdel::reserved0, "reserved0"),
+          block_to_end<Repeat::kAll>(&CfgValdel::keys, self<Wire::kU4, std::uint32_t>("keys"))),
+  };
+};
+
+// The description of message struct T (a compile-time error for a struct without one).
+template <class T>
+concept Described = layout_index<T, decltype(Descriptions::kAll)>() <
+                    std::tuple_size_v<std::remove_cvref_t<decltype(Descriptions::kAll)>>;
+template <Described T>
+inline constexpr const auto& layout_of =
+    std::get<layout_index<T, decltype(Descriptions::kAll)>()>(Descriptions::kAll);
 
 // ---- encoders and decoders, driven by the descriptions ---------------------------------------
 // Repeated blocks beyond 255 (or beyond the 16-bit length) are not sent: the count fields are
