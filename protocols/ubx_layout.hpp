@@ -5,8 +5,8 @@
 // A description lists the payload as the interface description's table does, in wire order:
 // each row a wire type (UBX-13003221 section 32.3.5 "Data Types": U1 I1 X1 U2 I2 X2 U4 I4 X4
 // R4 R8 CH), the field's name in the table, the struct member it maps to and, where the wire
-// unit is not an SI one, the SI value of one LSB (the scale: 1e-7 for a longitude in 1e-7 deg
-// gives degrees). Beside single fields a description holds
+// unit is a fraction of the quantity's unit, the value of one LSB in that unit (the scale: 1e-7
+// for a longitude in 1e-7 deg gives degrees, 1e-3 for a height in mm gives metres). Beside single fields a description holds
 //   - the count of a repeated block (a U1 field whose value is the number of blocks),
 //   - one repeated block (a vector member; its rows describe one element), counted by that
 //     field or following from the length,
@@ -455,8 +455,8 @@ struct Layout {
     return ok && r.ok();
   }
 
-  // Calls fn(name, wire, value in SI units) for every scalar field of the fixed part, in wire
-  // order (the scale applied).
+  // Calls fn(name, wire, value) for every scalar field of the fixed part, in wire order, the
+  // value in the quantity's unit (the scale applied: degrees, metres, seconds).
   template <class Fn>
   void for_each_value(const S& m, Fn&& fn) const {
     std::apply([&](const auto&... row) { (visit(row, m, fn), ...); }, rows);
