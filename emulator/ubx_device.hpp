@@ -17,6 +17,15 @@
 
 namespace navemu {
 
+// Messages with lists, refilled every epoch (the lists keep their storage, so encoding an epoch
+// does not allocate once they have grown).
+struct UbxListScratch {
+  ubx::NavSvinfo svinfo;
+  ubx::NavSat sat;
+  ubx::RxmRawx rawx;
+  ubx::RxmSfrbx sfrbx;
+};
+
 struct UbxDeviceCounters {
   std::uint64_t frames = 0, acks = 0, naks = 0, polls = 0;
   std::uint64_t checksum_errors = 0, too_long = 0, junk_bytes = 0;
@@ -39,10 +48,32 @@ class UbxDevice final : public GnssDevice {
   int rate(ubx::MsgId id, std::uint8_t port = ubx::kPortUart1) const;
 
  private:
-  void handle(std::uint8_t cls, std::uint8_t id, std::span<const std::uint8_t> payload,
-              std::vector<std::uint8_t>& out);
-  void handle_valset(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
-  void handle_valget(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
+  using Bytes = std::vector<std::uint8_t>;
+  using Payload = std::span<const std::uint8_t>;
+  // Dispatch of a received frame through kCommands (configuration and polls), else a poll of
+  // an output message.
+  struct Command;
+  static const Command kCommands[];
+  void handle(std::uint8_t cls, std::uint8_t id, Payload payload, Bytes& out);
+  void ack(ubx::MsgId msg, Bytes& out);
+  void nak(ubx::MsgId msg, Bytes& out);
+  void poll_mon_ver(Bytes& out);
+  void poll_mon_hw(Bytes& out);
+  void poll_cfg_rate(Bytes& out);
+  void poll_cfg_nav5(Bytes& out);
+  void poll_cfg_gnss(Bytes& out);
+  void handle_cfg_prt(Payload payload, Bytes& out);
+  void handle_cfg_msg(Payload payload, Bytes& out);
+  void handle_cfg_rate(Payload payload, Bytes& out);
+  void handle_cfg_nav5(Payload payload, Bytes& out);
+  void handle_cfg_gnss(Payload payload, Bytes& out);
+  void handle_cfg_cfg(Payload payload, Bytes& out);
+  void handle_cfg_rst(Payload payload, Bytes& out);
+  void handle_valset(Payload payload, Bytes& out);
+  void handle_valget(Payload payload, Bytes& out);
+  void handle_valdel(Payload payload, Bytes& out);
+  template <class Msg>
+  void accept_well_formed(Payload payload, Bytes& out);
   std::optional<std::uint64_t> value_of(std::uint32_t key_id) const;  // a CFG-VALGET key
   bool output_message(ubx::MsgId id, std::vector<std::uint8_t>& out) const;
   void rebuild_nmea();
@@ -75,12 +106,8 @@ class UbxDevice final : public GnssDevice {
   ReceiverFix last_fix_;
   EpochMeasurements last_meas_;
   std::vector<std::uint8_t> scratch_;
-  // Messages with lists, refilled every epoch (the lists keep their storage; output_message
-  // is const because polls use it too).
-  mutable ubx::NavSvinfo scratch_svinfo_;
-  mutable ubx::NavSat scratch_sat_;
-  mutable ubx::RxmRawx scratch_rawx_;
-  mutable ubx::RxmSfrbx scratch_sfrbx_;
+  // Output messages with lists (output_message is const because polls use it too).
+  mutable UbxListScratch lists_;
 };
 
 }  // namespace navemu

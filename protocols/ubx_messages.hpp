@@ -1,13 +1,17 @@
 #pragma once
 // Typed UBX messages: one struct per message, fields named as in the u-blox interface
 // description with the wire unit in the name (lon_1e7deg is longitude in 1e-7 deg, p_dop_0p01
-// is PDOP in units of 0.01, pr_res_dm is a residual in decimetres), and for each struct
+// is PDOP in units of 0.01, pr_res_dm is a residual in decimetres); after each struct its
+// description in the payload tables further down (protocols/ubx_layout.hpp): class/ID, name and
+// the payload table in wire order (wire type, field name, member, scale, repeated block). The
+// description alone drives, for each struct,
 //
 //   void append(const X&, std::vector<std::uint8_t>& out);            // a complete frame
 //   bool decode(std::span<const std::uint8_t> payload, X&);           // length-checked
 //
-// append() writes the frame straight into `out` (no allocation once `out` has capacity).
-// decode() takes the payload of a frame (Parser::payload()), checks its length against the
+// and the registry messages() (class, ID, name, length rule, a round-trip hook) that tables
+// dispatch on and the generic tests walk. append() writes the frame straight into `out` (no
+// allocation once `out` has capacity). decode() takes the payload of a frame (Parser::payload()), checks its length against the
 // message's layout and returns false, leaving the struct in an unspecified state, when it does
 // not fit. Fixed-layout output messages accept a payload longer than their layout (u-blox may
 // append fields to a message in later protocol versions; UBX-13003221 section 32.3 "UBX
@@ -27,19 +31,15 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "protocols/ubx.hpp"
+#include "protocols/ubx_layout.hpp"
 
 namespace navemu::ubx {
 
 // ---- message classes and IDs (UBX-13003221 section 32.6 "UBX Class IDs") -------------------
-
-struct MsgId {
-  std::uint8_t cls = 0;
-  std::uint8_t id = 0;
-  friend constexpr bool operator==(MsgId, MsgId) = default;
-};
 
 inline constexpr std::uint8_t kClassNav = 0x01;
 inline constexpr std::uint8_t kClassRxm = 0x02;
@@ -811,83 +811,248 @@ inline constexpr std::uint32_t kMsgoutNmeaIdZdaUart1 = 0x209100D9;
 inline constexpr std::uint32_t kMsgoutNmeaIdZdaUsb = 0x209100DB;
 }  // namespace cfgkey
 
-// ---- encoders: append one complete frame to `out` -------------------------------------------
+// ---- the payload tables -------------------------------------------------------------------
+// One description per message struct above, in wire order (protocols/ubx_layout.hpp): class/ID,
+// name, length rule, then each row's wire type, name in the interface description's table,
+// member and, where the member's unit is not the quantity's, the value of one LSB (1e-7 deg,
+// 1e-3 m, ...). Adding a message is its struct and one entry here.
+
+struct Descriptions : Describing {
+  static constexpr auto kAll = std::tuple{
+      describe<NavPvt>(kNavPvt, "NAV-PVT", Length::kAtLeast,
+          u4(&NavPvt::i_tow_ms, "iTOW", 1e-3), u2(&NavPvt::year, "year"),
+          u1(&NavPvt::month, "month"), u1(&NavPvt::day, "day"), u1(&NavPvt::hour, "hour"),
+          u1(&NavPvt::min, "min"), u1(&NavPvt::sec, "sec"), x1(&NavPvt::valid, "valid"),
+          u4(&NavPvt::t_acc_ns, "tAcc", 1e-9), i4(&NavPvt::nano_ns, "nano", 1e-9),
+          u1(&NavPvt::fix_type, "fixType"), x1(&NavPvt::flags, "flags"),
+          x1(&NavPvt::flags2, "flags2"), u1(&NavPvt::num_sv, "numSV"),
+          i4(&NavPvt::lon_1e7deg, "lon", 1e-7), i4(&NavPvt::lat_1e7deg, "lat", 1e-7),
+          i4(&NavPvt::height_mm, "height", 1e-3), i4(&NavPvt::h_msl_mm, "hMSL", 1e-3),
+          u4(&NavPvt::h_acc_mm, "hAcc", 1e-3), u4(&NavPvt::v_acc_mm, "vAcc", 1e-3),
+          i4(&NavPvt::vel_n_mmps, "velN", 1e-3), i4(&NavPvt::vel_e_mmps, "velE", 1e-3),
+          i4(&NavPvt::vel_d_mmps, "velD", 1e-3), i4(&NavPvt::g_speed_mmps, "gSpeed", 1e-3),
+          i4(&NavPvt::head_mot_1e5deg, "headMot", 1e-5), u4(&NavPvt::s_acc_mmps, "sAcc", 1e-3),
+          u4(&NavPvt::head_acc_1e5deg, "headAcc", 1e-5), u2(&NavPvt::p_dop_0p01, "pDOP", 0.01),
+          x2(&NavPvt::flags3, "flags3"), u1(&NavPvt::reserved1, "reserved1"),
+          i4(&NavPvt::head_veh_1e5deg, "headVeh", 1e-5), i2(&NavPvt::mag_dec_1e2deg, "magDec", 1e-2),
+          u2(&NavPvt::mag_acc_1e2deg, "magAcc", 1e-2)),
+      describe<NavPosllh>(kNavPosllh, "NAV-POSLLH", Length::kAtLeast,
+          u4(&NavPosllh::i_tow_ms, "iTOW", 1e-3), i4(&NavPosllh::lon_1e7deg, "lon", 1e-7),
+          i4(&NavPosllh::lat_1e7deg, "lat", 1e-7), i4(&NavPosllh::height_mm, "height", 1e-3),
+          i4(&NavPosllh::h_msl_mm, "hMSL", 1e-3), u4(&NavPosllh::h_acc_mm, "hAcc", 1e-3),
+          u4(&NavPosllh::v_acc_mm, "vAcc", 1e-3)),
+      describe<NavPosecef>(kNavPosecef, "NAV-POSECEF", Length::kAtLeast,
+          u4(&NavPosecef::i_tow_ms, "iTOW", 1e-3), i4(&NavPosecef::ecef_x_cm, "ecefX", 1e-2),
+          i4(&NavPosecef::ecef_y_cm, "ecefY", 1e-2), i4(&NavPosecef::ecef_z_cm, "ecefZ", 1e-2),
+          u4(&NavPosecef::p_acc_cm, "pAcc", 1e-2)),
+      describe<NavVelned>(kNavVelned, "NAV-VELNED", Length::kAtLeast,
+          u4(&NavVelned::i_tow_ms, "iTOW", 1e-3), i4(&NavVelned::vel_n_cmps, "velN", 1e-2),
+          i4(&NavVelned::vel_e_cmps, "velE", 1e-2), i4(&NavVelned::vel_d_cmps, "velD", 1e-2),
+          u4(&NavVelned::speed_cmps, "speed", 1e-2), u4(&NavVelned::g_speed_cmps, "gSpeed", 1e-2),
+          i4(&NavVelned::heading_1e5deg, "heading", 1e-5), u4(&NavVelned::s_acc_cmps, "sAcc", 1e-2),
+          u4(&NavVelned::c_acc_1e5deg, "cAcc", 1e-5)),
+      describe<NavVelecef>(kNavVelecef, "NAV-VELECEF", Length::kAtLeast,
+          u4(&NavVelecef::i_tow_ms, "iTOW", 1e-3), i4(&NavVelecef::ecef_vx_cmps, "ecefVX", 1e-2),
+          i4(&NavVelecef::ecef_vy_cmps, "ecefVY", 1e-2), i4(&NavVelecef::ecef_vz_cmps, "ecefVZ", 1e-2),
+          u4(&NavVelecef::s_acc_cmps, "sAcc", 1e-2)),
+      describe<NavStatus>(kNavStatus, "NAV-STATUS", Length::kAtLeast,
+          u4(&NavStatus::i_tow_ms, "iTOW", 1e-3), u1(&NavStatus::gps_fix, "gpsFix"),
+          x1(&NavStatus::flags, "flags"), x1(&NavStatus::fix_stat, "fixStat"),
+          x1(&NavStatus::flags2, "flags2"), u4(&NavStatus::ttff_ms, "ttff", 1e-3),
+          u4(&NavStatus::msss_ms, "msss", 1e-3)),
+      describe<NavSol>(kNavSol, "NAV-SOL", Length::kAtLeast,
+          u4(&NavSol::i_tow_ms, "iTOW", 1e-3), i4(&NavSol::f_tow_ns, "fTOW", 1e-9),
+          i2(&NavSol::week, "week"), u1(&NavSol::gps_fix, "gpsFix"), x1(&NavSol::flags, "flags"),
+          i4(&NavSol::ecef_x_cm, "ecefX", 1e-2), i4(&NavSol::ecef_y_cm, "ecefY", 1e-2),
+          i4(&NavSol::ecef_z_cm, "ecefZ", 1e-2), u4(&NavSol::p_acc_cm, "pAcc", 1e-2),
+          i4(&NavSol::ecef_vx_cmps, "ecefVX", 1e-2), i4(&NavSol::ecef_vy_cmps, "ecefVY", 1e-2),
+          i4(&NavSol::ecef_vz_cmps, "ecefVZ", 1e-2), u4(&NavSol::s_acc_cmps, "sAcc", 1e-2),
+          u2(&NavSol::p_dop_0p01, "pDOP", 0.01), u1(&NavSol::reserved1, "reserved1"),
+          u1(&NavSol::num_sv, "numSV"), u1(&NavSol::reserved2, "reserved2")),
+      describe<NavSvinfo>(kNavSvinfo, "NAV-SVINFO", Length::kExact,
+          u4(&NavSvinfo::i_tow_ms, "iTOW", 1e-3), count("numCh"),
+          x1(&NavSvinfo::global_flags, "globalFlags"), u1(&NavSvinfo::reserved1, "reserved1"),
+          block(&NavSvinfo::channels, u1(&NavSvinfoChannel::chn, "chn"),
+                u1(&NavSvinfoChannel::svid, "svid"), x1(&NavSvinfoChannel::flags, "flags"),
+                x1(&NavSvinfoChannel::quality, "quality"), u1(&NavSvinfoChannel::cno_dbhz, "cno"),
+                i1(&NavSvinfoChannel::elev_deg, "elev"), i2(&NavSvinfoChannel::azim_deg, "azim"),
+                i4(&NavSvinfoChannel::pr_res_cm, "prRes", 1e-2))),
+      describe<NavDop>(kNavDop, "NAV-DOP", Length::kAtLeast,
+          u4(&NavDop::i_tow_ms, "iTOW", 1e-3), u2(&NavDop::g_dop_0p01, "gDOP", 0.01),
+          u2(&NavDop::p_dop_0p01, "pDOP", 0.01), u2(&NavDop::t_dop_0p01, "tDOP", 0.01),
+          u2(&NavDop::v_dop_0p01, "vDOP", 0.01), u2(&NavDop::h_dop_0p01, "hDOP", 0.01),
+          u2(&NavDop::n_dop_0p01, "nDOP", 0.01), u2(&NavDop::e_dop_0p01, "eDOP", 0.01)),
+      describe<NavSat>(kNavSat, "NAV-SAT", Length::kExact,
+          u4(&NavSat::i_tow_ms, "iTOW", 1e-3), u1(&NavSat::version, "version"), count("numSvs"),
+          u1(&NavSat::reserved1, "reserved1"),
+          block(&NavSat::svs, u1(&NavSatSv::gnss_id, "gnssId"), u1(&NavSatSv::sv_id, "svId"),
+                u1(&NavSatSv::cno_dbhz, "cno"), i1(&NavSatSv::elev_deg, "elev"),
+                i2(&NavSatSv::azim_deg, "azim"), i2(&NavSatSv::pr_res_dm, "prRes", 0.1),
+                x4(&NavSatSv::flags, "flags"))),
+      describe<NavTimegps>(kNavTimegps, "NAV-TIMEGPS", Length::kAtLeast,
+          u4(&NavTimegps::i_tow_ms, "iTOW", 1e-3), i4(&NavTimegps::f_tow_ns, "fTOW", 1e-9),
+          i2(&NavTimegps::week, "week"), i1(&NavTimegps::leap_s, "leapS"),
+          x1(&NavTimegps::valid, "valid"), u4(&NavTimegps::t_acc_ns, "tAcc", 1e-9)),
+      describe<NavTimeutc>(kNavTimeutc, "NAV-TIMEUTC", Length::kAtLeast,
+          u4(&NavTimeutc::i_tow_ms, "iTOW", 1e-3), u4(&NavTimeutc::t_acc_ns, "tAcc", 1e-9),
+          i4(&NavTimeutc::nano_ns, "nano", 1e-9), u2(&NavTimeutc::year, "year"),
+          u1(&NavTimeutc::month, "month"), u1(&NavTimeutc::day, "day"), u1(&NavTimeutc::hour, "hour"),
+          u1(&NavTimeutc::min, "min"), u1(&NavTimeutc::sec, "sec"), x1(&NavTimeutc::valid, "valid")),
+      describe<NavClock>(kNavClock, "NAV-CLOCK", Length::kAtLeast,
+          u4(&NavClock::i_tow_ms, "iTOW", 1e-3), i4(&NavClock::clk_b_ns, "clkB", 1e-9),
+          i4(&NavClock::clk_d_nsps, "clkD", 1e-9), u4(&NavClock::t_acc_ns, "tAcc", 1e-9),
+          u4(&NavClock::f_acc_psps, "fAcc", 1e-12)),
+      describe<NavEoe>(kNavEoe, "NAV-EOE", Length::kAtLeast,
+          u4(&NavEoe::i_tow_ms, "iTOW", 1e-3)),
+      describe<RxmRawx>(kRxmRawx, "RXM-RAWX", Length::kExact,
+          r8(&RxmRawx::rcv_tow_s, "rcvTow"), u2(&RxmRawx::week, "week"),
+          i1(&RxmRawx::leap_s, "leapS"), count("numMeas"), x1(&RxmRawx::rec_stat, "recStat"),
+          u1(&RxmRawx::version, "version"), u1(&RxmRawx::reserved1, "reserved1"),
+          block(&RxmRawx::meas, r8(&RxmRawxMeas::pr_mes_m, "prMes"),
+                r8(&RxmRawxMeas::cp_mes_cycles, "cpMes"), r4(&RxmRawxMeas::do_mes_hz, "doMes"),
+                u1(&RxmRawxMeas::gnss_id, "gnssId"), u1(&RxmRawxMeas::sv_id, "svId"),
+                u1(&RxmRawxMeas::sig_id, "sigId"), u1(&RxmRawxMeas::freq_id, "freqId"),
+                u2(&RxmRawxMeas::locktime_ms, "locktime", 1e-3), u1(&RxmRawxMeas::cno_dbhz, "cno"),
+                x1(&RxmRawxMeas::pr_stdev, "prStdev"), x1(&RxmRawxMeas::cp_stdev, "cpStdev"),
+                x1(&RxmRawxMeas::do_stdev, "doStdev"), x1(&RxmRawxMeas::trk_stat, "trkStat"),
+                u1(&RxmRawxMeas::reserved3, "reserved3"))),
+      describe<RxmSfrbx>(kRxmSfrbx, "RXM-SFRBX", Length::kExact,
+          u1(&RxmSfrbx::gnss_id, "gnssId"), u1(&RxmSfrbx::sv_id, "svId"),
+          u1(&RxmSfrbx::sig_id, "sigId"), u1(&RxmSfrbx::freq_id, "freqId"), count("numWords"),
+          u1(&RxmSfrbx::chn, "chn"), u1(&RxmSfrbx::version, "version"),
+          u1(&RxmSfrbx::reserved2, "reserved2"),
+          block(&RxmSfrbx::words, self<Wire::kU4, std::uint32_t>("dwrd"))),
+      describe<AckAck>(kAckAck, "ACK-ACK", Length::kExact,
+          u1(&AckAck::cls_id, "clsID"), u1(&AckAck::msg_id, "msgID")),
+      describe<AckNak>(kAckNak, "ACK-NAK", Length::kExact,
+          u1(&AckNak::cls_id, "clsID"), u1(&AckNak::msg_id, "msgID")),
+      describe<MonVer>(kMonVer, "MON-VER", Length::kExact,
+          ch<MonVer::kSwSize>(&MonVer::sw_version, "swVersion"),
+          ch<MonVer::kHwSize>(&MonVer::hw_version, "hwVersion"),
+          block_to_end<Repeat::kFitLength>(
+              &MonVer::extensions, self<Wire::kCh, std::string, MonVer::kExtensionSize>("extension"))),
+      describe<MonHw>(kMonHw, "MON-HW", Length::kExact,
+          x4(&MonHw::pin_sel, "pinSel"), x4(&MonHw::pin_bank, "pinBank"),
+          x4(&MonHw::pin_dir, "pinDir"), x4(&MonHw::pin_val, "pinVal"),
+          u2(&MonHw::noise_per_ms, "noisePerMS"), u2(&MonHw::agc_cnt, "agcCnt"),
+          u1(&MonHw::a_status, "aStatus"), u1(&MonHw::a_power, "aPower"), x1(&MonHw::flags, "flags"),
+          u1(&MonHw::reserved1, "reserved1"), x4(&MonHw::used_mask, "usedMask"),
+          u1(&MonHw::vp, "VP"), u1(&MonHw::jam_ind, "jamInd"), u1(&MonHw::reserved2, "reserved2"),
+          x4(&MonHw::pin_irq, "pinIrq"), x4(&MonHw::pull_h, "pullH"), x4(&MonHw::pull_l, "pullL")),
+      describe<CfgPrtPoll>(kCfgPrt, "CFG-PRT", Length::kExact,
+          optional_u1(&CfgPrtPoll::has_port_id, &CfgPrtPoll::port_id, "portID")),
+      describe<CfgPrt>(kCfgPrt, "CFG-PRT", Length::kExact,
+          u1(&CfgPrt::port_id, "portID"), u1(&CfgPrt::reserved1, "reserved1"),
+          x2(&CfgPrt::tx_ready, "txReady"), x4(&CfgPrt::mode, "mode"),
+          u4(&CfgPrt::baud_rate, "baudRate"), x2(&CfgPrt::in_proto_mask, "inProtoMask"),
+          x2(&CfgPrt::out_proto_mask, "outProtoMask"), x2(&CfgPrt::flags, "flags"),
+          u1(&CfgPrt::reserved2, "reserved2")),
+      describe<CfgMsgPoll>(kCfgMsg, "CFG-MSG", Length::kExact,
+          u1(&CfgMsgPoll::msg_class, "msgClass"), u1(&CfgMsgPoll::msg_id, "msgID")),
+      describe<CfgMsgCurrentPort>(kCfgMsg, "CFG-MSG", Length::kExact,
+          u1(&CfgMsgCurrentPort::msg_class, "msgClass"), u1(&CfgMsgCurrentPort::msg_id, "msgID"),
+          u1(&CfgMsgCurrentPort::rate, "rate")),
+      describe<CfgMsg>(kCfgMsg, "CFG-MSG", Length::kExact,
+          u1(&CfgMsg::msg_class, "msgClass"), u1(&CfgMsg::msg_id, "msgID"),
+          u1(&CfgMsg::rate, "rate")),
+      describe<CfgRate>(kCfgRate, "CFG-RATE", Length::kExact,
+          u2(&CfgRate::meas_rate_ms, "measRate", 1e-3), u2(&CfgRate::nav_rate_cycles, "navRate"),
+          u2(&CfgRate::time_ref, "timeRef")),
+      describe<CfgNav5>(kCfgNav5, "CFG-NAV5", Length::kExact,
+          x2(&CfgNav5::mask, "mask"), u1(&CfgNav5::dyn_model, "dynModel"),
+          u1(&CfgNav5::fix_mode, "fixMode"), i4(&CfgNav5::fixed_alt_cm, "fixedAlt", 1e-2),
+          u4(&CfgNav5::fixed_alt_var_1e4m2, "fixedAltVar", 1e-4),
+          i1(&CfgNav5::min_elev_deg, "minElev"), u1(&CfgNav5::dr_limit_s, "drLimit"),
+          u2(&CfgNav5::p_dop_0p1, "pDop", 0.1), u2(&CfgNav5::t_dop_0p1, "tDop", 0.1),
+          u2(&CfgNav5::p_acc_m, "pAcc"), u2(&CfgNav5::t_acc_m, "tAcc"),
+          u1(&CfgNav5::static_hold_thresh_cmps, "staticHoldThresh", 1e-2),
+          u1(&CfgNav5::dgnss_timeout_s, "dgnssTimeout"),
+          u1(&CfgNav5::cno_thresh_num_svs, "cnoThreshNumSVs"),
+          u1(&CfgNav5::cno_thresh_dbhz, "cnoThresh"), u1(&CfgNav5::reserved1, "reserved1"),
+          u2(&CfgNav5::static_hold_max_dist_m, "staticHoldMaxDist"),
+          u1(&CfgNav5::utc_standard, "utcStandard"), u1(&CfgNav5::reserved2, "reserved2")),
+      describe<CfgGnss>(kCfgGnss, "CFG-GNSS", Length::kExact,
+          u1(&CfgGnss::msg_ver, "msgVer"), u1(&CfgGnss::num_trk_ch_hw, "numTrkChHw"),
+          u1(&CfgGnss::num_trk_ch_use, "numTrkChUse"), count("numConfigBlocks"),
+          block(&CfgGnss::blocks, u1(&CfgGnssBlock::gnss_id, "gnssId"),
+                u1(&CfgGnssBlock::res_trk_ch, "resTrkCh"), u1(&CfgGnssBlock::max_trk_ch, "maxTrkCh"),
+                u1(&CfgGnssBlock::reserved1, "reserved1"), x4(&CfgGnssBlock::flags, "flags"))),
+      describe<CfgCfg>(kCfgCfg, "CFG-CFG", Length::kExact,
+          x4(&CfgCfg::clear_mask, "clearMask"), x4(&CfgCfg::save_mask, "saveMask"),
+          x4(&CfgCfg::load_mask, "loadMask"),
+          optional_u1(&CfgCfg::has_device_mask, &CfgCfg::device_mask, "deviceMask")),
+      describe<CfgRst>(kCfgRst, "CFG-RST", Length::kExact,
+          x2(&CfgRst::nav_bbr_mask, "navBbrMask"), u1(&CfgRst::reset_mode, "resetMode"),
+          u1(&CfgRst::reserved1, "reserved1")),
+      describe<CfgValgetRequest>(kCfgValget, "CFG-VALGET", Length::kExact,
+          u1(&CfgValgetRequest::version, "version").only(0, 0),
+          u1(&CfgValgetRequest::layer, "layer"), u2(&CfgValgetRequest::position, "position"),
+          block_to_end<Repeat::kAll>(&CfgValgetRequest::keys, self<Wire::kU4, std::uint32_t>("keys"))),
+      describe<CfgValgetResponse>(kCfgValget, "CFG-VALGET", Length::kExact,
+          u1(&CfgValgetResponse::version, "version").only(1, 1),
+          u1(&CfgValgetResponse::layer, "layer"), u2(&CfgValgetResponse::position, "position"),
+          key_values(&CfgValgetResponse::values, &cfg_value_size)),
+      describe<CfgValset>(kCfgValset, "CFG-VALSET", Length::kExact,
+          u1(&CfgValset::version, "version").only(0, 1), x1(&CfgValset::layers, "layers"),
+          u1(&CfgValset::transaction, "transaction"), u1(&CfgValset::reserved0, "reserved0"),
+          key_values(&CfgValset::values, &cfg_value_size)),
+      describe<CfgValdel>(kCfgValdel, "CFG-VALDEL", Length::kExact,
+          u1(&CfgValdel::version, "version").only(0, 1), x1(&CfgValdel::layers, "layers"),
+          u1(&CfgValdel::transaction, "transaction"), u1(&CfgValdel::reserved0, "reserved0"),
+          block_to_end<Repeat::kAll>(&CfgValdel::keys, self<Wire::kU4, std::uint32_t>("keys"))),
+  };
+};
+
+// The description of message struct T (a compile-time error for a struct without one).
+template <class T>
+concept Described = layout_index<T, decltype(Descriptions::kAll)>() <
+                    std::tuple_size_v<std::remove_cvref_t<decltype(Descriptions::kAll)>>;
+template <Described T>
+inline constexpr const auto& layout_of =
+    std::get<layout_index<T, decltype(Descriptions::kAll)>()>(Descriptions::kAll);
+
+// ---- encoders and decoders, driven by the descriptions ---------------------------------------
 // Repeated blocks beyond 255 (or beyond the 16-bit length) are not sent: the count fields are
 // one byte; VALGET/VALSET/VALDEL carry at most 64 keys by specification but are not truncated.
+// A decoder checks the payload's length against the description (see the top of this file):
+// at least the fixed part for output messages, exactly for the others, exactly the count's
+// blocks for messages with a counted block, whole blocks for blocks to the end (MON-VER,
+// VALGET keys); CFG-VALGET's request (version 0) and answer (version 1) each reject the other.
 
-void append(const NavPvt& m, std::vector<std::uint8_t>& out);
-void append(const NavPosllh& m, std::vector<std::uint8_t>& out);
-void append(const NavPosecef& m, std::vector<std::uint8_t>& out);
-void append(const NavVelned& m, std::vector<std::uint8_t>& out);
-void append(const NavVelecef& m, std::vector<std::uint8_t>& out);
-void append(const NavStatus& m, std::vector<std::uint8_t>& out);
-void append(const NavSol& m, std::vector<std::uint8_t>& out);
-void append(const NavSvinfo& m, std::vector<std::uint8_t>& out);
-void append(const NavDop& m, std::vector<std::uint8_t>& out);
-void append(const NavSat& m, std::vector<std::uint8_t>& out);
-void append(const NavTimegps& m, std::vector<std::uint8_t>& out);
-void append(const NavTimeutc& m, std::vector<std::uint8_t>& out);
-void append(const NavClock& m, std::vector<std::uint8_t>& out);
-void append(const NavEoe& m, std::vector<std::uint8_t>& out);
-void append(const RxmRawx& m, std::vector<std::uint8_t>& out);
-void append(const RxmSfrbx& m, std::vector<std::uint8_t>& out);
-void append(const AckAck& m, std::vector<std::uint8_t>& out);
-void append(const AckNak& m, std::vector<std::uint8_t>& out);
-void append(const MonVer& m, std::vector<std::uint8_t>& out);
-void append(const MonHw& m, std::vector<std::uint8_t>& out);
-void append(const CfgPrtPoll& m, std::vector<std::uint8_t>& out);
-void append(const CfgPrt& m, std::vector<std::uint8_t>& out);
-void append(const CfgMsgPoll& m, std::vector<std::uint8_t>& out);
-void append(const CfgMsgCurrentPort& m, std::vector<std::uint8_t>& out);
-void append(const CfgMsg& m, std::vector<std::uint8_t>& out);
-void append(const CfgRate& m, std::vector<std::uint8_t>& out);
-void append(const CfgNav5& m, std::vector<std::uint8_t>& out);
-void append(const CfgGnss& m, std::vector<std::uint8_t>& out);
-void append(const CfgCfg& m, std::vector<std::uint8_t>& out);
-void append(const CfgRst& m, std::vector<std::uint8_t>& out);
-void append(const CfgValgetRequest& m, std::vector<std::uint8_t>& out);
-void append(const CfgValgetResponse& m, std::vector<std::uint8_t>& out);
-void append(const CfgValset& m, std::vector<std::uint8_t>& out);
-void append(const CfgValdel& m, std::vector<std::uint8_t>& out);
+template <Described T>
+void append(const T& m, std::vector<std::uint8_t>& out) {
+  layout_of<T>.append(m, out);
+}
 
-// ---- decoders: payload of a frame of the struct's class/ID -> struct ------------------------
+template <Described T>
+bool decode(std::span<const std::uint8_t> payload, T& m) {
+  return layout_of<T>.decode(payload, m);
+}
 
-bool decode(std::span<const std::uint8_t> payload, NavPvt& m);       // >= 92
-bool decode(std::span<const std::uint8_t> payload, NavPosllh& m);    // >= 28
-bool decode(std::span<const std::uint8_t> payload, NavPosecef& m);   // >= 20
-bool decode(std::span<const std::uint8_t> payload, NavVelned& m);    // >= 36
-bool decode(std::span<const std::uint8_t> payload, NavVelecef& m);   // >= 20
-bool decode(std::span<const std::uint8_t> payload, NavStatus& m);    // >= 16
-bool decode(std::span<const std::uint8_t> payload, NavSol& m);       // >= 52
-bool decode(std::span<const std::uint8_t> payload, NavSvinfo& m);    // == 8 + 12 numCh
-bool decode(std::span<const std::uint8_t> payload, NavDop& m);       // >= 18
-bool decode(std::span<const std::uint8_t> payload, NavSat& m);       // == 8 + 12 numSvs
-bool decode(std::span<const std::uint8_t> payload, NavTimegps& m);   // >= 16
-bool decode(std::span<const std::uint8_t> payload, NavTimeutc& m);   // >= 20
-bool decode(std::span<const std::uint8_t> payload, NavClock& m);     // >= 20
-bool decode(std::span<const std::uint8_t> payload, NavEoe& m);       // >= 4
-bool decode(std::span<const std::uint8_t> payload, RxmRawx& m);      // == 16 + 32 numMeas
-bool decode(std::span<const std::uint8_t> payload, RxmSfrbx& m);     // == 8 + 4 numWords
-bool decode(std::span<const std::uint8_t> payload, AckAck& m);       // == 2
-bool decode(std::span<const std::uint8_t> payload, AckNak& m);       // == 2
-bool decode(std::span<const std::uint8_t> payload, MonVer& m);       // == 40 + 30 N
-bool decode(std::span<const std::uint8_t> payload, MonHw& m);        // == 60
-bool decode(std::span<const std::uint8_t> payload, CfgPrtPoll& m);   // 0 or 1
-bool decode(std::span<const std::uint8_t> payload, CfgPrt& m);       // == 20
-bool decode(std::span<const std::uint8_t> payload, CfgMsgPoll& m);   // == 2
-bool decode(std::span<const std::uint8_t> payload, CfgMsgCurrentPort& m);  // == 3
-bool decode(std::span<const std::uint8_t> payload, CfgMsg& m);       // == 8
-bool decode(std::span<const std::uint8_t> payload, CfgRate& m);      // == 6
-bool decode(std::span<const std::uint8_t> payload, CfgNav5& m);      // == 36
-bool decode(std::span<const std::uint8_t> payload, CfgGnss& m);      // == 4 + 8 numBlocks
-bool decode(std::span<const std::uint8_t> payload, CfgCfg& m);       // 12 or 13
-bool decode(std::span<const std::uint8_t> payload, CfgRst& m);       // == 4
-// VALGET: the request has version 0 and keys, the answer version 1 and key/value pairs; each
-// decoder rejects the other version.
-bool decode(std::span<const std::uint8_t> payload, CfgValgetRequest& m);   // 4 + 4 N
-bool decode(std::span<const std::uint8_t> payload, CfgValgetResponse& m);  // 4 + pairs
-bool decode(std::span<const std::uint8_t> payload, CfgValset& m);    // 4 + pairs
-bool decode(std::span<const std::uint8_t> payload, CfgValdel& m);    // 4 + 4 N
+// ---- the registry of described messages ----------------------------------------------------
+
+// One described message, type-erased, for table dispatch and generic tests: its class/ID, name
+// and length rule, and a hook that decodes a payload as this message and appends the frame
+// again (false when the payload does not decode). Messages whose payload length selects one of
+// several forms (CFG-PRT poll and set, CFG-MSG's three forms, CFG-VALGET request and answer)
+// have an entry per form, in that order.
+struct MessageInfo {
+  MsgId id;
+  const char* name;
+  Length length;
+  std::size_t header_size;   // the fixed part (the whole payload without a block)
+  std::size_t block_size;    // one repeated block; 0: none, or of variable size
+  std::size_t count_offset;  // the U1 count of the blocks; header_size: not counted
+  bool key_values;           // key/value pairs to the end (CFG-VALGET answer, CFG-VALSET)
+  bool text;                 // NUL-padded strings: what follows a NUL is not kept
+  bool (*reencode)(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
+};
+
+// Every described message, in the order of the descriptions above.
+std::span<const MessageInfo> messages();
+// The first described message (form) with this class and ID, or with this name; null if none.
+const MessageInfo* find_message(MsgId id);
+const MessageInfo* find_message(std::string_view name);
 
 // The PROTVER extension of a MON-VER ("PROTVER=18.00", or "PROTVER 16.00" on older
 // firmware) as protocol version x 100 (1800); 0 when absent or malformed.

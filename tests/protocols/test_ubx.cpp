@@ -1179,5 +1179,97 @@ TEST(UbxRobustness, DecodersOnTruncatedRealFrames) {
   }
 }
 
+
+// ---- the descriptions, generically ---------------------------------------------------------
+
+// Every described message through its registry hook (decode, then append): payloads shaped by
+// the description (fixed part, counted blocks, blocks to the end, an optional last byte,
+// configuration key/value pairs) with random contents, and some bytes too many. Whatever
+// decodes must append the very same frame, but for what the rules of
+// protocols/ubx_messages.hpp drop: bytes after an output message's table (a later protocol's
+// extension) and characters after a string's NUL (the frame keeps its length, and appending
+// it again changes nothing). A payload longer than an exact-length message must not decode,
+// unless the extra byte is its optional last field.
+TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
+  std::mt19937 rng(20);
+  // Bytes 0 and 1 a quarter of the time (version fields, counts), otherwise any.
+  const auto byte = [&] {
+    const auto r = static_cast<std::uint32_t>(rng());
+    return static_cast<std::uint8_t>(r % 4 == 0 ? (r >> 8) % 2 : r >> 16);
+  };
+  ASSERT_EQ(messages().size(), 34u);
+  for (const MessageInfo& m : messages()) {
+    SCOPED_TRACE(m.name);
+    int decoded = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      Bytes p(m.header_size);
+      for (std::uint8_t& b : p) b = byte();
+      std::size_t extra = 0;
+      if (m.block_size > 0) {
+        const std::size_t n = rng() % 4;
+        if (m.count_offset < m.header_size) p[m.count_offset] = static_cast<std::uint8_t>(n);
+        for (std::size_t i = 0; i < n * m.block_size; ++i) p.push_back(byte());
+      } else if (m.key_values) {
+        for (std::size_t i = rng() % 4; i > 0; --i) {
+          const auto key = static_cast<std::uint32_t>((1 + rng() % 5) << 28 | (rng() & 0x0FFFFFFF));
+          Writer(p).u4(key);
+          for (std::size_t k = cfg_value_size(key); k > 0; --k) p.push_back(byte());
+        }
+      } else {
+        extra = rng() % 3;
+        for (std::size_t i = 0; i < extra; ++i) p.push_back(byte());
+      }
+      Bytes out;
+      if (!m.reencode(p, out)) continue;
+      ++decoded;
+      const std::size_t kept = m.length == Length::kAtLeast ? p.size() - extra : p.size();
+      const Bytes expected = frame_of(m.id, Bytes(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(kept)));
+      if (!m.text) {
+        EXPECT_EQ(out, expected) << "trial " << trial;
+        continue;
+      }
+      EXPECT_EQ(out.size(), expected.size()) << "trial " << trial;
+      Bytes again;
+      ASSERT_TRUE(m.reencode(Bytes(out.begin() + 6, out.end() - 2), again));
+      EXPECT_EQ(again, out) << "trial " << trial;
+    }
+    EXPECT_GE(decoded, 20) << "too few payloads decoded to test the message";
+  }
+}
+
+// The registry names each message as u-blox does and finds it by class/ID and by name.
+TEST(UbxDescriptions, RegistryFindsByIdAndName) {
+  ASSERT_NE(find_message(kNavPvt), nullptr);
+  EXPECT_STREQ(find_message(kNavPvt)->name, "NAV-PVT");
+  EXPECT_EQ(find_message(kNavPvt)->header_size, NavPvt::kPayloadSize);
+  ASSERT_NE(find_message("RXM-SFRBX"), nullptr);
+  EXPECT_EQ(find_message("RXM-SFRBX")->id, kRxmSfrbx);
+  EXPECT_EQ(find_message("RXM-SFRBX")->block_size, 4u);
+  EXPECT_EQ(find_message("RXM-SFRBX")->count_offset, 4u);  // numWords
+  EXPECT_EQ(find_message(kNavTimels), nullptr);             // not described
+  EXPECT_EQ(find_message("NAV-NONE"), nullptr);
+}
+
+// The scales of the descriptions give the quantities gpsd reports for the LEA-M8F capture
+// (.chk: lat -34.9082196 deg, lon 138.5961479 deg, altHAE 60.505 m at 2025-04-11T05:06:25Z).
+TEST(UbxDescriptions, ScalesGiveTheQuantitiesGpsdReports) {
+  const auto path = receiver_logs() / "gpsd" / "ublox-lea-m8f.log";
+  REQUIRE_CAPTURE(path);
+  const Capture c = load(path);
+  bool seen = false;
+  for (const NavPvt& pvt : all_of<NavPvt>(c.parsed)) {
+    if (pvt.hour != 5 || pvt.min != 6 || pvt.sec != 25) continue;
+    seen = true;
+    std::map<std::string, double> v;
+    layout_of<NavPvt>.for_each_value(pvt, [&](const char* name, Wire, double value) { v[name] = value; });
+    EXPECT_NEAR(v["lat"], -34.9082196, 1e-9);
+    EXPECT_NEAR(v["lon"], 138.5961479, 1e-9);
+    EXPECT_NEAR(v["height"], 60.505, 1e-9);
+    EXPECT_EQ(v["year"], 2025.0);
+    EXPECT_NEAR(v["iTOW"], pvt.i_tow_ms * 1e-3, 1e-12);
+  }
+  EXPECT_TRUE(seen);
+}
+
 }  // namespace
 }  // namespace navemu::ubx
