@@ -4,12 +4,13 @@
 
 #include <cmath>
 #include <fstream>
-#include <functional>
 #include <optional>
 #include <ostream>
 
 #include "emulator/commands.hpp"
+#include "emulator/imu_channel.hpp"
 #include "emulator/imu_profile.hpp"
+#include "emulator/truth_source.hpp"
 #include "emulator/truth_csv.hpp"
 #include "models/errors.hpp"
 #include "models/imu_kinematics.hpp"
@@ -72,32 +73,47 @@ std::shared_ptr<ImuOptions> add_imu_command(CLI::App& app) {
 
 namespace {
 
-// Runs the model at its internal rate over `steps` instants t0 + n / internal rate and writes the
-// output CSV; `ideal_at(n, t)` gives the ideal output and temperature at instant n (time t).
+// A truth CSV file as a truth source, streaming (TruthTrack): the truth at the file's instants,
+// none outside its span. Queries must come at non-decreasing times, as the IMU's rolling window
+// asks them (emulator/imu_channel.hpp).
+class TrackSource final : public TruthSource {
+ public:
+  TrackSource(const std::string& path, const TruthCsvSummary& summary)
+      : track_(path), summary_(summary), t0_(GpsTime::from_seconds(summary.first_time_s)) {}
+  std::optional<ImuTruth> at(GpsTime t) override {
+    const double s = summary_.first_time_s + seconds_between(t, t0_);
+    if (t < t0_ || s > summary_.last_time_s + 1e-9) return std::nullopt;
+    ImuTruth truth = track_.at(s);
+    truth.t = t;
+    return truth;
+  }
+  std::string describe() const override { return "truth CSV"; }
+  GpsTime first() const { return t0_; }
+
+ private:
+  TruthTrack track_;
+  TruthCsvSummary summary_;
+  GpsTime t0_;
+};
+
+// The IMU's signal path (emulator/imu_channel.hpp, as in `navemu run`) over `steps` internal
+// instants from `t0`, one CSV row per output sample.
 struct RunCounts {
   std::int64_t rows = 0, saturated = 0;
 };
-RunCounts write_samples(
-    const ImuParams& params, std::uint64_t seed, GpsTime t0, std::int64_t steps,
-    const std::function<void(std::int64_t, GpsTime, IdealImu&, double&)>& ideal_at,
-    const std::string& out_file) {
+RunCounts write_samples(const ImuParams& params, std::uint64_t seed, GpsTime t0, std::int64_t steps,
+                        TruthSource& truth, const IdealImu& initial, const std::string& out_file) {
   std::ofstream out(out_file, std::ios::binary);
   if (!out) throw InputError(out_file, 0, "--out", "cannot open for writing");
-
-  ImuModel model(params, seed);
+  ImuPipeline pipe(params, seed, t0, initial);
   fmt::memory_buffer buf;
   fmt::format_to(std::back_inserter(buf),
                  "time_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c\n");
   RunCounts counts;
   ImuSample s;
-  IdealImu ideal;
-  double temperature_c = params.reference_temperature_c;
+  bool valid = true;
   for (std::int64_t n = 0; n < steps; ++n) {
-    // Times from the sample index, rounded to the nanosecond, so that they do not drift.
-    const GpsTime t{t0.ns + static_cast<std::int64_t>(std::llround(
-                                static_cast<double>(n) * 1e9 / params.internal_rate_hz))};
-    ideal_at(n, t, ideal, temperature_c);
-    if (!model.step(t, ideal, temperature_c, s)) continue;
+    if (!pipe.run_to(n, truth, s, valid)) continue;
     fmt::format_to(std::back_inserter(buf), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n",
                    seconds_between(s.t, GpsTime{0}), s.f_body_mps2.x(), s.f_body_mps2.y(),
                    s.f_body_mps2.z(), s.w_body_radps.x(), s.w_body_radps.y(), s.w_body_radps.z(),
@@ -115,6 +131,16 @@ RunCounts write_samples(
   return counts;
 }
 
+ImuParams run_params(const ImuOptions& opt, double duration_s, std::string& profile_name) {
+  const ImuProfile profile = load_imu_profile(opt.profile);
+  profile_name = profile.name;
+  const ImuParams params = imu_params_for_run(profile, duration_s, opt.rate_hz);
+  if (std::fabs(std::round(params.internal_rate_hz / params.output_rate_hz) * params.output_rate_hz -
+                params.internal_rate_hz) > 1e-9 * params.internal_rate_hz)
+    throw InputError(profile.file.string(), 0, "internal_rate_hz", "must be a whole multiple of output_rate_hz");
+  return params;
+}
+
 }  // namespace
 
 int run_imu(const ImuOptions& opt, std::ostream&, std::ostream& err) {
@@ -122,30 +148,20 @@ int run_imu(const ImuOptions& opt, std::ostream&, std::ostream& err) {
     throw InputError("--duration", fmt::format("must be positive (got {})", *opt.duration_s));
   if (!std::isfinite(opt.rate_hz) || opt.rate_hz < 0.0)
     throw InputError("--rate", fmt::format("must be positive (got {})", opt.rate_hz));
-  const bool from_file = opt.truth != "static";
 
   RunCounts counts;
   ImuParams params;
-  std::string profile_name;
-  std::string truth_note;
-  if (!from_file) {
+  std::string profile_name, truth_note;
+  if (opt.truth == "static") {
     if (!opt.duration_s) throw InputError("--duration", "required with --truth static");
-    const double duration_s = *opt.duration_s;
-    const Geodetic where = parse_geodetic(opt.at, "--at");
-    const ImuProfile profile = load_imu_profile(opt.profile);
-    profile_name = profile.name;
-    params = imu_params_for_run(profile, duration_s, opt.rate_hz);
-    const IdealImu ideal = ideal_imu_static(where, Quat::Identity());
-    const double temperature_c = params.reference_temperature_c;
-    const auto steps =
-        static_cast<std::int64_t>(std::llround(duration_s * params.internal_rate_hz));
-    counts = write_samples(
-        params, opt.seed, GpsTime{0}, steps,
-        [&](std::int64_t, GpsTime, IdealImu& out, double& temp) {
-          out = ideal;
-          temp = temperature_c;
-        },
-        opt.out_file);
+    TruthSpec spec;
+    spec.kind = TruthSourceKind::kStationary;
+    spec.position = parse_geodetic(opt.at, "--at");
+    params = run_params(opt, *opt.duration_s, profile_name);
+    const std::unique_ptr<TruthSource> truth = make_truth_source(spec, GpsTime{0}, GpsTime{0});
+    const auto steps = static_cast<std::int64_t>(std::llround(*opt.duration_s * params.internal_rate_hz));
+    counts = write_samples(params, opt.seed, GpsTime{0}, steps, *truth,
+                           ideal_imu_static(spec.position, Quat::Identity()), opt.out_file);
   } else {
     // A first pass checks the whole file (so that a bad row fails before any output) and gives
     // its span; the second streams it through the interpolator.
@@ -157,64 +173,18 @@ int run_imu(const ImuOptions& opt, std::ostream&, std::ostream& err) {
                                    *opt.duration_s, span_s, summary.first_time_s,
                                    summary.last_time_s));
     const double duration_s = opt.duration_s.value_or(span_s);
-    const ImuProfile profile = load_imu_profile(opt.profile);
-    profile_name = profile.name;
-    params = imu_params_for_run(profile, duration_s, opt.rate_hz);
+    params = run_params(opt, duration_s, profile_name);
     const double rate = params.internal_rate_hz;
     // Instants t0 + n / rate, all inside the span.
     const auto inside = static_cast<std::int64_t>(std::floor(span_s * rate + 1e-9));
     const std::int64_t steps =
-        opt.duration_s
-            ? std::min(static_cast<std::int64_t>(std::llround(duration_s * rate)), inside)
-            : inside;
+        opt.duration_s ? std::min(static_cast<std::int64_t>(std::llround(duration_s * rate)), inside) : inside;
     if (steps < 1)
       throw InputError(opt.truth, 0, "time_s",
                        fmt::format("the span ({} s) holds no instant at {} Hz", span_s, rate));
-
-    const GpsTime t0 = GpsTime::from_seconds(summary.first_time_s);
-    auto instant = [&](std::int64_t n) {
-      return GpsTime{t0.ns + static_cast<std::int64_t>(
-                                 std::llround(static_cast<double>(n) * 1e9 / rate))};
-    };
-    TruthTrack track(opt.truth);
-    auto truth_at = [&](std::int64_t n) {
-      const GpsTime t = instant(n);
-      ImuTruth truth = track.at(summary.first_time_s + seconds_between(t, t0));
-      truth.t = t;
-      return truth;
-    };
-    // Rolling window of the truth at instants n-1, n, n+1: the kinematic derivation
-    // (ideal_imu_from_kinematics) differences the neighbours at +-1/rate, one-sided at the
-    // file's first row and where n+1 would fall past its last.
-    const double end_s = span_s + 1e-9;
-    ImuTruth now = truth_at(0);
-    ImuTruth before = now;
-    std::optional<ImuTruth> after;
-    auto next_after = [&](std::int64_t n) -> std::optional<ImuTruth> {
-      if (seconds_between(instant(n + 1), t0) > end_s) return std::nullopt;
-      return truth_at(n + 1);
-    };
-    if (!summary.has_rates) after = next_after(0);
-    counts = write_samples(
-        params, opt.seed, t0, steps,
-        [&](std::int64_t n, GpsTime, IdealImu& out, double& temp) {
-          if (n > 0) {
-            before = std::move(now);
-            if (summary.has_rates) {
-              now = truth_at(n);
-            } else {
-              now = after ? std::move(*after) : truth_at(n);
-              after = next_after(n);
-            }
-          }
-          out = summary.has_rates
-                    ? IdealImu{*now.f_body_mps2, *now.w_ib_body_radps}
-                    : ideal_imu_from_kinematics(before, now, after ? *after : now);
-          temp = now.temperature_c.value_or(params.reference_temperature_c);
-        },
-        opt.out_file);
-    truth_note = fmt::format(", truth {} ({} s of {} s)", opt.truth,
-                             static_cast<double>(steps) / rate, span_s);
+    TrackSource truth(opt.truth, summary);
+    counts = write_samples(params, opt.seed, truth.first(), steps, truth, IdealImu{}, opt.out_file);
+    truth_note = fmt::format(", truth {} ({} s of {} s)", opt.truth, static_cast<double>(steps) / rate, span_s);
   }
 
   err << fmt::format("navemu imu: {} samples written to {} (profile {}, {} Hz output, {} Hz "
