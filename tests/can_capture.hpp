@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "protocols/can_frames.hpp"
+#include "tests/test_support.hpp"
 
 namespace navemu::test {
 
@@ -71,22 +72,18 @@ struct ImuRow {
 
 inline std::vector<ImuRow> read_imu_rows(const std::filesystem::path& p) {
   std::vector<ImuRow> rows;
-  std::ifstream in(p);
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::vector<std::string> v;
-    std::stringstream ss(line);
-    for (std::string x; std::getline(ss, x, ',');) v.push_back(x);
-    if (v.size() < 11) continue;
+  const CsvTable t(p);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t.row(i).size() < t.header().size()) continue;  // a row cut short (the log still open)
     ImuRow r;
-    for (std::size_t i = 0; i < 3; ++i) {
-      r.f_mps2[i] = std::stod(v[1 + i]);
-      r.w_radps[i] = std::stod(v[4 + i]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const char axis[] = {static_cast<char>('x' + k), '\0'};
+      r.f_mps2[k] = t.num(i, std::string("f_") + axis + "_mps2");
+      r.w_radps[k] = t.num(i, std::string("w_") + axis + "_radps");
     }
-    r.truth_valid = v[8] == "1";
-    r.gps_time_ns = std::stoll(v[9]);
-    r.sequence = std::stoi(v[10]);
+    r.truth_valid = t(i, "truth_valid") == "1";
+    r.gps_time_ns = t.integer(i, "gps_time_ns");
+    r.sequence = static_cast<int>(t.integer(i, "sequence"));
     rows.push_back(r);
   }
   return rows;

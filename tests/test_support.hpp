@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "models/geodesy.hpp"
@@ -50,6 +52,48 @@ inline std::string find_program(const std::string& name) {
   }
   return {};
 }
+
+// A CSV file with a header row, read whole; its cells are found by column name, so that tests
+// do not depend on the order of columns. An unknown column throws std::out_of_range naming it.
+class CsvTable {
+ public:
+  explicit CsvTable(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read " + path.string());
+    std::string line;
+    std::getline(in, line);
+    header_ = split(line);
+    while (std::getline(in, line)) rows_.push_back(split(line));
+  }
+  std::size_t size() const { return rows_.size(); }  // data rows, the header not counted
+  const std::vector<std::string>& header() const { return header_; }
+  const std::vector<std::string>& row(std::size_t i) const { return rows_.at(i); }
+  // The cell of data row i (from 0) in `column`, as text, a number or an integer.
+  const std::string& operator()(std::size_t i, std::string_view column) const {
+    const std::vector<std::string>& r = rows_.at(i);
+    const std::size_t c = index(column);
+    static const std::string empty;
+    return c < r.size() ? r[c] : empty;
+  }
+  double num(std::size_t i, std::string_view column) const { return std::stod((*this)(i, column)); }
+  std::int64_t integer(std::size_t i, std::string_view column) const { return std::stoll((*this)(i, column)); }
+
+ private:
+  static std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    if (!line.empty() && line.back() == ',') f.emplace_back();
+    return f;
+  }
+  std::size_t index(std::string_view column) const {
+    for (std::size_t c = 0; c < header_.size(); ++c)
+      if (header_[c] == column) return c;
+    throw std::out_of_range("no column " + std::string(column));
+  }
+  std::vector<std::string> header_;
+  std::vector<std::vector<std::string>> rows_;
+};
 
 struct CommandResult {
   int exit_code = -1;

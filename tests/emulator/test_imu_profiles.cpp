@@ -13,6 +13,7 @@
 
 #include "emulator/cli.hpp"
 #include "tests/emulator/cli_runner.hpp"
+#include "tests/test_support.hpp"
 #include "models/errors.hpp"
 
 namespace navemu {
@@ -156,15 +157,18 @@ std::string slurp(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// The columns of navemu imu's CSV, found by name in its header, in this order in each row.
+enum Col : std::size_t { kT, kFx, kFy, kFz, kWx, kWy, kWz, kTemp, kColumns };
+constexpr const char* kColumnNames[kColumns] = {"time_s",    "f_x_mps2",  "f_y_mps2",  "f_z_mps2",
+                                                "w_x_radps", "w_y_radps", "w_z_radps", "temperature_c"};
+
 std::vector<std::vector<double>> read_rows(const std::string& path, std::string& header) {
-  std::ifstream in(path);
-  std::getline(in, header);
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<double> r;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) r.push_back(std::stod(cell));
-    rows.push_back(r);
+  std::ifstream(path) >> header;
+  const test::CsvTable t(path);
+  std::vector<std::vector<double>> rows(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    EXPECT_EQ(t.row(i).size(), t.header().size()) << "row " << i;
+    for (const char* name : kColumnNames) rows[i].push_back(t.num(i, name));
   }
   return rows;
 }
@@ -178,10 +182,10 @@ TEST(ImuCli, WritesOneRowPerOutputSample) {
   const auto rows = read_rows(out, header);
   EXPECT_EQ(header, "time_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps,temperature_c");
   ASSERT_EQ(rows.size(), 200u);
-  EXPECT_DOUBLE_EQ(rows[0][0], 0.002);  // the profile's 2 ms latency
-  EXPECT_DOUBLE_EQ(rows[1][0], 0.012);
-  EXPECT_DOUBLE_EQ(rows[199][0], 1.992);
-  for (const auto& row : rows) ASSERT_EQ(row.size(), 8u);
+  EXPECT_DOUBLE_EQ(rows[0][kT], 0.002);  // the profile's 2 ms latency
+  EXPECT_DOUBLE_EQ(rows[1][kT], 0.012);
+  EXPECT_DOUBLE_EQ(rows[199][kT], 1.992);
+  for (const auto& row : rows) ASSERT_EQ(row.size(), static_cast<std::size_t>(kColumns));
   // --rate overrides the output rate.
   const CliRun fast =
       navemu({"imu", "--profile", "xsens_mti100", "--duration", "2", "--rate", "200", "--out", out});
@@ -217,20 +221,20 @@ TEST(ImuCli, StaticLevelImuSensesGravityAndEarthRate) {
   std::string header;
   const auto rows = read_rows(out, header);
   ASSERT_EQ(rows.size(), 60000u);
-  std::vector<double> mean(8, 0.0);
+  std::vector<double> mean(kColumns, 0.0);
   for (const auto& row : rows)
-    for (std::size_t i = 0; i < 8; ++i) mean[i] += row[i] / static_cast<double>(rows.size());
+    for (std::size_t i = 0; i < kColumns; ++i) mean[i] += row[i] / static_cast<double>(rows.size());
   // Standard error of a 600-s mean of white noise: density / sqrt(600 s); bound 5 of them.
   const double se_f = 5.0 * 1e-3 / std::sqrt(600.0), se_w = 5.0 * 1e-5 / std::sqrt(600.0);
   const double lat = 32.3 * kPi / 180.0, we = 7.292115e-5;
   // Normal gravity at 32.3 deg, 60 m (Somigliana with the free-air gradient): 9.7949 m/s^2.
-  EXPECT_NEAR(mean[1], 0.0, se_f + 1e-4);  // + the ~1e-5 north component of normal gravity
-  EXPECT_NEAR(mean[2], 0.0, se_f);
-  EXPECT_NEAR(mean[3], -9.7949, se_f + 2e-4);
-  EXPECT_NEAR(mean[4], we * std::cos(lat), se_w);
-  EXPECT_NEAR(mean[5], 0.0, se_w);
-  EXPECT_NEAR(mean[6], -we * std::sin(lat), se_w);
-  EXPECT_NEAR(mean[7], 25.0, 1e-9);
+  EXPECT_NEAR(mean[kFx], 0.0, se_f + 1e-4);  // + the ~1e-5 north component of normal gravity
+  EXPECT_NEAR(mean[kFy], 0.0, se_f);
+  EXPECT_NEAR(mean[kFz], -9.7949, se_f + 2e-4);
+  EXPECT_NEAR(mean[kWx], we * std::cos(lat), se_w);
+  EXPECT_NEAR(mean[kWy], 0.0, se_w);
+  EXPECT_NEAR(mean[kWz], -we * std::sin(lat), se_w);
+  EXPECT_NEAR(mean[kTemp], 25.0, 1e-9);
 }
 
 // A profile with every error term zero: the output is the ideal IMU.
@@ -261,21 +265,21 @@ TEST(ImuCli, TruthCircleSensesCentripetalForceAndTurnRate) {
   const auto rows = read_rows(out, header);
   // Internal instants n = 0 .. round(200 loops_s) - 1, every second one output.
   ASSERT_EQ(rows.size(), static_cast<std::size_t>((std::llround(loops_s * 200.0) + 1) / 2));
-  std::vector<double> mean(8, 0.0);
+  std::vector<double> mean(kColumns, 0.0);
   for (const auto& row : rows)
-    for (std::size_t i = 0; i < 8; ++i) mean[i] += row[i] / static_cast<double>(rows.size());
-  EXPECT_NEAR(mean[2], v * v / r, 1e-3);
-  EXPECT_NEAR(mean[2], v * v / r - 2.0 * we * std::sin(lat) * v, 1e-5);
-  EXPECT_NEAR(mean[1], 0.0, 1e-5);
-  EXPECT_NEAR(mean[3], -9.7949, 2e-4);
-  EXPECT_NEAR(mean[6], v / r - we * std::sin(lat), 1e-6);
-  EXPECT_NEAR(mean[5], -v / 6.372e6, 1e-8);  // -v / R: pitching over the curved Earth
-  EXPECT_NEAR(mean[4], 0.0, 1e-7);
-  EXPECT_NEAR(mean[7], 25.0, 1e-9);
+    for (std::size_t i = 0; i < kColumns; ++i) mean[i] += row[i] / static_cast<double>(rows.size());
+  EXPECT_NEAR(mean[kFy], v * v / r, 1e-3);
+  EXPECT_NEAR(mean[kFy], v * v / r - 2.0 * we * std::sin(lat) * v, 1e-5);
+  EXPECT_NEAR(mean[kFx], 0.0, 1e-5);
+  EXPECT_NEAR(mean[kFz], -9.7949, 2e-4);
+  EXPECT_NEAR(mean[kWz], v / r - we * std::sin(lat), 1e-6);
+  EXPECT_NEAR(mean[kWy], -v / 6.372e6, 1e-8);  // -v / R: pitching over the curved Earth
+  EXPECT_NEAR(mean[kWx], 0.0, 1e-7);
+  EXPECT_NEAR(mean[kTemp], 25.0, 1e-9);
   // Every sample, not only the mean: a constant-speed circle is sensed as constant.
   for (const auto& row : rows) {
-    ASSERT_NEAR(row[2], mean[2], 2e-4);
-    ASSERT_NEAR(row[6], mean[6], 1e-6);
+    ASSERT_NEAR(row[kFy], mean[kFy], 2e-4);
+    ASSERT_NEAR(row[kWz], mean[kWz], 1e-6);
   }
 }
 
@@ -302,8 +306,8 @@ TEST(ImuCli, TruthFileSpanAndDuration) {
   std::string header;
   const auto rows = read_rows(out, header);
   ASSERT_EQ(rows.size(), 22990u);
-  EXPECT_DOUBLE_EQ(rows.front()[0], 0.0);
-  EXPECT_DOUBLE_EQ(rows.back()[0], 229.89);
+  EXPECT_DOUBLE_EQ(rows.front()[kT], 0.0);
+  EXPECT_DOUBLE_EQ(rows.back()[kT], 229.89);
   // Longer than the span: an error.
   const CliRun longer = navemu({"imu", "--profile", profile.string(), "--truth", kCircle,
                                 "--duration", "300", "--out", out});
@@ -345,12 +349,12 @@ TEST(ImuCli, TruthFileRatesAndTemperaturePassThrough) {
   std::string header;
   const auto rows = read_rows(out, header);
   ASSERT_EQ(rows.size(), 200u);
-  EXPECT_DOUBLE_EQ(rows[0][0], 100.0);  // the file's time base
-  EXPECT_NEAR(rows[50][0], 100.5, 1e-9);
-  EXPECT_NEAR(rows[50][1], 2.0, 1e-9);
-  EXPECT_NEAR(rows[50][6], 0.4, 1e-9);
-  EXPECT_NEAR(rows[50][7], 25.0, 1e-9);
-  EXPECT_NEAR(rows[150][1], 3.0, 1e-9);
+  EXPECT_DOUBLE_EQ(rows[0][kT], 100.0);  // the file's time base
+  EXPECT_NEAR(rows[50][kT], 100.5, 1e-9);
+  EXPECT_NEAR(rows[50][kFx], 2.0, 1e-9);
+  EXPECT_NEAR(rows[50][kWz], 0.4, 1e-9);
+  EXPECT_NEAR(rows[50][kTemp], 25.0, 1e-9);
+  EXPECT_NEAR(rows[150][kFx], 3.0, 1e-9);
 }
 
 TEST(ImuCli, BadInputGivesOneLineError) {

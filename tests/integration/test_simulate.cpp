@@ -31,19 +31,6 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
-  std::vector<std::vector<std::string>> rows;
-  std::ifstream in(p);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
-    if (!line.empty() && line.back() == ',') f.emplace_back();
-    rows.push_back(f);
-  }
-  return rows;
-}
-
 fs::path temp_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("navemu_simulate_" + name);
   fs::remove_all(d);
@@ -99,13 +86,14 @@ TEST(Simulate, EveryShippedImuProfileRunsAtItsOutputRate) {
     std::ofstream(config) << "gnss: {enabled: false}\nimu: {profile: " << name << "}\n";
     const auto r = simulate(config, d / "out", 2);
     ASSERT_EQ(r.exit_code, 0) << name << ": " << r.out;
-    const auto rows = csv_rows(d / "out" / "imu.csv");
-    ASSERT_GE(rows.size(), 2u) << name;
-    // Consecutive samples one output period apart in GPS time (column gps_time_ns).
-    const std::int64_t period_ns = std::stoll(rows[2][9]) - std::stoll(rows[1][9]);
-    EXPECT_EQ(static_cast<double>(rows.size() - 1), 2e9 / static_cast<double>(period_ns)) << name;
-    for (std::size_t i = 2; i < rows.size(); ++i)
-      ASSERT_EQ(std::stoll(rows[i][9]) - std::stoll(rows[i - 1][9]), period_ns) << name << " row " << i;
+    const test::CsvTable rows(d / "out" / "imu.csv");
+    ASSERT_GE(rows.size(), 1u) << name;
+    // Consecutive samples one output period apart in GPS time.
+    const std::int64_t period_ns = rows.integer(1, "gps_time_ns") - rows.integer(0, "gps_time_ns");
+    EXPECT_EQ(static_cast<double>(rows.size()), 2e9 / static_cast<double>(period_ns)) << name;
+    for (std::size_t i = 1; i < rows.size(); ++i)
+      ASSERT_EQ(rows.integer(i, "gps_time_ns") - rows.integer(i - 1, "gps_time_ns"), period_ns)
+          << name << " row " << i + 1;
     ++profiles;
   }
   EXPECT_GE(profiles, 7);
@@ -117,19 +105,19 @@ TEST(Simulate, FilesHoldEveryEpochOnTheGridWithAPlausibleFix) {
   ASSERT_EQ(r.exit_code, 0) << r.out;
 
   // 60 s at 5 Hz: epochs at .0 .2 .4 ... from the start, 300 of them.
-  const auto gnss = csv_rows(d / "gnss.csv");
-  ASSERT_EQ(gnss.size(), 301u);
-  ASSERT_EQ(gnss[0][0], "time_s");
+  const test::CsvTable gnss(d / "gnss.csv");
+  ASSERT_EQ(gnss.size(), 300u);
+  ASSERT_EQ(gnss.header()[0], "time_s");
   double sum_h = 0.0, max_h = 0.0;
   int fixes = 0;
-  for (std::size_t i = 1; i < gnss.size(); ++i) {
-    EXPECT_NEAR(std::stod(gnss[i][0]), 0.2 * static_cast<double>(i - 1), 1e-9);
-    if (gnss[i][6] != "3") continue;
+  for (std::size_t i = 0; i < gnss.size(); ++i) {
+    EXPECT_NEAR(gnss.num(i, "time_s"), 0.2 * static_cast<double>(i), 1e-9);
+    if (gnss(i, "fix") != "3") continue;
     ++fixes;
-    const double h = std::stod(gnss[i][18]);
+    const double h = gnss.num(i, "err_h_m");
     sum_h += h;
     max_h = std::max(max_h, h);
-    EXPECT_GE(std::stoi(gnss[i][8]), 4);
+    EXPECT_GE(gnss.integer(i, "num_used"), 4);
   }
   EXPECT_EQ(fixes, 300);
   // A consumer receiver, standalone, Klobuchar residual: metres, not tens of metres.
@@ -163,13 +151,13 @@ TEST(Simulate, FilesHoldEveryEpochOnTheGridWithAPlausibleFix) {
     EXPECT_NEAR(rmc_times[i] - rmc_times[i - 1], 0.2, 1e-6);
 
   // IMU: 125 Hz for 60 s, every sample with truth.
-  const auto imu = csv_rows(d / "imu.csv");
-  ASSERT_EQ(imu.size(), 7501u);
-  for (std::size_t i = 1; i < imu.size(); ++i) EXPECT_EQ(imu[i][8], "1");
+  const test::CsvTable imu(d / "imu.csv");
+  ASSERT_EQ(imu.size(), 7500u);
+  for (std::size_t i = 0; i < imu.size(); ++i) EXPECT_EQ(imu(i, "truth_valid"), "1");
 
   // Truth: the paper's 30 ft circle around the site.
-  const auto truth = csv_rows(d / "truth.csv");
-  ASSERT_EQ(truth.size(), 301u);
+  const test::CsvTable truth(d / "truth.csv");
+  ASSERT_EQ(truth.size(), 300u);
 }
 
 // The IMU's CAN frames of an offline run: can.log in candump -L format, one J1939 ARI and ACCS
@@ -262,13 +250,13 @@ TEST(Simulate, SceneRunsAreDeterministicAndCostSatellites) {
   ASSERT_EQ(simulate(d / "canyon.yaml", d / "c2", 60).exit_code, 0);
   for (const char* f : {"nmea.log", "gnss.csv"}) EXPECT_EQ(slurp(d / "c1" / f), slurp(d / "c2" / f)) << f;
 
-  const auto open = csv_rows(d / "open" / "gnss.csv");
-  const auto canyon = csv_rows(d / "c1" / "gnss.csv");
+  const test::CsvTable open(d / "open" / "gnss.csv");
+  const test::CsvTable canyon(d / "c1" / "gnss.csv");
   ASSERT_EQ(open.size(), canyon.size());
   double open_sats = 0, canyon_sats = 0;
-  for (std::size_t i = 1; i < open.size(); ++i) {
-    open_sats += std::stod(open[i][7]);
-    canyon_sats += std::stod(canyon[i][7]);
+  for (std::size_t i = 0; i < open.size(); ++i) {
+    open_sats += open.num(i, "num_tracked");
+    canyon_sats += canyon.num(i, "num_tracked");
   }
   EXPECT_LT(canyon_sats, 0.8 * open_sats);
 
@@ -291,10 +279,10 @@ TEST(Simulate, UbloxScenariosDriveForeverAndWriteUbxIntoUbxBin) {
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NE(r.out.find("circle r 9.144 m at 1 m/s, forever"), std::string::npos) << r.out;
     // Still moving at 1 m/s after 500 s.
-    const auto truth = csv_rows(out / "truth.csv");
-    ASSERT_GT(truth.size(), 590u);
-    for (std::size_t i = 500; i < truth.size(); i += 10)
-      EXPECT_NEAR(std::hypot(std::stod(truth[i][4]), std::stod(truth[i][5])), 1.0, 1e-3) << truth[i][0];  // 4 decimals
+    const test::CsvTable truth(out / "truth.csv");
+    ASSERT_GT(truth.size(), 589u);
+    for (std::size_t i = 499; i < truth.size(); i += 10)  // 4 decimals
+      EXPECT_NEAR(std::hypot(truth.num(i, "v_n_mps"), truth.num(i, "v_e_mps")), 1.0, 1e-3) << truth(i, "time_s");
 
     // UBX frames by class and id (u-blox 8 / F9 interface descriptions: sync B5 62, class,
     // id, little-endian length, payload, 2-byte checksum).
@@ -371,10 +359,10 @@ TEST(Simulate, BuiltInConstellationKeepsAFixForThirtyHoursWithNewUploads) {
   const auto r = simulate(d / "30h.yaml", d / "out", 108000);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("108000 GNSS epochs (108000 with a fix)"), std::string::npos) << r.out;
-  const auto gnss = csv_rows(d / "out" / "gnss.csv");
-  ASSERT_EQ(gnss.size(), 108001u);
+  const test::CsvTable gnss(d / "out" / "gnss.csv");
+  ASSERT_EQ(gnss.size(), 108000u);
   int fixes = 0;
-  for (std::size_t i = 1; i < gnss.size(); ++i) fixes += gnss[i][6] == "3";
+  for (std::size_t i = 0; i < gnss.size(); ++i) fixes += gnss(i, "fix") == "3";
   EXPECT_EQ(fixes, 108000);
 
   int frames = 0, failed = 0, uploads = 0;
