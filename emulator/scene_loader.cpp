@@ -324,6 +324,82 @@ int line_in_message(const std::string& message) {
   return line;
 }
 
+// The OBJ file's text, read whole: a bound, so that a wrong file is an error rather than memory
+// exhausted. A 1-million-triangle city is about 60 MB of OBJ text.
+std::string read_obj_text(const std::filesystem::path& obj, const ObjError& fail) {
+  std::ifstream in(obj, std::ios::binary);
+  if (!in) fail(0, "", "cannot open for reading");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  constexpr std::streamoff kMaxBytes = std::streamoff{1} << 30;
+  if (size > kMaxBytes) fail(0, "", fmt::format("{} bytes: over the 1 GiB a scene may have", size));
+  std::string text(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!in) fail(0, "", "read failed");
+  return text;
+}
+
+// tinyobjloader made fewer triangles than the faces have: names the face that lost some.
+[[noreturn]] void fail_untriangulated(const std::string& text, const Prescan& scan,
+                                      const std::vector<Vec3>& vertices_enu_m, std::size_t triangle_count,
+                                      const ObjError& fail) {
+  // Only polygons of 5 or more vertices can lose triangles (ear clipping of a degenerate or
+  // self-intersecting outline); find the first one.
+  for (const auto& [face, offset] : scan.polygons) {
+    const FaceRecord& rec = scan.faces[face];
+    const int line = static_cast<int>(rec.line);
+    // Relative indices count the vertices above the face's line.
+    const auto before = static_cast<std::int64_t>(
+        std::upper_bound(scan.vertex_line.begin(), scan.vertex_line.end(), rec.line) -
+        scan.vertex_line.begin());
+    const std::vector<std::int64_t> polygon =
+        polygon_indices(text, offset, before, line, fail);
+    if (triangulated_count(vertices_enu_m, polygon) != polygon.size() - 2)
+      fail(line, "f",
+           fmt::format("polygon of {} vertices cannot be triangulated (degenerate or "
+                       "self-intersecting)",
+                       polygon.size()));
+  }
+  fail(0, "", fmt::format("tinyobjloader made {} triangles of the faces, expected {}",
+                          triangle_count, scan.expected_triangles));
+}
+
+// 2-manifold: no edge (pair of vertex indices) may belong to more than two triangles.
+void require_two_manifold(const SceneMesh& mesh, const std::vector<std::uint32_t>& triangle_line,
+                          const ObjError& fail) {
+  // Sort all edge keys; only when some key occurs three times or more, walk the triangles in file
+  // order to name the first triangle that is the third on such an edge.
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * mesh.triangles.size());
+  auto edge_key = [](std::uint32_t a, std::uint32_t b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+  };
+  for (const auto& t : mesh.triangles) {
+    keys.push_back(edge_key(t[0], t[1]));
+    keys.push_back(edge_key(t[1], t[2]));
+    keys.push_back(edge_key(t[2], t[0]));
+  }
+  std::sort(keys.begin(), keys.end());
+  std::unordered_map<std::uint64_t, int> crowded;  // edges of 3+ triangles -> seen so far
+  for (std::size_t i = 0; i + 2 < keys.size(); ++i)
+    if (keys[i] == keys[i + 2]) crowded.emplace(keys[i], 0);
+  if (!crowded.empty()) {
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const auto& tri = mesh.triangles[t];
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::uint64_t key = edge_key(tri[k], tri[(k + 1) % 3]);
+        const auto it = crowded.find(key);
+        if (it != crowded.end() && ++it->second == 3)
+          fail(static_cast<int>(triangle_line[t]), "f",
+               fmt::format("non-manifold geometry: the edge between vertices {} and {} is "
+                           "shared by more than two faces (this is the third)",
+                           (key >> 32) + 1, (key & 0xffffffffu) + 1));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 SceneMesh load_scene_mesh(const std::filesystem::path& obj,
@@ -337,21 +413,7 @@ SceneMesh load_scene_mesh(const std::filesystem::path& obj,
   const std::string file = obj.string();
   const ObjError fail(file);
   if (!std::filesystem::is_regular_file(obj)) fail(0, "", "no such scene (OBJ) file");
-  std::string text;
-  {
-    std::ifstream in(obj, std::ios::binary);
-    if (!in) fail(0, "", "cannot open for reading");
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    in.seekg(0, std::ios::beg);
-    // Read whole: a bound, so that a wrong file is an error rather than memory exhausted. A
-    // 1-million-triangle city is about 60 MB of OBJ text.
-    constexpr std::streamoff kMaxBytes = std::streamoff{1} << 30;
-    if (size > kMaxBytes) fail(0, "", fmt::format("{} bytes: over the 1 GiB a scene may have", size));
-    text.resize(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)));
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!in) fail(0, "", "read failed");
-  }
+  std::string text = read_obj_text(obj, fail);
 
   const Prescan scan = prescan(text, material_index, materials_yaml.string(), fail);
   if (scan.faces.empty())
@@ -394,27 +456,8 @@ SceneMesh load_scene_mesh(const std::filesystem::path& obj,
 
   std::size_t triangle_count = 0;
   for (const auto& shape : shapes) triangle_count += shape.mesh.num_face_vertices.size();
-  if (triangle_count != scan.expected_triangles) {
-    // Only polygons of 5 or more vertices can lose triangles (ear clipping of a degenerate or
-    // self-intersecting outline); find the first one.
-    for (const auto& [face, offset] : scan.polygons) {
-      const FaceRecord& rec = scan.faces[face];
-      const int line = static_cast<int>(rec.line);
-      // Relative indices count the vertices above the face's line.
-      const auto before = static_cast<std::int64_t>(
-          std::upper_bound(scan.vertex_line.begin(), scan.vertex_line.end(), rec.line) -
-          scan.vertex_line.begin());
-      const std::vector<std::int64_t> polygon =
-          polygon_indices(text, offset, before, line, fail);
-      if (triangulated_count(mesh.vertices_enu_m, polygon) != polygon.size() - 2)
-        fail(line, "f",
-             fmt::format("polygon of {} vertices cannot be triangulated (degenerate or "
-                         "self-intersecting)",
-                         polygon.size()));
-    }
-    fail(0, "", fmt::format("tinyobjloader made {} triangles of the faces, expected {}",
-                            triangle_count, scan.expected_triangles));
-  }
+  if (triangle_count != scan.expected_triangles)
+    fail_untriangulated(text, scan, mesh.vertices_enu_m, triangle_count, fail);
   text.clear();
   text.shrink_to_fit();
 
@@ -464,37 +507,7 @@ SceneMesh load_scene_mesh(const std::filesystem::path& obj,
     shape.mesh = tinyobj::mesh_t{};  // free as we go
   }
 
-  // 2-manifold: no edge (pair of vertex indices) may belong to more than two triangles. Sort
-  // all edge keys; only when some key occurs three times or more, walk the triangles in file
-  // order to name the first triangle that is the third on such an edge.
-  std::vector<std::uint64_t> keys;
-  keys.reserve(3 * mesh.triangles.size());
-  auto edge_key = [](std::uint32_t a, std::uint32_t b) {
-    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-  };
-  for (const auto& t : mesh.triangles) {
-    keys.push_back(edge_key(t[0], t[1]));
-    keys.push_back(edge_key(t[1], t[2]));
-    keys.push_back(edge_key(t[2], t[0]));
-  }
-  std::sort(keys.begin(), keys.end());
-  std::unordered_map<std::uint64_t, int> crowded;  // edges of 3+ triangles -> seen so far
-  for (std::size_t i = 0; i + 2 < keys.size(); ++i)
-    if (keys[i] == keys[i + 2]) crowded.emplace(keys[i], 0);
-  if (!crowded.empty()) {
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const auto& tri = mesh.triangles[t];
-      for (std::size_t k = 0; k < 3; ++k) {
-        const std::uint64_t key = edge_key(tri[k], tri[(k + 1) % 3]);
-        const auto it = crowded.find(key);
-        if (it != crowded.end() && ++it->second == 3)
-          fail(static_cast<int>(triangle_line[t]), "f",
-               fmt::format("non-manifold geometry: the edge between vertices {} and {} is "
-                           "shared by more than two faces (this is the third)",
-                           (key >> 32) + 1, (key & 0xffffffffu) + 1));
-      }
-    }
-  }
+  require_two_manifold(mesh, triangle_line, fail);
   return mesh;
 }
 

@@ -274,6 +274,37 @@ std::shared_ptr<DeadreckonOptions> add_deadreckon_command(CLI::App& app) {
   return opt;
 }
 
+namespace {
+
+// The mean over the first --bias-removal seconds minus what a perfect stationary IMU at the
+// start (`ideal`) would output; said on `err`.
+void estimate_bias(const DeadreckonOptions& opt, const IdealImu& ideal, std::ostream& err, Vec3& bias_f,
+                   Vec3& bias_w) {
+  ImuCsvReader pre(opt.file);
+  ImuRow r;
+  std::optional<double> t0;
+  Vec3 sum_f = Vec3::Zero(), sum_w = Vec3::Zero();
+  long long n = 0;
+  while (pre.next(r)) {
+    if (!t0) t0 = r.t_s;
+    if (n > 0 && r.t_s - *t0 >= opt.bias_removal_s) break;
+    sum_f += r.f_body_mps2;
+    sum_w += r.w_body_radps;
+    ++n;
+  }
+  if (n == 0) throw InputError(opt.file, pre.line(), "", "no samples");
+  bias_f = sum_f / static_cast<double>(n) - ideal.f_body_mps2;
+  bias_w = sum_w / static_cast<double>(n) - ideal.w_ib_body_radps;
+  fmt::print(err,
+             "navemu deadreckon: bias over the first {} s ({} samples): accel {:.6g} {:.6g} "
+             "{:.6g} m/s^2, gyro {:.6g} {:.6g} {:.6g} deg/h (removed)\n",
+             opt.bias_removal_s, n, bias_f.x(), bias_f.y(), bias_f.z(),
+             bias_w.x() * kRadToDeg * 3600.0, bias_w.y() * kRadToDeg * 3600.0,
+             bias_w.z() * kRadToDeg * 3600.0);
+}
+
+}  // namespace
+
 int run_deadreckon(const DeadreckonOptions& opt, std::ostream& out, std::ostream& err) {
   Geodetic start = parse_geodetic(opt.at, "--at");
   if (opt.start_lat_deg) start.lat_deg = *opt.start_lat_deg;
@@ -283,32 +314,9 @@ int run_deadreckon(const DeadreckonOptions& opt, std::ostream& out, std::ostream
   const Quat q0 = quat_from_euler_rpy(rpy0_deg * kDegToRad);
   const IdealImu ideal = ideal_imu_static(start, q0);
 
-  // Bias estimate: the mean over the first S seconds minus what a perfect stationary IMU at
-  // the start would output.
+  // Bias estimate (--bias-removal): none, or removed from every sample.
   Vec3 bias_f = Vec3::Zero(), bias_w = Vec3::Zero();
-  if (opt.bias_removal_s > 0.0) {
-    ImuCsvReader pre(opt.file);
-    ImuRow r;
-    std::optional<double> t0;
-    Vec3 sum_f = Vec3::Zero(), sum_w = Vec3::Zero();
-    long long n = 0;
-    while (pre.next(r)) {
-      if (!t0) t0 = r.t_s;
-      if (n > 0 && r.t_s - *t0 >= opt.bias_removal_s) break;
-      sum_f += r.f_body_mps2;
-      sum_w += r.w_body_radps;
-      ++n;
-    }
-    if (n == 0) throw InputError(opt.file, pre.line(), "", "no samples");
-    bias_f = sum_f / static_cast<double>(n) - ideal.f_body_mps2;
-    bias_w = sum_w / static_cast<double>(n) - ideal.w_ib_body_radps;
-    fmt::print(err,
-               "navemu deadreckon: bias over the first {} s ({} samples): accel {:.6g} {:.6g} "
-               "{:.6g} m/s^2, gyro {:.6g} {:.6g} {:.6g} deg/h (removed)\n",
-               opt.bias_removal_s, n, bias_f.x(), bias_f.y(), bias_f.z(),
-               bias_w.x() * kRadToDeg * 3600.0, bias_w.y() * kRadToDeg * 3600.0,
-               bias_w.z() * kRadToDeg * 3600.0);
-  }
+  if (opt.bias_removal_s > 0.0) estimate_bias(opt, ideal, err, bias_f, bias_w);
 
   ImuCsvReader reader(opt.file);
   ImuRow row;
