@@ -147,23 +147,14 @@ struct NavPvt {
   std::uint8_t valid = 0;
   std::uint32_t t_acc_ns = 0;
   std::int32_t nano_ns = 0;  // fraction of the second, -1e9..1e9
-  std::uint8_t fix_type = 0;
-  std::uint8_t flags = 0;
-  std::uint8_t flags2 = 0;
-  std::uint8_t num_sv = 0;
-  std::int32_t lon_1e7deg = 0;
-  std::int32_t lat_1e7deg = 0;
+  std::uint8_t fix_type = 0, flags = 0, flags2 = 0, num_sv = 0;
+  std::int32_t lon_1e7deg = 0, lat_1e7deg = 0;
   std::int32_t height_mm = 0;  // above the ellipsoid
   std::int32_t h_msl_mm = 0;   // above mean sea level
-  std::uint32_t h_acc_mm = 0;
-  std::uint32_t v_acc_mm = 0;
-  std::int32_t vel_n_mmps = 0;
-  std::int32_t vel_e_mmps = 0;
-  std::int32_t vel_d_mmps = 0;
-  std::int32_t g_speed_mmps = 0;
+  std::uint32_t h_acc_mm = 0, v_acc_mm = 0;
+  std::int32_t vel_n_mmps = 0, vel_e_mmps = 0, vel_d_mmps = 0, g_speed_mmps = 0;
   std::int32_t head_mot_1e5deg = 0;
-  std::uint32_t s_acc_mmps = 0;
-  std::uint32_t head_acc_1e5deg = 0;
+  std::uint32_t s_acc_mmps = 0, head_acc_1e5deg = 0;
   std::uint16_t p_dop_0p01 = 0;
   std::uint16_t flags3 = 0;  // F9: X2; M8: X1 + one reserved byte
   std::array<std::uint8_t, 4> reserved1{};
@@ -177,12 +168,8 @@ struct NavPosllh {
   static constexpr MsgId kMsg = kNavPosllh;
   static constexpr std::size_t kPayloadSize = 28;
   std::uint32_t i_tow_ms = 0;
-  std::int32_t lon_1e7deg = 0;
-  std::int32_t lat_1e7deg = 0;
-  std::int32_t height_mm = 0;
-  std::int32_t h_msl_mm = 0;
-  std::uint32_t h_acc_mm = 0;
-  std::uint32_t v_acc_mm = 0;
+  std::int32_t lon_1e7deg = 0, lat_1e7deg = 0, height_mm = 0, h_msl_mm = 0;
+  std::uint32_t h_acc_mm = 0, v_acc_mm = 0;
 };
 
 // UBX-NAV-POSECEF (0x01 0x01), 20 bytes.
@@ -190,9 +177,7 @@ struct NavPosecef {
   static constexpr MsgId kMsg = kNavPosecef;
   static constexpr std::size_t kPayloadSize = 20;
   std::uint32_t i_tow_ms = 0;
-  std::int32_t ecef_x_cm = 0;
-  std::int32_t ecef_y_cm = 0;
-  std::int32_t ecef_z_cm = 0;
+  std::int32_t ecef_x_cm = 0, ecef_y_cm = 0, ecef_z_cm = 0;
   std::uint32_t p_acc_cm = 0;
 };
 
@@ -201,14 +186,11 @@ struct NavVelned {
   static constexpr MsgId kMsg = kNavVelned;
   static constexpr std::size_t kPayloadSize = 36;
   std::uint32_t i_tow_ms = 0;
-  std::int32_t vel_n_cmps = 0;
-  std::int32_t vel_e_cmps = 0;
-  std::int32_t vel_d_cmps = 0;
+  std::int32_t vel_n_cmps = 0, vel_e_cmps = 0, vel_d_cmps = 0;
   std::uint32_t speed_cmps = 0;    // 3-D
   std::uint32_t g_speed_cmps = 0;  // ground
   std::int32_t heading_1e5deg = 0;
-  std::uint32_t s_acc_cmps = 0;
-  std::uint32_t c_acc_1e5deg = 0;
+  std::uint32_t s_acc_cmps = 0, c_acc_1e5deg = 0;
 };
 
 // UBX-NAV-VELECEF (0x01 0x11), 20 bytes.
@@ -216,9 +198,7 @@ struct NavVelecef {
   static constexpr MsgId kMsg = kNavVelecef;
   static constexpr std::size_t kPayloadSize = 20;
   std::uint32_t i_tow_ms = 0;
-  std::int32_t ecef_vx_cmps = 0;
-  std::int32_t ecef_vy_cmps = 0;
-  std::int32_t ecef_vz_cmps = 0;
+  std::int32_t ecef_vx_cmps = 0, ecef_vy_cmps = 0, ecef_vz_cmps = 0;
   std::uint32_t s_acc_cmps = 0;
 };
 
@@ -230,10 +210,7 @@ struct NavStatus {
   static constexpr std::uint8_t kGpsFixOk = 0x01, kDiffSoln = 0x02, kWknSet = 0x04,
                                 kTowSet = 0x08;
   std::uint32_t i_tow_ms = 0;
-  std::uint8_t gps_fix = 0;
-  std::uint8_t flags = 0;
-  std::uint8_t fix_stat = 0;
-  std::uint8_t flags2 = 0;
+  std::uint8_t gps_fix = 0, flags = 0, fix_stat = 0, flags2 = 0;
   std::uint32_t ttff_ms = 0;
   std::uint32_t msss_ms = 0;  // milliseconds since startup or reset
 };
@@ -248,19 +225,13 @@ struct NavSol {
   std::uint32_t i_tow_ms = 0;
   std::int32_t f_tow_ns = 0;  // -500000..500000
   std::int16_t week = 0;
-  std::uint8_t gps_fix = 0;
-  std::uint8_t flags = 0;
-  std::int32_t ecef_x_cm = 0;
-  std::int32_t ecef_y_cm = 0;
-  std::int32_t ecef_z_cm = 0;
+  std::uint8_t gps_fix = 0, flags = 0;
+  std::int32_t ecef_x_cm = 0, ecef_y_cm = 0, ecef_z_cm = 0;
   std::uint32_t p_acc_cm = 0;
-  std::int32_t ecef_vx_cmps = 0;
-  std::int32_t ecef_vy_cmps = 0;
-  std::int32_t ecef_vz_cmps = 0;
+  std::int32_t ecef_vx_cmps = 0, ecef_vy_cmps = 0, ecef_vz_cmps = 0;
   std::uint32_t s_acc_cmps = 0;
   std::uint16_t p_dop_0p01 = 0;
-  std::uint8_t reserved1 = 0;
-  std::uint8_t num_sv = 0;
+  std::uint8_t reserved1 = 0, num_sv = 0;
   std::array<std::uint8_t, 4> reserved2{};
 };
 
@@ -293,13 +264,8 @@ struct NavDop {
   static constexpr MsgId kMsg = kNavDop;
   static constexpr std::size_t kPayloadSize = 18;
   std::uint32_t i_tow_ms = 0;
-  std::uint16_t g_dop_0p01 = 0;
-  std::uint16_t p_dop_0p01 = 0;
-  std::uint16_t t_dop_0p01 = 0;
-  std::uint16_t v_dop_0p01 = 0;
-  std::uint16_t h_dop_0p01 = 0;
-  std::uint16_t n_dop_0p01 = 0;
-  std::uint16_t e_dop_0p01 = 0;
+  std::uint16_t g_dop_0p01 = 0, p_dop_0p01 = 0, t_dop_0p01 = 0, v_dop_0p01 = 0, h_dop_0p01 = 0;
+  std::uint16_t n_dop_0p01 = 0, e_dop_0p01 = 0;
 };
 
 // UBX-NAV-SAT (0x01 0x35), 8 + 12 * numSvs bytes.
@@ -312,8 +278,7 @@ struct NavSatSv {
                                  kAlmAvail = 0x1000;
   static constexpr unsigned kHealthShift = 4, kOrbitSourceShift = 8;
   std::uint8_t gnss_id = 0;  // 0 GPS, 1 SBAS, 2 Galileo, 3 BeiDou, 5 QZSS, 6 GLONASS
-  std::uint8_t sv_id = 0;
-  std::uint8_t cno_dbhz = 0;
+  std::uint8_t sv_id = 0, cno_dbhz = 0;
   std::int8_t elev_deg = 0;  // -90..90
   std::int16_t azim_deg = 0;  // 0..360
   std::int16_t pr_res_dm = 0;  // pseudorange residual, 0.1 m
@@ -348,8 +313,7 @@ struct NavTimeutc {
   static constexpr std::size_t kPayloadSize = 20;
   // valid (utcStandard in bits 4..7)
   static constexpr std::uint8_t kValidTow = 0x01, kValidWkn = 0x02, kValidUtc = 0x04;
-  std::uint32_t i_tow_ms = 0;
-  std::uint32_t t_acc_ns = 0;
+  std::uint32_t i_tow_ms = 0, t_acc_ns = 0;
   std::int32_t nano_ns = 0;
   std::uint16_t year = 0;
   std::uint8_t month = 0, day = 0, hour = 0, min = 0, sec = 0;
@@ -383,11 +347,9 @@ struct RxmRawxMeas {
   // trkStat
   static constexpr std::uint8_t kPrValid = 0x01, kCpValid = 0x02, kHalfCyc = 0x04,
                                 kSubHalfCyc = 0x08;
-  double pr_mes_m = 0.0;
-  double cp_mes_cycles = 0.0;
+  double pr_mes_m = 0.0, cp_mes_cycles = 0.0;
   float do_mes_hz = 0.0f;
-  std::uint8_t gnss_id = 0;
-  std::uint8_t sv_id = 0;
+  std::uint8_t gnss_id = 0, sv_id = 0;
   std::uint8_t sig_id = 0;   // M8: reserved
   std::uint8_t freq_id = 0;  // GLONASS frequency slot + 7
   std::uint16_t locktime_ms = 0;  // carrier phase lock time, capped at 64500
@@ -395,8 +357,7 @@ struct RxmRawxMeas {
   std::uint8_t pr_stdev = 0;  // bits 0..3: n, sigma = 0.01 * 2^n m
   std::uint8_t cp_stdev = 0;  // bits 0..3: n, sigma = 0.004 * n cycles (15 = invalid)
   std::uint8_t do_stdev = 0;  // bits 0..3: n, sigma = 0.002 * 2^n Hz
-  std::uint8_t trk_stat = 0;
-  std::uint8_t reserved3 = 0;
+  std::uint8_t trk_stat = 0, reserved3 = 0;
 };
 struct RxmRawx {
   static constexpr MsgId kMsg = kRxmRawx;
@@ -406,8 +367,7 @@ struct RxmRawx {
   double rcv_tow_s = 0.0;
   std::uint16_t week = 0;
   std::int8_t leap_s = 0;
-  std::uint8_t rec_stat = 0;
-  std::uint8_t version = 1;
+  std::uint8_t rec_stat = 0, version = 1;
   std::array<std::uint8_t, 2> reserved1{};
   std::vector<RxmRawxMeas> meas;  // numMeas = meas.size() (at most 255)
 };
@@ -419,11 +379,9 @@ struct RxmRawx {
 struct RxmSfrbx {
   static constexpr MsgId kMsg = kRxmSfrbx;
   static constexpr std::size_t kHeaderSize = 8;
-  std::uint8_t gnss_id = 0;
-  std::uint8_t sv_id = 0;
+  std::uint8_t gnss_id = 0, sv_id = 0;
   std::uint8_t sig_id = 0;   // M8: reserved
-  std::uint8_t freq_id = 0;
-  std::uint8_t chn = 0;
+  std::uint8_t freq_id = 0, chn = 0;
   std::uint8_t version = 2;  // M8 protocol 18+: 2
   std::uint8_t reserved2 = 0;
   std::vector<std::uint32_t> words;  // numWords = words.size() (at most 255)
@@ -435,14 +393,12 @@ struct RxmSfrbx {
 struct AckAck {
   static constexpr MsgId kMsg = kAckAck;
   static constexpr std::size_t kPayloadSize = 2;
-  std::uint8_t cls_id = 0;
-  std::uint8_t msg_id = 0;
+  std::uint8_t cls_id = 0, msg_id = 0;
 };
 struct AckNak {
   static constexpr MsgId kMsg = kAckNak;
   static constexpr std::size_t kPayloadSize = 2;
-  std::uint8_t cls_id = 0;
-  std::uint8_t msg_id = 0;
+  std::uint8_t cls_id = 0, msg_id = 0;
 };
 
 // ---- MON -----------------------------------------------------------------------------------
@@ -454,8 +410,7 @@ struct AckNak {
 struct MonVer {
   static constexpr MsgId kMsg = kMonVer;
   static constexpr std::size_t kSwSize = 30, kHwSize = 10, kExtensionSize = 30;
-  std::string sw_version;
-  std::string hw_version;
+  std::string sw_version, hw_version;
   std::vector<std::string> extensions;
 };
 
@@ -467,10 +422,7 @@ struct MonHw {
   // aStatus
   static constexpr std::uint8_t kAntInit = 0, kAntDontKnow = 1, kAntOk = 2, kAntShort = 3,
                                 kAntOpen = 4;
-  std::uint32_t pin_sel = 0;
-  std::uint32_t pin_bank = 0;
-  std::uint32_t pin_dir = 0;
-  std::uint32_t pin_val = 0;
+  std::uint32_t pin_sel = 0, pin_bank = 0, pin_dir = 0, pin_val = 0;
   std::uint16_t noise_per_ms = 0;
   std::uint16_t agc_cnt = 0;  // 0..8191
   std::uint8_t a_status = 0;
@@ -481,9 +433,7 @@ struct MonHw {
   std::array<std::uint8_t, 17> vp{};
   std::uint8_t jam_ind = 0;  // CW jamming indicator, 0..255
   std::array<std::uint8_t, 2> reserved2{};
-  std::uint32_t pin_irq = 0;
-  std::uint32_t pull_h = 0;
-  std::uint32_t pull_l = 0;
+  std::uint32_t pin_irq = 0, pull_h = 0, pull_l = 0;
 };
 
 // ---- CFG -----------------------------------------------------------------------------------
@@ -518,13 +468,10 @@ struct CfgPrt {
   static constexpr MsgId kMsg = kCfgPrt;
   static constexpr std::size_t kPayloadSize = 20;
   static constexpr std::uint32_t kMode8N1 = 0x000008C0;
-  std::uint8_t port_id = 0;
-  std::uint8_t reserved1 = 0;
+  std::uint8_t port_id = 0, reserved1 = 0;
   std::uint16_t tx_ready = 0;
-  std::uint32_t mode = 0;
-  std::uint32_t baud_rate = 0;
-  std::uint16_t in_proto_mask = 0;
-  std::uint16_t out_proto_mask = 0;
+  std::uint32_t mode = 0, baud_rate = 0;
+  std::uint16_t in_proto_mask = 0, out_proto_mask = 0;
   std::uint16_t flags = 0;  // extendedTxTimeout bit 1
   std::array<std::uint8_t, 2> reserved2{};
 };
@@ -537,21 +484,17 @@ struct CfgPrt {
 struct CfgMsgPoll {
   static constexpr MsgId kMsg = kCfgMsg;
   static constexpr std::size_t kPayloadSize = 2;
-  std::uint8_t msg_class = 0;
-  std::uint8_t msg_id = 0;
+  std::uint8_t msg_class = 0, msg_id = 0;
 };
 struct CfgMsgCurrentPort {
   static constexpr MsgId kMsg = kCfgMsg;
   static constexpr std::size_t kPayloadSize = 3;
-  std::uint8_t msg_class = 0;
-  std::uint8_t msg_id = 0;
-  std::uint8_t rate = 0;
+  std::uint8_t msg_class = 0, msg_id = 0, rate = 0;
 };
 struct CfgMsg {
   static constexpr MsgId kMsg = kCfgMsg;
   static constexpr std::size_t kPayloadSize = 8;
-  std::uint8_t msg_class = 0;
-  std::uint8_t msg_id = 0;
+  std::uint8_t msg_class = 0, msg_id = 0;
   std::array<std::uint8_t, kNumPorts> rate{};  // indexed by port ID
 };
 
@@ -589,14 +532,9 @@ struct CfgNav5 {
   std::uint32_t fixed_alt_var_1e4m2 = 0;  // 0.0001 m^2
   std::int8_t min_elev_deg = 0;
   std::uint8_t dr_limit_s = 0;
-  std::uint16_t p_dop_0p1 = 0;
-  std::uint16_t t_dop_0p1 = 0;
-  std::uint16_t p_acc_m = 0;
-  std::uint16_t t_acc_m = 0;
+  std::uint16_t p_dop_0p1 = 0, t_dop_0p1 = 0, p_acc_m = 0, t_acc_m = 0;
   std::uint8_t static_hold_thresh_cmps = 0;
-  std::uint8_t dgnss_timeout_s = 0;
-  std::uint8_t cno_thresh_num_svs = 0;
-  std::uint8_t cno_thresh_dbhz = 0;
+  std::uint8_t dgnss_timeout_s = 0, cno_thresh_num_svs = 0, cno_thresh_dbhz = 0;
   std::array<std::uint8_t, 2> reserved1{};
   std::uint16_t static_hold_max_dist_m = 0;
   std::uint8_t utc_standard = 0;
@@ -608,10 +546,7 @@ struct CfgGnssBlock {
   // flags: enable bit 0, sigCfgMask bits 16..23
   static constexpr std::uint32_t kEnable = 0x00000001;
   static constexpr unsigned kSigCfgMaskShift = 16;
-  std::uint8_t gnss_id = 0;
-  std::uint8_t res_trk_ch = 0;
-  std::uint8_t max_trk_ch = 0;
-  std::uint8_t reserved1 = 0;
+  std::uint8_t gnss_id = 0, res_trk_ch = 0, max_trk_ch = 0, reserved1 = 0;
   std::uint32_t flags = 0;
 };
 struct CfgGnss {
@@ -627,9 +562,7 @@ struct CfgGnss {
 // optional deviceMask selects the storage (BBR 0x01, flash 0x02, EEPROM 0x04, SPI flash 0x10).
 struct CfgCfg {
   static constexpr MsgId kMsg = kCfgCfg;
-  std::uint32_t clear_mask = 0;
-  std::uint32_t save_mask = 0;
-  std::uint32_t load_mask = 0;
+  std::uint32_t clear_mask = 0, save_mask = 0, load_mask = 0;
   bool has_device_mask = false;
   std::uint8_t device_mask = 0;
 };
@@ -646,8 +579,7 @@ struct CfgRst {
                                 kHardwareResetAfterShutdown = 0x04, kControlledGnssStop = 0x08,
                                 kControlledGnssStart = 0x09;
   std::uint16_t nav_bbr_mask = 0;
-  std::uint8_t reset_mode = 0;
-  std::uint8_t reserved1 = 0;
+  std::uint8_t reset_mode = 0, reserved1 = 0;
 };
 
 // ---- configuration interface (protocol 27+: CFG-VALGET / VALSET / VALDEL) ------------------
@@ -692,16 +624,14 @@ struct CfgKeyValue {
 // UBX-CFG-VALGET (0x06 0x8B) request, version 0: 4 + 4 * N bytes (at most 64 keys).
 struct CfgValgetRequest {
   static constexpr MsgId kMsg = kCfgValget;
-  std::uint8_t version = 0;
-  std::uint8_t layer = kLayerRam;
+  std::uint8_t version = 0, layer = kLayerRam;
   std::uint16_t position = 0;  // skip this many values of the answer
   std::vector<std::uint32_t> keys;
 };
 // UBX-CFG-VALGET (0x06 0x8B) answer, version 1: header + key/value pairs.
 struct CfgValgetResponse {
   static constexpr MsgId kMsg = kCfgValget;
-  std::uint8_t version = 1;
-  std::uint8_t layer = kLayerRam;
+  std::uint8_t version = 1, layer = kLayerRam;
   std::uint16_t position = 0;
   std::vector<CfgKeyValue> values;
 };
@@ -710,8 +640,7 @@ struct CfgValgetResponse {
 // (at most 64).
 struct CfgValset {
   static constexpr MsgId kMsg = kCfgValset;
-  std::uint8_t version = 0;
-  std::uint8_t layers = kLayerMaskRam;
+  std::uint8_t version = 0, layers = kLayerMaskRam;
   std::uint8_t transaction = 0;  // version 0: reserved
   std::uint8_t reserved0 = 0;
   std::vector<CfgKeyValue> values;
@@ -719,8 +648,7 @@ struct CfgValset {
 // UBX-CFG-VALDEL (0x06 0x8C): as VALSET, with keys only (layers BBR and/or flash).
 struct CfgValdel {
   static constexpr MsgId kMsg = kCfgValdel;
-  std::uint8_t version = 0;
-  std::uint8_t layers = kLayerMaskBbr;
+  std::uint8_t version = 0, layers = kLayerMaskBbr;
   std::uint8_t transaction = 0;  // version 0: reserved
   std::uint8_t reserved0 = 0;
   std::vector<std::uint32_t> keys;
