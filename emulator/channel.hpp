@@ -13,7 +13,7 @@
 
 #include "emulator/engine.hpp"
 #include "emulator/truth_source.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

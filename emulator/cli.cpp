@@ -6,7 +6,7 @@
 #include <ostream>
 
 #include "emulator/commands.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 #ifndef NAVEMU_VERSION
 #define NAVEMU_VERSION "unknown"

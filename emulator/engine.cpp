@@ -19,7 +19,7 @@
 #include "emulator/run_setup.hpp"
 #include "emulator/scheduler.hpp"
 #include "emulator/truth_source.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "transports/byte_port.hpp"
 
 namespace navemu {

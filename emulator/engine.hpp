@@ -27,7 +27,7 @@
 
 #include "emulator/run_config.hpp"
 #include "emulator/truth_buffer.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/sat_table.hpp"
 #include "models/geodesy.hpp"
 
 namespace navemu {
@@ -43,7 +44,7 @@ GnssChannel::GnssChannel(std::unique_ptr<NavData> nav, const ReceiverParams& rec
       nominal_rate_hz_(profile.rate_hz) {
   chunk_.reserve(65536);
   replies_.reserve(4096);
-  last_fix_.satellites.reserve(kMaxPrn);  // copied every epoch: no allocation
+  last_fix_.satellites.reserve(kDefinedSatellites);  // copied every epoch: no allocation
 }
 
 void GnssChannel::begin(GpsTime start) {

@@ -7,7 +7,7 @@
 #include <ostream>
 
 #include "emulator/scene_loader.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

@@ -11,7 +11,7 @@
 #include <set>
 
 #include "emulator/yaml_reader.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 #ifndef NAVEMU_CONFIG_DIR
 #define NAVEMU_CONFIG_DIR "configs"

@@ -12,9 +12,9 @@
 
 #include "emulator/commands.hpp"
 #include "models/constellation.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/ephemeris.hpp"
-#include "models/rinex.hpp"
+#include "emulator/rinex_files.hpp"
 
 namespace navemu {
 
@@ -149,10 +149,10 @@ void require_nav_coverage(const NavData& nav, GpsTime from, GpsTime to,
 
   std::string has;
   if (spans.empty()) {
-    std::set<int> prns;
-    for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
+    std::set<SatId> sats;
+    for (const GpsEphemeris& e : nav.gps) sats.insert(e.sat);
     has = fmt::format("has no time with {} ({} GPS records, {} satellites)",
-                      satellites(min_satellites), nav.gps.size(), prns.size());
+                      satellites(min_satellites), nav.gps.size(), sats.size());
   } else {
     has = fmt::format("has data for {} only", satellites(min_satellites));
     constexpr std::size_t kShown = 3;

@@ -21,8 +21,9 @@ NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode)
     case ReceiverMode::kRtkFixed: quality_ = 4; mode_ = 'R'; break;
   }
   if (profile.time_decimals) format_.time_decimals = *profile.time_decimals;
+  numbering_ = format_.system_signal_ids ? NmeaNumbering::kV411 : NmeaNumbering::kV410Extended;
   gsv_.reserve(64);
-  gsa_.prns.reserve(64);
+  gsa_.sat_ids.reserve(64);
 }
 
 void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::string& out) {
@@ -66,9 +67,10 @@ void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::s
       f.geoid_separation_m = separation_m;
       nmea::encode(f, format_, out);
     } else if (name == "GSA") {
-      nmea::GsaFields& f = reset_keeping_storage(gsa_, &nmea::GsaFields::prns);
+      nmea::GsaFields& f = reset_keeping_storage(gsa_, &nmea::GsaFields::sat_ids);
       for (const ReceiverSatellite& s : fix.satellites)
-        if (s.used) f.prns.push_back(s.prn);
+        if (const std::optional<int> id = s.sat.nmea_id(numbering_); s.used && id)
+          f.sat_ids.push_back(*id);
       f.talker = talker;
       f.fix = fix.fix == FixType::k3D ? 3 : fix.fix == FixType::k2D ? 2 : 1;
       if (valid) {
@@ -80,9 +82,10 @@ void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::s
     } else if (name == "GSV") {
       gsv_.clear();
       for (const ReceiverSatellite& s : fix.satellites)
-        gsv_.push_back({s.prn, static_cast<int>(std::lround(std::max(s.el_deg, 0.0))),
-                        static_cast<int>(std::lround(s.az_deg)) % 360,
-                        static_cast<int>(std::lround(s.cn0_dbhz))});
+        if (const std::optional<int> id = s.sat.nmea_id(numbering_))
+          gsv_.push_back({*id, static_cast<int>(std::lround(std::max(s.el_deg, 0.0))),
+                          static_cast<int>(std::lround(s.az_deg)) % 360,
+                          static_cast<int>(std::lround(s.cn0_dbhz))});
       nmea::encode(nmea::GsvFields{talker, gsv_}, format_, out);
     } else if (name == "VTG") {
       nmea::encode(nmea::VtgFields{talker, course_deg, {}, speed_mps, mode}, format_, out);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/satellite.hpp"
 #include "emulator/run_config.hpp"
 #include "models/receiver.hpp"
 #include "protocols/nmea.hpp"
@@ -21,10 +22,11 @@ class NmeaOutput {
  private:
   GnssProfile profile_;
   nmea::Format format_;
+  NmeaNumbering numbering_ = NmeaNumbering::kV411;  // NMEA 4.11 with system IDs, else 4.10
   int quality_ = 1;  // GGA quality of a fix in this mode
   char mode_ = 'A';  // NMEA 2.3 mode indicator of a fix in this mode
   std::vector<nmea::GsvSatellite> gsv_;
-  nmea::GsaFields gsa_;  // its PRN list is reused from epoch to epoch
+  nmea::GsaFields gsa_;  // its satellite list is reused from epoch to epoch
 };
 
 }  // namespace navemu

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

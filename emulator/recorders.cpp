@@ -6,7 +6,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/geodesy.hpp"
 #include "transports/byte_port.hpp"
 

@@ -15,7 +15,7 @@
 #include "models/imu_kinematics.hpp"
 #include "models/imu_model.hpp"
 #include "models/receiver.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

@@ -9,7 +9,7 @@
 #include "emulator/commands.hpp"
 #include "emulator/engine.hpp"
 #include "emulator/run_config.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

@@ -7,7 +7,7 @@
 
 #include "emulator/imu_profile.hpp"
 #include "emulator/yaml_reader.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

@@ -16,8 +16,8 @@
 #include "emulator/imu_channel.hpp"
 #include "emulator/imu_profile.hpp"
 #include "models/constellation.hpp"
-#include "models/errors.hpp"
-#include "models/rinex.hpp"
+#include "core/errors.hpp"
+#include "emulator/rinex_files.hpp"
 #include "transports/byte_port.hpp"
 
 namespace navemu {
@@ -185,11 +185,11 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
                                                           const EngineOptions& opt, std::ostream& log) {
   std::vector<std::unique_ptr<SensorChannel>> channels;
   if (plan.gnss) {
-    std::set<int> prns;
-    for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
+    std::set<SatId> sats;
+    for (const GpsEphemeris& e : nav.gps) sats.insert(e.sat);
     fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {} ({} satellites)\n", cfg.gnss.name,
                cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode),
-               cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, prns.size());
+               cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, sats.size());
     fmt::print(log, "navemu: {}\n", egm96_geoid().description);
     channels.push_back(std::make_unique<GnssChannel>(std::make_unique<NavData>(std::move(nav)),
                                                      plan.gnss->receiver, cfg.gnss, cfg.gnss_mode,

@@ -21,7 +21,7 @@
 #include <utility>
 
 #include "emulator/yaml_reader.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

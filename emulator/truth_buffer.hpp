@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "models/imu_kinematics.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

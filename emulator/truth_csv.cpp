@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/truth_interpolation.hpp"
 
 namespace navemu {

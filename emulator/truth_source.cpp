@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "emulator/truth_csv.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/trajectory.hpp"
 #include "transports/byte_port.hpp"
 

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/sat_table.hpp"
+#include "core/signal.hpp"
 #include "models/geodesy.hpp"
-#include "protocols/gps_lnav.hpp"
-#include "models/prn_table.hpp"
 #include "models/reuse.hpp"
+#include "protocols/gps_lnav.hpp"
 
 namespace navemu {
 
@@ -54,7 +55,7 @@ Accuracy accuracy(const ReceiverFix& fix) {
 // The GPS broadcast record of a satellite as IS-GPS-200 subframes 1-3 carry it.
 lnav::LnavEphemeris to_lnav(const GpsEphemeris& e) {
   lnav::LnavEphemeris l;
-  l.prn = e.prn;
+  l.sv_id = e.sat.number();
   l.week = to_week_tow(e.toe).week;
   l.codes_on_l2 = e.codes_on_l2 ? e.codes_on_l2 : 1;
   l.ura_index = lnav::lnav_ura_index(e.ura_m);
@@ -293,7 +294,7 @@ void emit_nav_svinfo(const EpochView& e, std::vector<std::uint8_t>& out) {
   for (const ReceiverSatellite& s : e.fix.satellites) {
     NavSvinfoChannel c;
     c.chn = chn++;
-    c.svid = static_cast<std::uint8_t>(s.prn);
+    c.svid = static_cast<std::uint8_t>(s.sat.ubx_legacy_sv_id().value_or(0));
     c.flags = static_cast<std::uint8_t>((s.used ? NavSvinfoChannel::kSvUsed : 0) |
                                         NavSvinfoChannel::kOrbitAvail | NavSvinfoChannel::kOrbitEph);
     c.quality = 7;  // code and carrier locked, time synchronised
@@ -310,8 +311,8 @@ void emit_nav_sat(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.i_tow_ms = e.i_tow;
   for (const ReceiverSatellite& s : e.fix.satellites) {
     NavSatSv v;
-    v.gnss_id = 0;
-    v.sv_id = static_cast<std::uint8_t>(s.prn);
+    v.gnss_id = s.sat.ubx_gnss_id();
+    v.sv_id = s.sat.ubx_sv_id();
     v.cno_dbhz = clamp_cast<std::uint8_t>(s.cn0_dbhz);
     v.elev_deg = clamp_cast<std::int8_t>(s.el_deg);
     v.azim_deg = clamp_cast<std::int16_t>(s.az_deg);
@@ -340,8 +341,9 @@ void emit_rxm_rawx(const EpochView& e, std::vector<std::uint8_t>& out) {
     r.pr_mes_m = o.pseudorange_m;
     r.cp_mes_cycles = o.carrier_cycles;
     r.do_mes_hz = static_cast<float>(o.doppler_hz);
-    r.gnss_id = 0;
-    r.sv_id = static_cast<std::uint8_t>(s.prn);
+    r.gnss_id = s.sat.ubx_gnss_id();
+    r.sv_id = s.sat.ubx_sv_id();
+    r.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, kBandSignals[0]).value_or(0));
     r.locktime_ms = static_cast<std::uint16_t>(std::min(o.lock_time_s * 1000.0, kMaxLockTime_ms));
     r.cno_dbhz = clamp_cast<std::uint8_t>(o.cn0_dbhz);
     r.pr_stdev = 5;  // 0.01 * 2^5 = 0.32 m
@@ -377,8 +379,9 @@ void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
   for (const SatMeasurement& s : e.meas.sats) {
     if (s.eph == nullptr) continue;
     RxmSfrbx& m = reset_keeping_storage(e.lists.sfrbx, &RxmSfrbx::words);
-    m.gnss_id = 0;
-    m.sv_id = static_cast<std::uint8_t>(s.prn);
+    m.gnss_id = s.sat.ubx_gnss_id();
+    m.sv_id = s.sat.ubx_sv_id();
+    m.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, kBandSignals[0]).value_or(0));
     m.chn = chn++;
     const lnav::LnavSubframe w = lnav::lnav_subframe(sf_id, tow_count_next, to_lnav(*s.eph), iono, page);
     m.words.assign(w.begin(), w.end());
@@ -434,12 +437,12 @@ std::optional<std::pair<MsgId, std::uint8_t>> msgout_key(std::uint32_t k) {
 
 UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavData& nav)
     : profile_(profile), mode_(mode), nav_(nav) {
-  // Room for every PRN: copying and refilling the epoch's lists never allocates.
-  last_fix_.satellites.reserve(kMaxPrn);
-  last_meas_.sats.reserve(kMaxPrn);
-  lists_.svinfo.channels.reserve(kMaxPrn);
-  lists_.sat.svs.reserve(kMaxPrn);
-  lists_.rawx.meas.reserve(kMaxPrn);
+  // Room for every satellite: copying and refilling the epoch's lists never allocates.
+  last_fix_.satellites.reserve(kDefinedSatellites);
+  last_meas_.sats.reserve(kDefinedSatellites);
+  lists_.svinfo.channels.reserve(kDefinedSatellites);
+  lists_.sat.svs.reserve(kDefinedSatellites);
+  lists_.rawx.meas.reserve(kDefinedSatellites);
   const UbxSettings& u = *profile_.ubx;
   baud_ = profile_.baud;
   out_proto_ = static_cast<std::uint16_t>(kProtoUbx | (u.nmea_out ? kProtoNmea : 0));

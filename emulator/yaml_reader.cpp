@@ -9,7 +9,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

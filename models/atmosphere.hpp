@@ -1,15 +1,16 @@
 #pragma once
 // Atmospheric propagation delays on the GPS L1 signal.
 
-#include "models/ephemeris.hpp"
+#include "core/nav_data.hpp"
+#include "core/signal.hpp"
+#include "core/time.hpp"
 #include "models/geodesy.hpp"
-#include "models/time.hpp"
 
 namespace navemu {
 
-inline constexpr double kGpsL1_Hz = 1575.42e6;
-inline constexpr double kGpsL2_Hz = 1227.60e6;
-inline constexpr double kGpsL5_Hz = 1176.45e6;
+inline constexpr double kGpsL1_Hz = carrier_frequency_hz(kGpsL1CA);
+inline constexpr double kGpsL2_Hz = carrier_frequency_hz(kGpsL2CL);
+inline constexpr double kGpsL5_Hz = carrier_frequency_hz(kGpsL5Q);
 
 // Klobuchar single-frequency ionospheric delay on L1, in seconds (IS-GPS-200 20.3.3.5.2.5,
 // Figure 20-4). Scale by (f_L1/f)^2 for other frequencies.

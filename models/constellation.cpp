@@ -104,7 +104,7 @@ NavData nominal_constellation(GpsTime t) {
       const double arg_lat = wrap_pi(slot.arg_lat_deg * kDegToRad + kArgLatRate_radps * dt);
 
       GpsEphemeris e;
-      e.prn = static_cast<int>(i) + 1;
+      e.sat = gps_sat(static_cast<int>(i) + 1);
       e.toc = toe;
       e.toe = toe;
       e.iode = iode;

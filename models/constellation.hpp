@@ -4,7 +4,7 @@
 // navigation files and the built-in sky.
 
 #include "models/ephemeris.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

@@ -30,7 +30,7 @@ std::int64_t transmission_ns(const GpsEphemeris& e) {
 
 }  // namespace
 
-// Among the healthy records of `prn` (SV health 0, IS-GPS-200 20.3.3.3.1.4), the one whose toe
+// Among the healthy records of `sat` (SV health 0, IS-GPS-200 20.3.3.3.1.4), the one whose toe
 // is nearest to t: the curve fit interval is centred on toe (IS-GPS-200 20.3.4.5), so the
 // nearest toe gives the smallest fit error. When t precedes every toe that is the earliest
 // one. Equal distances go to the record transmitted later, then to the later one in the file.
@@ -40,12 +40,12 @@ const GpsEphemeris* as_pointer(const GpsEphemeris* e) { return e; }
 
 // The selection rule over any sequence of records or record pointers.
 template <class Records>
-const GpsEphemeris* select_among(const Records& records, int prn, GpsTime t) {
+const GpsEphemeris* select_among(const Records& records, SatId sat, GpsTime t) {
   const GpsEphemeris* best = nullptr;
   std::int64_t best_dt = 0;
   for (const auto& record : records) {
     const GpsEphemeris* e = as_pointer(record);
-    if (e->prn != prn || e->health != 0) continue;
+    if (e->sat != sat || e->health != 0) continue;
     const std::int64_t dt = t.ns >= e->toe.ns ? t.ns - e->toe.ns : e->toe.ns - t.ns;
     // The transmission times only matter for a tie (they cost as much as the rest).
     if (best == nullptr || dt < best_dt ||
@@ -58,12 +58,12 @@ const GpsEphemeris* select_among(const Records& records, int prn, GpsTime t) {
 }
 }  // namespace
 
-const GpsEphemeris* select_ephemeris(const NavData& nav, int prn, GpsTime t) {
-  return select_among(nav.gps, prn, t);
+const GpsEphemeris* select_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+  return select_among(nav.gps, sat, t);
 }
 
 const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records, GpsTime t) {
-  return records.empty() ? nullptr : select_among(records, records.front()->prn, t);
+  return records.empty() ? nullptr : select_among(records, records.front()->sat, t);
 }
 
 EphemerisSelection select_ephemeris_span(std::span<const GpsEphemeris* const> records,
@@ -74,7 +74,7 @@ EphemerisSelection select_ephemeris_span(std::span<const GpsEphemeris* const> re
   out.before_2ns = std::numeric_limits<std::int64_t>::max();
   if (out.eph == nullptr) return out;  // no healthy record: none at any time
   for (const GpsEphemeris* e : records) {
-    if (e->prn != out.eph->prn || e->health != 0 || e->toe == out.eph->toe) continue;
+    if (e->sat != out.eph->sat || e->health != 0 || e->toe == out.eph->toe) continue;
     const std::int64_t midpoint_2ns = e->toe.ns + out.eph->toe.ns;
     if (e->toe > out.eph->toe)
       out.before_2ns = std::min(out.before_2ns, midpoint_2ns);
@@ -94,14 +94,14 @@ std::vector<TimeSpan> covered_spans(const NavData& nav, int min_satellites) {
     return {{GpsTime{std::numeric_limits<std::int64_t>::min()},
              GpsTime{std::numeric_limits<std::int64_t>::max()}}};
   min_satellites = std::max(min_satellites, 1);
-  std::map<int, std::vector<TimeSpan>> by_prn;
+  std::map<SatId, std::vector<TimeSpan>> by_sat;
   for (const GpsEphemeris& e : nav.gps)
-    if (e.health == 0) by_prn[e.prn].push_back(fit_interval(e));
-  // Each PRN's fit intervals merged (a satellite counts once however many of its records hold),
-  // then a sweep over where they begin (+1) and end (-1). At equal times beginnings come first,
-  // so satellites whose spans touch count together at that instant.
+    if (e.health == 0) by_sat[e.sat].push_back(fit_interval(e));
+  // Each satellite's fit intervals merged (a satellite counts once however many of its records
+  // hold), then a sweep over where they begin (+1) and end (-1). At equal times beginnings come
+  // first, so satellites whose spans touch count together at that instant.
   std::vector<std::pair<GpsTime, int>> events;
-  for (auto& [prn, spans] : by_prn) {
+  for (auto& [sat, spans] : by_sat) {
     std::sort(spans.begin(), spans.end(), [](const TimeSpan& a, const TimeSpan& b) { return a.from < b.from; });
     TimeSpan cur = spans.front();
     for (const TimeSpan& s : spans) {

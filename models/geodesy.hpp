@@ -2,12 +2,9 @@
 // WGS-84 geodesy through GeographicLib: ECEF <-> geodetic, local ENU/NED frames and
 // azimuth/elevation on the geodetic normal. Heights above mean sea level: models/geoid.hpp.
 
-#include <Eigen/Core>
+#include "core/vec.hpp"
 
 namespace navemu {
-
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
 
 // WGS-84 constants as used by GPS (IS-GPS-200 Table 20-IV).
 inline constexpr double kGpsMu_m3ps2 = 3.986005e14;          // Earth's gravitational constant

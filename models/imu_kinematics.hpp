@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "models/geodesy.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/sat_table.hpp"
 #include "models/orbit.hpp"
-#include "models/prn_table.hpp"
 
 namespace navemu {
 
@@ -70,18 +70,20 @@ void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc) {
 // term and satellite, so switching one term (or a band) leaves the others' numbers unchanged.
 struct SatProcesses {
   using BandStreams = std::array<RandomStream, 3>;
-  static BandStreams band_streams(std::uint64_t seed, const char* term, int prn) {
-    auto one = [&](int band) { return RandomStream(seed, stream_id(term, prn * 10 + band)); };
+  static BandStreams band_streams(std::uint64_t seed, const char* term, SatId sat) {
+    auto one = [&](int band) {
+      return RandomStream(seed, stream_id(term, sat.stream_index() * 10 + band));
+    };
     return {one(0), one(1), one(2)};
   }
 
-  SatProcesses(std::uint64_t seed, int prn, const MeasurementConfig& cfg, double t_s)
-      : iono_rng(seed, stream_id("iono", prn)),
-        multipath_rng(seed, stream_id("multipath", prn)),
-        rtk_rng(seed, stream_id("rtk_noise", prn)),
-        code_rng(band_streams(seed, "code_noise", prn)),
-        phase_rng(band_streams(seed, "phase_noise", prn)),
-        doppler_rng(band_streams(seed, "doppler_noise", prn)),
+  SatProcesses(std::uint64_t seed, SatId sat, const MeasurementConfig& cfg, double t_s)
+      : iono_rng(seed, stream_id("iono", sat.stream_index())),
+        multipath_rng(seed, stream_id("multipath", sat.stream_index())),
+        rtk_rng(seed, stream_id("rtk_noise", sat.stream_index())),
+        code_rng(band_streams(seed, "code_noise", sat)),
+        phase_rng(band_streams(seed, "phase_noise", sat)),
+        doppler_rng(band_streams(seed, "doppler_noise", sat)),
         iono_fraction(cfg.iono_satellite_error_fraction, cfg.iono_error_tau_s, iono_rng),
         multipath(1.0, cfg.multipath_tau_s, multipath_rng),
         last_t_s(t_s) {}
@@ -122,68 +124,70 @@ struct MeasurementGenerator::State {
   GaussMarkov iono_common, iono_gradient_north, iono_gradient_east;
   GaussMarkov tropo_wet;
   GaussMarkov dgps_tropo;
-  PrnTable<SatProcesses> sats;
+  SatTable<SatProcesses> sats;
   // The Gauss-Markov transitions shared by processes of one correlation time and step.
   GaussMarkovTransition iono_common_tr, tropo_tr, sat_iono_tr, sat_multipath_tr;
-  PrnTable<double> receivable_since;  // time the PRN's signal became receivable, s
-  PrnTable<std::pair<double, double>> scene_phase;  // (t s, carrier multipath m)
+  SatTable<double> receivable_since;  // time the satellite's signal became receivable, s
+  SatTable<std::pair<double, double>> scene_phase;  // (t s, carrier multipath m)
   // The last light-time solution (t s, flight time s, its rate): the next one starts from its
   // extrapolation and converges in one or two orbit evaluations.
   struct FlightTime {
     double t_s, tau_s, rate;
   };
-  PrnTable<FlightTime> flight_time;
-  PrnTable<double> below_horizon_until_s;  // no orbit evaluation before then
+  SatTable<FlightTime> flight_time;
+  SatTable<double> below_horizon_until_s;  // no orbit evaluation before then
   Vec3 below_horizon_from = Vec3::Zero();  // the receiver's place when those were decided
   std::optional<GpsTime> last;
-  std::vector<int> prns;
-  PrnTable<std::vector<const GpsEphemeris*>> records;  // each PRN's broadcast records
-  // Each PRN's record choice with the span of times it holds for (the records change only when
-  // renewed, which clears it).
-  PrnTable<EphemerisSelection> selection;
+  std::vector<SatId> sat_ids;  // the satellites with records, in SatId order
+  SatTable<std::vector<const GpsEphemeris*>> records;  // each satellite's broadcast records
+  // Each satellite's record choice with the span of times it holds for (the records change only
+  // when renewed, which clears it).
+  SatTable<EphemerisSelection> selection;
   // Data that renew (NavData::renews, the built-in constellation): from `renew_at` on, each
-  // PRN's latest set goes on with a new upload every 2 h (reuploaded()) for the next day. The
+  // satellite's latest set goes on with a new upload every 2 h (reuploaded()) for the next day. The
   // sets in use are renewed[0]; renewed[1] keeps the ones before them, which the last epoch's
   // measurements may still point to, until the next renewal.
   std::array<std::vector<GpsEphemeris>, 2> renewed;
   GpsTime renew_at{std::numeric_limits<std::int64_t>::max()};
-  // The uploads a renewal at t holds per PRN: toe from t - 2 h (the set in use) to t + 26 h.
+  // The uploads a renewal at t holds per satellite: toe from t - 2 h (the set in use) to t + 26 h.
   static constexpr double kRenewFrom_s = -kUploadInterval_s, kRenewTo_s = 26 * 3600.0;
-  static constexpr std::size_t kRenewedPerPrn =
+  static constexpr std::size_t kRenewedPerSat =
       static_cast<std::size_t>((kRenewTo_s - kRenewFrom_s) / kUploadInterval_s) + 1;
 
-  // `records` and `prns` from a set of records (reusing their storage: a renewal of as many
+  // `records` and `sat_ids` from a set of records (reusing their storage: a renewal of as many
   // records allocates nothing), and when renewing data would run short.
   void index(const std::vector<GpsEphemeris>& gps, bool renews) {
-    for (int prn : prns) records.find(prn)->clear();
-    for (const GpsEphemeris& e : gps) records.try_emplace(e.prn).first.push_back(&e);
-    prns.clear();
-    for (int prn = 1; prn <= kMaxPrn; ++prn)
-      if (const auto* r = records.find(prn); r != nullptr && !r->empty()) prns.push_back(prn);
+    for (SatId sat : sat_ids) records.find(sat)->clear();
+    for (const GpsEphemeris& e : gps) records.try_emplace(e.sat).first.push_back(&e);
+    sat_ids.clear();
+    records.for_each([this](SatId sat, const std::vector<const GpsEphemeris*>& r) {
+      if (!r.empty()) sat_ids.push_back(sat);
+    });
     selection.clear();
     if (!renews) return;
-    // An upload before the earliest of the PRNs' latest toes: the nearest toe stays within 1 h.
+    // An upload before the earliest of the satellites' latest toes: the nearest toe stays
+    // within 1 h.
     renew_at = GpsTime{std::numeric_limits<std::int64_t>::max()};
-    for (int prn : prns) renew_at = std::min(renew_at, latest(prn).toe.plus_s(-kUploadInterval_s));
+    for (SatId sat : sat_ids) renew_at = std::min(renew_at, latest(sat).toe.plus_s(-kUploadInterval_s));
   }
 
-  const GpsEphemeris& latest(int prn) const {
-    const auto& r = *records.find(prn);
+  const GpsEphemeris& latest(SatId sat) const {
+    const auto& r = *records.find(sat);
     return **std::max_element(r.begin(), r.end(), [](const GpsEphemeris* a, const GpsEphemeris* b) {
       return a->toe < b->toe;
     });
   }
 
-  // The sets in force from t on: those held with toe from t - 2 h on, then each PRN's latest
+  // The sets in force from t on: those held with toe from t - 2 h on, then each satellite's latest
   // set uploaded anew every 2 h to t + 26 h.
   void renew(GpsTime t) {
     std::vector<GpsEphemeris>& next = renewed[1];  // nothing points into it any more
     next.clear();
     const GpsTime from = t.plus_s(kRenewFrom_s), to = t.plus_s(kRenewTo_s);
-    for (int prn : prns) {
-      for (const GpsEphemeris* e : *records.find(prn))
+    for (SatId sat : sat_ids) {
+      for (const GpsEphemeris* e : *records.find(sat))
         if (e->toe >= from) next.push_back(*e);
-      const GpsEphemeris& newest = latest(prn);
+      const GpsEphemeris& newest = latest(sat);
       const double k0 = std::max(1.0, std::ceil(seconds_between(from, newest.toe) / kUploadInterval_s));
       for (double k = k0; newest.toe.plus_s(k * kUploadInterval_s) <= to; ++k)
         next.push_back(reuploaded(newest, newest.toe.plus_s(k * kUploadInterval_s)));
@@ -200,7 +204,7 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
     cfg_.iono_model = IonoModel::kPaperVtec;
   state_->index(nav_.gps, nav_.renews);
   if (nav_.renews)  // a steady run renews without allocating
-    for (auto& r : state_->renewed) r.reserve(state_->prns.size() * State::kRenewedPerPrn);
+    for (auto& r : state_->renewed) r.reserve(state_->sat_ids.size() * State::kRenewedPerSat);
 }
 
 MeasurementGenerator::~MeasurementGenerator() = default;
@@ -258,19 +262,19 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     st.below_horizon_from = p_rx;
   }
   if (out.t_true >= st.renew_at) st.renew(out.t_true);  // renewing data (the built-in sky)
-  for (int prn : st.prns) {
-    if (const double* until = st.below_horizon_until_s.find(prn); until && t_s < *until) continue;
-    EphemerisSelection& chosen = st.selection.try_emplace(prn).first;
+  for (SatId sat : st.sat_ids) {
+    if (const double* until = st.below_horizon_until_s.find(sat); until && t_s < *until) continue;
+    EphemerisSelection& chosen = st.selection.try_emplace(sat).first;
     if (!chosen.covers(out.t_true))
-      chosen = select_ephemeris_span(*st.records.find(prn), out.t_true);
+      chosen = select_ephemeris_span(*st.records.find(sat), out.t_true);
     const GpsEphemeris* eph = chosen.eph;
     if (eph == nullptr || std::abs(seconds_between(out.t_true, eph->toe)) > kMaxEphemerisAge_s)
       continue;
-    State::FlightTime& flight = st.flight_time.try_emplace(prn, State::FlightTime{t_s, 0.075, 0.0}).first;
+    State::FlightTime& flight = st.flight_time.try_emplace(sat, State::FlightTime{t_s, 0.075, 0.0}).first;
     const SatGeometry g =
         gps_sat_geometry(*eph, out.t_true, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
     flight = {t_s, g.flight_time_s, g.range_rate_mps / c};
-    if (g.dir.el_rad < kFarBelow_rad) st.below_horizon_until_s.try_emplace(prn).first = t_s + kFarBelowSkip_s;
+    if (g.dir.el_rad < kFarBelow_rad) st.below_horizon_until_s.try_emplace(sat).first = t_s + kFarBelowSkip_s;
     // The scene: blocked, reflected, attenuated signals (open sky without one).
     SignalEnvironment env;
     if (cfg_.environment && g.dir.el_rad > 0.0)
@@ -282,20 +286,20 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
                             cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
     bool tracked = false;
     if (!receivable) {
-      st.receivable_since.erase(prn);
+      st.receivable_since.erase(sat);
     } else {
-      auto [since, fresh] = st.receivable_since.try_emplace(prn, t_s);
+      auto [since, fresh] = st.receivable_since.try_emplace(sat, t_s);
       if (fresh && first) since = t_s - cfg_.tracking.reacquisition_s;  // in track at the start
       tracked = t_s - since >= cfg_.tracking.reacquisition_s - 1e-9;
     }
-    const CarrierArcs::Arc arc = st.arcs.update(prn, t_s, tracked);
+    const CarrierArcs::Arc arc = st.arcs.update(sat, t_s, tracked);
     if (!tracked) continue;
 
-    auto [sp, inserted] = st.sats.try_emplace(prn, cfg_.seed, prn, cfg_, t_s);
+    auto [sp, inserted] = st.sats.try_emplace(sat, cfg_.seed, sat, cfg_, t_s);
     if (!inserted) sp.advance(t_s, st.sat_iono_tr, st.sat_multipath_tr);
 
     SatMeasurement m;
-    m.prn = prn;
+    m.sat = sat;
     m.eph = eph;
     m.dir = g.dir;
     m.range_m = g.range_m;
@@ -331,7 +335,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
         m.sat_error_m = paper_sv_ephemeris_error_m(std::asin(ps.z() / ps.norm()), ps.norm());
       } else {
         const Vec3 los = (g.sat.p_ecef_m - p_rx).normalized();
-        m.sat_error_m = st.sat_errors.range_error_m(prn, t_s, g.sat.p_ecef_m, g.sat.v_ecef_mps, los);
+        m.sat_error_m = st.sat_errors.range_error_m(sat, t_s, g.sat.p_ecef_m, g.sat.v_ecef_mps, los);
       }
     }
     // Multipath: the scene's composite-signal errors, or the statistical model in open sky.
@@ -341,7 +345,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
       m.multipath_m = env.code_error_m;
       m.nlos = env.nlos;
       phase_mp_m = env.phase_error_m;
-      auto [prev, fresh_phase] = st.scene_phase.try_emplace(prn, t_s, phase_mp_m);
+      auto [prev, fresh_phase] = st.scene_phase.try_emplace(sat, t_s, phase_mp_m);
       // A jump of half a wavelength or more (the dominant path changed) is a cycle slip, not
       // a Doppler: no rate across it.
       const double step_m = phase_mp_m - prev.second;

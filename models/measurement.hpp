@@ -16,6 +16,8 @@
 #include <optional>
 #include <vector>
 
+#include "core/satellite.hpp"
+#include "core/signal.hpp"
 #include "models/atmosphere.hpp"
 #include "models/ephemeris.hpp"
 #include "models/geodesy.hpp"
@@ -24,7 +26,7 @@
 #include "models/sat_errors.hpp"
 #include "models/signal_environment.hpp"
 #include "models/solver.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 #include "models/tracking.hpp"
 
 namespace navemu {
@@ -105,8 +107,12 @@ struct MeasurementConfig {
   std::uint64_t seed = 1;
 };
 
+// The signals generated, by band: L1 C/A, L2C (the CL pilot) and the L5 pilot (Q).
 enum class Band { kL1 = 0, kL2 = 1, kL5 = 2 };
-inline constexpr std::array<double, 3> kBandFreq_Hz = {kGpsL1_Hz, kGpsL2_Hz, kGpsL5_Hz};
+inline constexpr std::array<SignalId, 3> kBandSignals = {kGpsL1CA, kGpsL2CL, kGpsL5Q};
+inline constexpr std::array<double, 3> kBandFreq_Hz = {carrier_frequency_hz(kBandSignals[0]),
+                                                       carrier_frequency_hz(kBandSignals[1]),
+                                                       carrier_frequency_hz(kBandSignals[2])};
 
 struct SignalObs {
   double pseudorange_m = 0.0;
@@ -118,7 +124,7 @@ struct SignalObs {
 };
 
 struct SatMeasurement {
-  int prn = 0;
+  SatId sat;
   const GpsEphemeris* eph = nullptr;  // the broadcast record used
   AzEl dir;
   double range_m = 0.0;          // true geometric range (light time and Earth rotation)
@@ -131,7 +137,7 @@ struct SatMeasurement {
   double sat_clock_m = 0.0;        // c (dt_sv - TGD) from the broadcast record
   double multipath_m = 0.0;
   bool nlos = false;               // tracked on reflections only (scene)
-  std::array<std::optional<SignalObs>, 3> signals;  // by Band
+  std::array<std::optional<SignalObs>, 3> signals;  // by Band (kBandSignals)
   // The pseudorange the position engine uses in the configured mode (L1 in standalone, the
   // iono-free combination in dual-frequency, the differentially corrected one in DGPS/RTK).
   double engine_pseudorange_m = 0.0;
@@ -142,7 +148,7 @@ struct EpochMeasurements {
   GpsTime t_true;               // true GPS time of reception
   double rx_clock_bias_s = 0.0;
   double rx_clock_drift_sps = 0.0;
-  std::vector<SatMeasurement> sats;  // tracked satellites above the horizon, by PRN
+  std::vector<SatMeasurement> sats;  // tracked satellites above the horizon, by SatId
 };
 
 // Receiver classes: tracking loops, antenna and site as they differ between a geodetic receiver

@@ -13,9 +13,11 @@
 #include <utility>
 #include <vector>
 
+#include "core/signal.hpp"
+
 namespace navemu {
 
-inline constexpr double kL1WavelengthM = 299792458.0 / 1575.42e6;  // 0.1903 m
+inline constexpr double kL1WavelengthM = 299792458.0 / carrier_frequency_hz(kGpsL1CA);  // 0.1903 m
 
 // ---- Reflection coefficients ---------------------------------------------------------------
 // Fresnel coefficients of a smooth half-space with complex relative permittivity

@@ -4,7 +4,7 @@
 
 #include "models/ephemeris.hpp"
 #include "models/geodesy.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

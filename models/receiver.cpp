@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "models/prn_table.hpp"
+#include "core/sat_table.hpp"
 #include "models/reuse.hpp"
 
 namespace navemu {
@@ -16,11 +16,11 @@ double separation_m(const GeoidGrid* geoid, const Geodetic& p) {
 
 Receiver::Receiver(const NavData& nav, const ReceiverParams& p)
     : p_(p), gen_(nav, p.measurement), ideal_rng_(p.measurement.seed, stream_id("ideal_fix")) {
-  // Room for every PRN: a satellite rising never makes an epoch allocate.
-  meas_.sats.reserve(kMaxPrn);
-  solver_input_.reserve(kMaxPrn);
-  solution_.sats.reserve(kMaxPrn);
-  fix_.satellites.reserve(kMaxPrn);
+  // Room for every satellite: one rising never makes an epoch allocate.
+  meas_.sats.reserve(kDefinedSatellites);
+  solver_input_.reserve(kDefinedSatellites);
+  solution_.sats.reserve(kDefinedSatellites);
+  fix_.satellites.reserve(kDefinedSatellites);
 }
 
 const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
@@ -44,7 +44,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
                      });
     e.sats.resize(static_cast<std::size_t>(p_.max_channels));
     std::sort(e.sats.begin(), e.sats.end(),
-              [](const SatMeasurement& a, const SatMeasurement& b) { return a.prn < b.prn; });
+              [](const SatMeasurement& a, const SatMeasurement& b) { return a.sat < b.sat; });
   }
 
   SolverOptions opt = gen_.solver_options();
@@ -56,12 +56,12 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   double sum_sq = 0.0;
   for (const SatMeasurement& m : e.sats) {
     ReceiverSatellite s;
-    s.prn = m.prn;
+    s.sat = m.sat;
     s.az_deg = m.dir.az_rad * kRadToDeg;
     s.el_deg = m.dir.el_rad * kRadToDeg;
     s.cn0_dbhz = m.signals[0] ? m.signals[0]->cn0_dbhz : 0.0;
     for (const SatResidual& r : sol.sats)
-      if (r.prn == m.prn && r.used && sol.fix != FixType::kNone) {
+      if (r.sat == m.sat && r.used && sol.fix != FixType::kNone) {
         s.used = true;
         sum_sq += r.residual_m * r.residual_m;
       }

@@ -28,7 +28,7 @@ struct ReceiverParams {
 };
 
 struct ReceiverSatellite {
-  int prn = 0;
+  SatId sat;
   double az_deg = 0.0, el_deg = 0.0, cn0_dbhz = 0.0;
   bool used = false;
 };
@@ -41,7 +41,7 @@ struct ReceiverFix {
   std::optional<Vec3> v_ned_mps;
   Dops dops;
   int num_used = 0;
-  std::vector<ReceiverSatellite> satellites;  // tracked, by PRN
+  std::vector<ReceiverSatellite> satellites;  // tracked, by SatId
   // 1-sigma accuracy estimates from the solution's covariance (models/solver.hpp), north, east,
   // horizontal (root sum of squares) and vertical.
   double sigma_n_m = 0.0, sigma_e_m = 0.0, sigma_h_m = 0.0, sigma_v_m = 0.0;

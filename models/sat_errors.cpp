@@ -30,18 +30,18 @@ Mat3 R_rac_from_ecef(const Vec3& sat_p_ecef_m, const Vec3& sat_v_ecef_mps) {
 
 SatErrors::SatErrors(const SatErrorParams& p, std::uint64_t seed) : p_(p), seed_(seed) {}
 
-double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
+double SatErrors::range_error_m(SatId sat, double t_s, const Vec3& sat_p_ecef_m,
                                 const Vec3& sat_v_ecef_mps, const Vec3& los_unit_ecef) {
-  Sat* found = sats_.find(prn);
+  Sat* found = sats_.find(sat);
   if (found == nullptr) {
-    // One stream per PRN; the four processes draw from it in a fixed order (radial, along,
-    // cross, clock) so a PRN's errors do not depend on which other PRNs were seen.
-    RandomStream rng(seed_, stream_id("sat_errors", prn));
+    // One stream per satellite; the four processes draw from it in a fixed order (radial,
+    // along, cross, clock) so a satellite's errors do not depend on which others were seen.
+    RandomStream rng(seed_, stream_id("sat_errors", sat.stream_index()));
     GaussMarkov radial(p_.radial_sigma_m, p_.tau_s, rng);
     GaussMarkov along(p_.along_sigma_m, p_.tau_s, rng);
     GaussMarkov cross(p_.cross_sigma_m, p_.tau_s, rng);
     GaussMarkov clock(p_.clock_sigma_m, p_.tau_s, rng);
-    found = &sats_.try_emplace(prn, Sat{t_s, radial, along, cross, clock, rng}).first;
+    found = &sats_.try_emplace(sat, Sat{t_s, radial, along, cross, clock, rng}).first;
   } else {
     Sat& s = *found;
     const double dt = t_s - s.t_s;
@@ -64,8 +64,8 @@ double SatErrors::range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m,
   return -dr_ecef.dot(los_unit_ecef) + s.clock.value();
 }
 
-SatErrors::Terms SatErrors::terms(int prn) const {
-  const Sat* found = sats_.find(prn);
+SatErrors::Terms SatErrors::terms(SatId sat) const {
+  const Sat* found = sats_.find(sat);
   if (found == nullptr) return {};
   const Sat& s = *found;
   return {s.radial.value(), s.along.value(), s.cross.value(), s.clock.value()};

@@ -3,7 +3,8 @@
 
 
 #include "models/geodesy.hpp"
-#include "models/prn_table.hpp"
+#include "core/sat_table.hpp"
+#include "core/satellite.hpp"
 #include "models/random.hpp"
 
 namespace navemu {
@@ -38,12 +39,12 @@ struct SatErrorParams {
   SatErrorParams scaled_to_sisre(double sisre) const;
 };
 
-// Per-satellite orbit and clock error processes, one random stream per term and PRN.
+// Per-satellite orbit and clock error processes, one random stream per term and satellite.
 class SatErrors {
  public:
   SatErrors(const SatErrorParams& p, std::uint64_t seed);
-  // Advances the processes of `prn` to time t_s (seconds, any origin) by the time elapsed since
-  // that PRN's previous call (the first call for a PRN starts its processes from their
+  // Advances the processes of `sat` to time t_s (seconds, any origin) by the time elapsed since
+  // that satellite's previous call (the first call for a satellite starts its processes from their
   // stationary distribution; a t_s not after the previous one leaves them unchanged).
   // Returns the range error: orbit error projected on the line of sight plus clock error, m.
   // `los_unit_ecef` points from the receiver to the satellite.
@@ -57,18 +58,18 @@ class SatErrors {
   // below the satellite (los = e_r) therefore shortens the pseudorange by `radial`. The clock
   // term is the satellite clock error left after the broadcast correction, in metres, added
   // as it is.
-  double range_error_m(int prn, double t_s, const Vec3& sat_p_ecef_m, const Vec3& sat_v_ecef_mps,
+  double range_error_m(SatId sat, double t_s, const Vec3& sat_p_ecef_m, const Vec3& sat_v_ecef_mps,
                        const Vec3& los_unit_ecef);
 
-  // The current error terms of `prn` as used by the last range_error_m call for it (all zero
-  // for a PRN never seen), metres.
+  // The current error terms of `sat` as used by the last range_error_m call for it (all zero
+  // for a satellite never seen), metres.
   struct Terms {
     double radial_m = 0.0;
     double along_m = 0.0;
     double cross_m = 0.0;
     double clock_m = 0.0;
   };
-  Terms terms(int prn) const;
+  Terms terms(SatId sat) const;
 
  private:
   struct Sat {
@@ -78,8 +79,8 @@ class SatErrors {
   };
   SatErrorParams p_;
   std::uint64_t seed_;
-  PrnTable<Sat> sats_;
-  // Every PRN's four processes share tau_s and, in an epoch, the step length.
+  SatTable<Sat> sats_;
+  // Every satellite's four processes share tau_s and, in an epoch, the step length.
   GaussMarkovTransition transition_;
 };
 

@@ -80,7 +80,7 @@ RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_recei
   t_tx = t_tx.plus_s(-gps_sat_clock_poly_s(eph, t_tx));
   const SatState s = gps_sat_state(eph, t_tx);
   RangeMeasurement m;
-  m.prn = eph.prn;
+  m.sat = eph.sat;
   m.sat_p_ecef_m = s.p_ecef_m;
   m.sat_v_ecef_mps = s.v_ecef_mps;
   m.sat_clock_m = kSpeedOfLight_mps * (s.clock_bias_s - eph.tgd_s);
@@ -170,7 +170,7 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
       const double range = los.norm();
       if (recompute) {
         out = SatResidual{};
-        out.prn = m.prn;
+        out.sat = m.sat;
         AzEl dir{0.0, kPi / 2.0};
         if (known) dir = azimuth_elevation(r_enu, p, p_sat);
         out.az_deg = dir.az_rad * kRadToDeg;

@@ -7,10 +7,11 @@
 #include <span>
 #include <vector>
 
+#include "core/satellite.hpp"
 #include "models/atmosphere.hpp"
 #include "models/ephemeris.hpp"
 #include "models/geodesy.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 
@@ -18,7 +19,7 @@ namespace navemu {
 // transmit time, in the ECEF frame of that transmit time (the solver applies the Earth
 // rotation during the signal's flight for the current position estimate).
 struct RangeMeasurement {
-  int prn = 0;
+  SatId sat;
   Vec3 sat_p_ecef_m = Vec3::Zero();
   Vec3 sat_v_ecef_mps = Vec3::Zero();
   double sat_clock_m = 0.0;       // c * (satellite clock bias incl. relativistic, minus TGD)
@@ -53,7 +54,7 @@ struct SolverOptions {
 };
 
 struct SatResidual {
-  int prn = 0;
+  SatId sat;
   double az_deg = 0.0, el_deg = 0.0;
   double residual_m = 0.0;  // measured minus modelled pseudorange after the final iteration
   double iono_m = 0.0, tropo_m = 0.0;

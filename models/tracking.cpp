@@ -75,8 +75,8 @@ double cn0_dbhz(const Cn0Model& m, double el_rad) {
   return m.zenith_dbhz + table.back().second;  // not reached for a sorted table
 }
 
-CarrierArcs::Arc CarrierArcs::update(int prn, double t_s, bool tracked) {
-  State& s = state_.try_emplace(prn).first;
+CarrierArcs::Arc CarrierArcs::update(SatId sat, double t_s, bool tracked) {
+  State& s = state_.try_emplace(sat).first;
   if (!tracked) {
     s.active = false;
     s.last_s = t_s;
@@ -85,9 +85,9 @@ CarrierArcs::Arc CarrierArcs::update(int prn, double t_s, bool tracked) {
   const double gap = t_s - s.last_s;
   const bool new_arc = !s.active || gap > max_gap_s_ || gap < 0.0;
   if (new_arc) {
-    // Arc k of this PRN draws its ambiguity from its own stream, so it does not depend on the
-    // history of other PRNs. Uniform on the 2e6 + 1 integers -1e6 ... 1e6.
-    const std::int64_t arc_index = static_cast<std::int64_t>(prn) * 100000 + s.arcs;
+    // Arc k of this satellite draws its ambiguity from its own stream, so it does not depend on
+    // the history of other satellites. Uniform on the 2e6 + 1 integers -1e6 ... 1e6.
+    const std::int64_t arc_index = static_cast<std::int64_t>(sat.stream_index()) * 100000 + s.arcs;
     RandomStream rng(seed_, stream_id("carrier_arc", arc_index));
     constexpr double kMax = 1e6;
     s.ambiguity = std::floor(rng.uniform() * (2.0 * kMax + 1.0)) - kMax;

@@ -6,7 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "models/prn_table.hpp"
+#include "core/sat_table.hpp"
+#include "core/satellite.hpp"
 #include "models/random.hpp"
 
 namespace navemu {
@@ -57,11 +58,12 @@ double cn0_dbhz(const Cn0Model& m, double el_rad);
 
 // Carrier-phase bookkeeping per satellite: an integer ambiguity drawn when an arc starts, a new
 // arc (new ambiguity, loss-of-lock indicator set) when the signal was lost or below threshold.
-// The ambiguity of arc k (0, 1, ... per PRN) is uniform on the integers in [-1e6, 1e6], drawn
-// from its own stream stream_id("carrier_arc", prn * 100000 + k) of the scenario seed.
+// The ambiguity of arc k (0, 1, ... per satellite) is uniform on the integers in [-1e6, 1e6],
+// drawn from its own stream stream_id("carrier_arc", sat.stream_index() * 100000 + k) of the
+// scenario seed.
 class CarrierArcs {
  public:
-  // `max_gap_s`: a tracked epoch more than this after the PRN's previous update starts a new
+  // `max_gap_s`: a tracked epoch more than this after the satellite's previous update starts a new
   // arc (no updates for that long counts as a loss of lock); about twice the longest epoch
   // interval in use.
   explicit CarrierArcs(std::uint64_t seed, double max_gap_s = 10.0)
@@ -71,11 +73,11 @@ class CarrierArcs {
     double lock_time_s = 0.0;       // time since the arc started
     bool new_arc = true;            // first epoch of the arc (RINEX LLI bit 0)
   };
-  // Updates the arc of `prn` at time t_s: `tracked` false ends the arc (next tracked epoch
+  // Updates the arc of `sat` at time t_s: `tracked` false ends the arc (next tracked epoch
   // starts a new one). A tracked epoch starts a new arc as well when it comes more than
   // max_gap_s after the previous update or before it. Returns the arc state for this epoch;
   // for an untracked epoch there is no arc and the result is all zero with new_arc false.
-  Arc update(int prn, double t_s, bool tracked);
+  Arc update(SatId sat, double t_s, bool tracked);
 
  private:
   struct State {
@@ -87,7 +89,7 @@ class CarrierArcs {
   };
   std::uint64_t seed_;
   double max_gap_s_ = 10.0;
-  PrnTable<State> state_;
+  SatTable<State> state_;
 };
 
 }  // namespace navemu

@@ -19,7 +19,7 @@
 
 #include "models/geodesy.hpp"
 #include "models/imu_kinematics.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 

@@ -266,9 +266,9 @@ constexpr int kSf4Nmct = 52;
 constexpr int kSf4Config = 63;
 constexpr int kSf5Health = 51;
 
-const LnavAlmanacEntry* find_entry(const LnavAlmanac& alm, int prn) {
+const LnavAlmanacEntry* find_entry(const LnavAlmanac& alm, int sv_id) {
   for (const auto& e : alm.entries)
-    if (e.prn == prn) return &e;
+    if (e.sv_id == sv_id) return &e;
   return nullptr;
 }
 
@@ -282,7 +282,7 @@ std::uint32_t six_bit_health(const LnavAlmanacEntry* e) {
 
 void put_almanac(BitWriter& w, const LnavAlmanacEntry& a) {
   w.put(kDataId, 2);
-  w.put(field_u(a.prn, 6), 6);
+  w.put(field_u(a.sv_id, 6), 6);
   w.put(q_unsigned(a.e, -21, 16), 16);
   w.put(q_time(a.toa_s, 12, 8), 8);
   w.put(q_sc(a.delta_i_rad, -19, 16), 16);
@@ -344,14 +344,14 @@ void put_nmct(BitWriter& w) {
 void put_sf4_config(BitWriter& w, const LnavAlmanac& alm) {
   w.put(kDataId, 2);
   w.put(kSf4Config, 6);
-  for (int prn = 1; prn <= 32; ++prn) {
-    const LnavAlmanacEntry* e = find_entry(alm, prn);
+  for (int sv_id = 1; sv_id <= 32; ++sv_id) {
+    const LnavAlmanacEntry* e = find_entry(alm, sv_id);
     const std::uint32_t v =
         e == nullptr ? 0u : (field_u(e->anti_spoof_flag, 1) << 3) | field_u(e->sv_config, 3);
     w.put(v, 4);
   }
   w.zeros(2);
-  for (int prn = 25; prn <= 32; ++prn) w.put(six_bit_health(find_entry(alm, prn)), 6);
+  for (int sv_id = 25; sv_id <= 32; ++sv_id) w.put(six_bit_health(find_entry(alm, sv_id)), 6);
   // 4 reserved bits to the t bits.
 }
 
@@ -361,7 +361,7 @@ void put_sf5_health(BitWriter& w, const LnavAlmanac& alm) {
   w.put(kSf5Health, 6);
   w.put(q_time(alm.toa_s, 12, 8), 8);
   w.put(low_bits(alm.week, 8), 8);
-  for (int prn = 1; prn <= 24; ++prn) w.put(six_bit_health(find_entry(alm, prn)), 6);
+  for (int sv_id = 1; sv_id <= 24; ++sv_id) w.put(six_bit_health(find_entry(alm, sv_id)), 6);
   // 6 reserved bits and 16 bits reserved for system use, to the t bits.
 }
 
@@ -572,8 +572,8 @@ std::optional<LnavAlmanacEntry> decode_almanac(const LnavSubframe& words) {
   BitReader r(words);
   r.skip(2);
   LnavAlmanacEntry a;
-  a.prn = static_cast<int>(r.get(6));
-  if (a.prn < 1 || a.prn > 32) return std::nullopt;
+  a.sv_id = static_cast<int>(r.get(6));
+  if (a.sv_id < 1 || a.sv_id > 32) return std::nullopt;
   a.e = d_unsigned(r.get(16), -21);
   a.toa_s = d_unsigned(r.get(8), 12);
   a.delta_i_rad = d_sc(r.get(16), 16, -19);
@@ -631,7 +631,7 @@ LnavAlmanacEntry lnav_almanac_from_ephemeris(const LnavEphemeris& eph, double to
   const double n = (a > 0.0 ? std::sqrt(kMu / (a * a * a)) : 0.0) + eph.delta_n_radps;
 
   LnavAlmanacEntry alm;
-  alm.prn = eph.prn;
+  alm.sv_id = eph.sv_id;
   alm.e = eph.e;
   alm.toa_s = toa_s;
   alm.delta_i_rad = eph.i0_rad + eph.idot_radps * dt_e - 0.30 * kGpsPi;

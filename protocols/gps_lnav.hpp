@@ -54,9 +54,9 @@ inline constexpr std::uint32_t kTowCountsPerWeek = 100800;
 using LnavSubframe = std::array<std::uint32_t, 10>;
 
 // One SV's clock and ephemeris data (subframes 1-3) plus the TLM/HOW flags it transmits.
-// Field names and units mirror models/ephemeris.hpp (GpsEphemeris) where both have a field.
+// Field names and units mirror core/nav_data.hpp (GpsEphemeris) where both have a field.
 struct LnavEphemeris {
-  int prn = 0;  // 1..32; not transmitted in subframes 1-3, carried for the caller
+  int sv_id = 0;  // the SV's PRN 1..32; not transmitted in subframes 1-3, carried for the caller
 
   // Subframe 1 (Figure 20-1 sheet 1, Table 20-I).
   int week = 0;           // full GPS week of transmission; sent modulo 1024 (10 bits)
@@ -120,7 +120,7 @@ struct LnavIonoUtc {
 
 // One SV's almanac (subframe 5 pages 1-24, subframe 4 pages 2-5 and 7-10; Table 20-VI).
 struct LnavAlmanacEntry {
-  int prn = 0;                   // 1..32, the page's SV ID
+  int sv_id = 0;                 // 1..32, the page's SV ID (20.3.3.5.1)
   double e = 0.0;                // 16 bits unsigned, 2^-21
   double toa_s = 0.0;            // seconds of week, 8 bits unsigned, 2^12 s
   double delta_i_rad = 0.0;      // i0 - 0.30 semicircles; 16 bits signed, 2^-19 semicircles
@@ -193,7 +193,7 @@ LnavTlmHow decode_tlm_how(const LnavSubframe& words);
 // subframe fails lnav_parity_ok(), the subframe IDs are not 1, 2, 3, or the IODEs of
 // subframes 2 and 3 differ from each other or from the 8 LSBs of the IODC (a data set
 // cutover, 20.3.4.4). The 10-bit week is resolved to the full week nearest to
-// `reference_week`. prn is left 0.
+// `reference_week`. sv_id is left 0.
 std::optional<LnavEphemeris> decode_ephemeris(const LnavSubframe& sf1, const LnavSubframe& sf2,
                                               const LnavSubframe& sf3, int reference_week = 2200);
 

@@ -393,7 +393,7 @@ void encode(const GsaFields& f, const Format& fmt, std::string& out) {
     l.format(",{}", std::clamp(f.fix, 1, 3));
     for (std::size_t i = 0; i < 12; ++i) {
       l.sep();
-      if (i < f.prns.size()) l.format("{:02d}", std::clamp(f.prns[i], 0, 999));
+      if (i < f.sat_ids.size()) l.format("{:02d}", std::clamp(f.sat_ids[i], 0, 999));
     }
     l.sep();
     put_fixed(l, pdop, pdop_dec);
@@ -406,7 +406,7 @@ void encode(const GsaFields& f, const Format& fmt, std::string& out) {
   });
 }
 
-// GSV: numMsg, msgNum, numSV, then per satellite PRN, elevation, azimuth, C/N0 [, signalId].
+// GSV: numMsg, msgNum, numSV, then per satellite ID, elevation, azimuth, C/N0 [, signalId].
 // Longest: 6 + 9 (",25,25,99") + 4 x 14 (",999,90,359,99") + 3 (",15") + 5 = 79.
 void encode(const GsvFields& f, const Format& fmt, std::string& out) {
   const Style st = style(fmt);
@@ -418,7 +418,7 @@ void encode(const GsvFields& f, const Format& fmt, std::string& out) {
       l.format(",{},{},{:02d}", sentences, k + 1, n);
       for (std::size_t i = 4 * k; i < std::min(n, 4 * k + 4); ++i) {
         const GsvSatellite& s = f.satellites[i];
-        l.format(",{:02d},", std::clamp(s.prn, 0, 999));
+        l.format(",{:02d},", std::clamp(s.sat_id, 0, 999));
         put_int(l, s.elevation_deg, 2, 0, 90);
         l.sep();
         if (s.azimuth_deg) l.format("{:03d}", (*s.azimuth_deg % 360 + 360) % 360);

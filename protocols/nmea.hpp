@@ -118,14 +118,16 @@ struct GsaFields {
   std::string_view talker = "GP";
   char selection = 'A';  // A automatic, M manual
   int fix = 1;           // 1 none, 2 2D, 3 3D
-  std::vector<int> prns;  // used satellites [0, 999], the first 12 are sent, two digits at least
+  // NMEA satellite IDs of the used satellites (SatId::nmea_id) [0, 999], the first 12 are
+  // sent, two digits at least.
+  std::vector<int> sat_ids;
   std::optional<double> pdop, hdop, vdop;  // [0, 99.99]
   int system_id = 1;  // NMEA 4.1 GNSS system ID (1 GPS, 2 GLONASS, 3 Galileo, 4 BeiDou)
                       // [0, 15], only with Format::system_signal_ids
 };
 
 struct GsvSatellite {
-  int prn = 0;                       // [0, 999], two digits at least
+  int sat_id = 0;                    // NMEA satellite ID [0, 999], two digits at least
   std::optional<int> elevation_deg;  // [0, 90], two digits
   std::optional<int> azimuth_deg;    // [0, 359] (taken modulo 360), three digits
   std::optional<int> snr_dbhz;       // C/N0 [0, 99]; empty when not tracked

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "models/geodesy.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu::test {

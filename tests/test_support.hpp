@@ -11,14 +11,17 @@
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/errors.hpp"
+#include "core/satellite.hpp"
+#include "core/time.hpp"
 #include "models/geodesy.hpp"
-#include "models/time.hpp"
 
 namespace navemu::test {
 
@@ -32,6 +35,32 @@ inline std::filesystem::path shared_dir() {
 
 inline std::filesystem::path shared_data(const std::string& relative) {
   return shared_dir() / "data" / relative;
+}
+
+// Runs `f`, expecting an InputError at `line` naming `field`; returns its message.
+inline std::string expect_input_error(const std::function<void()>& f, int line, const std::string& field) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected InputError, got: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "expected InputError at line " << line << " (" << field << "), none thrown";
+  return {};
+}
+
+// The first `n` satellites the systems define, in SatId order (GPS PRN 1-63, then SBAS, ...),
+// for tests that need many independent satellites.
+inline std::vector<SatId> first_satellites(std::size_t n) {
+  std::vector<SatId> out;
+  for (const GnssSystemInfo& s : kGnssSystems)
+    for (int k = s.first_number; k <= s.last_number && out.size() < n; ++k)
+      out.emplace_back(s.system, k);
+  return out;
 }
 
 // The built navemu executable.

@@ -18,7 +18,7 @@
 // since navemu's deadline for an epoch is its GPS time plus the latency (emulator/engine.hpp;
 // for the IMU, emulator/imu_can.cpp sends a sample's frames back to back at that deadline), and
 // a run that starts "now" ties GPS time to the system clock. GPS time becomes Unix time with
-// the leap seconds of models/time.hpp.
+// the leap seconds of core/time.hpp.
 //
 // In the same run a floor thread sleeps with clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME) on
 // a grid at the highest rate of the streams measured and records how late it wakes: the floor
@@ -59,7 +59,7 @@
 
 #include "emulator/imu_profile.hpp"
 #include "emulator/run_config.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 #include "protocols/can_frames.hpp"
 #include "protocols/nmea.hpp"
 

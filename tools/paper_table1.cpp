@@ -78,10 +78,10 @@ int main(int argc, char** argv) {
     auto e = gen.generate(t, ecef_from_geodetic(site));
     std::sort(e.sats.begin(), e.sats.end(),
               [](const SatMeasurement& a, const SatMeasurement& b) { return a.dir.el_rad > b.dir.el_rad; });
-    std::vector<int> keep;
-    for (std::size_t i = 0; i < e.sats.size() && keep.size() < 7; ++i) keep.push_back(e.sats[i].prn);
+    std::vector<SatId> keep;
+    for (std::size_t i = 0; i < e.sats.size() && keep.size() < 7; ++i) keep.push_back(e.sats[i].sat);
     std::erase_if(nav.gps, [&](const GpsEphemeris& eph) {
-      return std::find(keep.begin(), keep.end(), eph.prn) == keep.end();
+      return std::find(keep.begin(), keep.end(), eph.sat) == keep.end();
     });
   }
 

@@ -27,7 +27,7 @@
 #include "emulator/commands.hpp"
 #include "emulator/numeric_csv.hpp"
 #include "models/allan.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

@@ -17,7 +17,7 @@
 
 #include "emulator/commands.hpp"
 #include "emulator/numeric_csv.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/geodesy.hpp"
 #include "models/imu_kinematics.hpp"
 

@@ -12,7 +12,7 @@
 #include "emulator/imu_profile.hpp"
 #include "emulator/truth_source.hpp"
 #include "emulator/truth_csv.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/imu_kinematics.hpp"
 #include "models/imu_model.hpp"
 

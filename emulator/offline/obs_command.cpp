@@ -9,9 +9,9 @@
 #include <ostream>
 
 #include "emulator/commands.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/measurement.hpp"
-#include "models/rinex_writer.hpp"
+#include "protocols/rinex_writer.hpp"
 
 namespace navemu {
 
@@ -27,9 +27,6 @@ int ssi_from_cn0(double cn0_dbhz) {
   return std::clamp(static_cast<int>(std::floor(cn0_dbhz / 6.0)), 1, 9);
 }
 
-// Observation codes per band: C/A on L1, L2C (L) on L2, the pilot (Q) on L5.
-const char* kBandCodes[3][4] = {
-    {"C1C", "L1C", "D1C", "S1C"}, {"C2L", "L2L", "D2L", "S2L"}, {"C5Q", "L5Q", "D5Q", "S5Q"}};
 
 }  // namespace
 
@@ -148,8 +145,11 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
   ObsHeader h;
   h.version = 3.04;
   h.file_system = 'G';
+  // Per band: pseudorange, carrier phase, Doppler and C/N0 of its signal (RINEX 3.04 section
+  // 5.1: C1C L1C D1C S1C for L1 C/A, C2L.. for L2C (L), C5Q.. for the L5 pilot).
   for (int b = 0; b < n_bands; ++b)
-    for (const char* code : kBandCodes[b]) h.types['G'].push_back(code);
+    for (const char type : {'C', 'L', 'D', 'S'})
+      h.types['G'].push_back(type + kBandSignals[static_cast<std::size_t>(b)].rinex_code());
   h.marker_name = "NAVEMU";
   h.approx_position_ecef_m = p_rx;
   h.interval_s = opt.interval_s;
@@ -165,8 +165,8 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
     oe.time = t;
     for (const SatMeasurement& m : e.sats) {
       SatObs so;
-      so.system = 'G';
-      so.prn = m.prn;
+      so.system = m.sat.info().rinex_letter;
+      so.number = m.sat.number();
       for (int b = 0; b < n_bands; ++b) {
         const auto& s = m.signals[static_cast<std::size_t>(b)];
         const bool corrected = b == 0 && !raw_dual && cfg.mode != ReceiverMode::kStandalone;

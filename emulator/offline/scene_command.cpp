@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "emulator/commands.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/random.hpp"
 
 #ifndef NAVEMU_VERSION

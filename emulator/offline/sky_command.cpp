@@ -60,8 +60,8 @@ int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {
   // The sky needs no fix: one satellite with data is a sky to show.
   require_nav_coverage(nav, t, t, {"--nav", "--time", "--time", nullptr}, 1);
 
-  std::set<int> prns;
-  for (const GpsEphemeris& e : nav.gps) prns.insert(e.prn);
+  std::set<SatId> sats;
+  for (const GpsEphemeris& e : nav.gps) sats.insert(e.sat);
 
   fmt::print(out, "# navemu sky: {} = GPS {}, receiver {:.9f},{:.9f},{:.3f}, {}, mask {:.1f} deg\n",
              format_iso_utc(t, nav.leap_seconds), format_week_tow(t), rx.lat_deg, rx.lon_deg,
@@ -73,8 +73,8 @@ int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {
 
   std::vector<AzEl> visible;
   int stale = 0;
-  for (int prn : prns) {
-    const GpsEphemeris* eph = select_ephemeris(nav, prn, t);
+  for (SatId sat : sats) {
+    const GpsEphemeris* eph = select_ephemeris(nav, sat, t);
     if (eph == nullptr) continue;
     if (std::abs(seconds_between(t, eph->toe)) > kMaxEphemerisAge_s) {
       ++stale;
@@ -89,7 +89,7 @@ int run_sky(const SkyOptions& opt, std::ostream& out, std::ostream& err) {
             : iono_paper_mapping(g.dir.el_rad) * iono_zenith_delay_m(kPaperValidationVtec_tecu, kGpsL1_Hz);
     const TropoDelay tropo = tropo_slant_delay(rx, g.dir.el_rad, t, meteo);
     fmt::print(out, "{},{:.4f},{:.4f},{:.4f},{:.4f},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n",
-               prn, g.sat.p_ecef_m.x(), g.sat.p_ecef_m.y(), g.sat.p_ecef_m.z(),
+               sat.number(), g.sat.p_ecef_m.x(), g.sat.p_ecef_m.y(), g.sat.p_ecef_m.z(),
                kSpeedOfLight_mps * (g.sat.clock_bias_s - eph->tgd_s), g.dir.az_rad * kRadToDeg,
                g.dir.el_rad * kRadToDeg, g.range_m, iono_m, tropo.total_m(), tropo.hydrostatic_m,
                tropo.wet_m);

@@ -8,8 +8,8 @@
 #include <ostream>
 
 #include "emulator/commands.hpp"
-#include "models/errors.hpp"
-#include "models/rinex.hpp"
+#include "core/errors.hpp"
+#include "emulator/rinex_files.hpp"
 #include "models/solver.hpp"
 
 namespace navemu {
@@ -83,10 +83,11 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
   for (const ObsEpoch& epoch : obs.epochs) {
     std::vector<RangeMeasurement> meas;
     for (const SatObs& s : epoch.sats) {
-      if (s.system != 'G') continue;
+      const std::optional<SatId> sat = s.sat();
+      if (!sat || sat->system() != GnssSystem::kGps) continue;
       const double pr = s.values[static_cast<std::size_t>(code_index)];
       if (!std::isfinite(pr) || pr <= 0.0) continue;
-      const GpsEphemeris* eph = select_ephemeris(nav, s.prn, epoch.time);
+      const GpsEphemeris* eph = select_ephemeris(nav, *sat, epoch.time);
       if (eph == nullptr || std::abs(seconds_between(epoch.time, eph->toe)) > kMaxEphemerisAge_s)
         continue;
       std::optional<double> d;
@@ -116,7 +117,7 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
     if (residuals.is_open())
       for (const SatResidual& r : sol.sats)
         fmt::print(residuals, "{},{:.3f},{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{}\n", wt.week,
-                   wt.tow_s, r.prn, r.az_deg, r.el_deg, r.residual_m, r.iono_m, r.tropo_m,
+                   wt.tow_s, r.sat.number(), r.az_deg, r.el_deg, r.residual_m, r.iono_m, r.tropo_m,
                    r.used ? 1 : 0);
   }
   fmt::print(err, "navemu spp: {} epochs, {} with a 3D fix, {} without\n", obs.epochs.size(),

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "emulator/run_config.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu::bench {
 

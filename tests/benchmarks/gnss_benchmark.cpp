@@ -43,7 +43,7 @@ NavData dense_constellation(GpsTime t) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
   for (int copy = 0; copy < 8; ++copy) {
     for (GpsEphemeris e : nominal.gps) {
-      e.prn += 24 * copy;
+      e.sat = gps_sat(e.sat.number() + 24 * copy);
       e.omega0_rad = std::remainder(e.omega0_rad + (copy / 2) * 15.0 * kDegToRad, kTwoPi);
       e.m0_rad = std::remainder(e.m0_rad + (copy % 2) * 180.0 * kDegToRad, kTwoPi);
       nav.gps.push_back(e);
@@ -53,25 +53,25 @@ NavData dense_constellation(GpsTime t) {
 }
 
 // The records of the `n` highest satellites of `all` seen from `site` at t, as PRNs 1..n
-// (receivers keep per-PRN state for 1..99), or none when fewer than n are 15 deg up (so that
-// all stay above the 5 deg mask for a run).
+// (receivers keep per-satellite state for the numbers GPS defines, 1..63), or none when fewer
+// than n are 15 deg up (so that all stay above the 5 deg mask for a run).
 NavData highest(const NavData& all, std::size_t n, GpsTime t, const Geodetic& site) {
   const Vec3 p_rx = ecef_from_geodetic(site);
-  std::set<int> prns;
-  for (const GpsEphemeris& e : all.gps) prns.insert(e.prn);
-  std::vector<std::pair<double, int>> by_el;  // (elevation, PRN)
-  for (int prn : prns)
-    if (const GpsEphemeris* e = select_ephemeris(all, prn, t))
-      by_el.emplace_back(azimuth_elevation(p_rx, gps_sat_state(*e, t).p_ecef_m).el_rad, prn);
+  std::set<SatId> sats;
+  for (const GpsEphemeris& e : all.gps) sats.insert(e.sat);
+  std::vector<std::pair<double, SatId>> by_el;  // (elevation, satellite)
+  for (SatId sat : sats)
+    if (const GpsEphemeris* e = select_ephemeris(all, sat, t))
+      by_el.emplace_back(azimuth_elevation(p_rx, gps_sat_state(*e, t).p_ecef_m).el_rad, sat);
   std::sort(by_el.rbegin(), by_el.rend());
   NavData nav = all;
   nav.gps.clear();
   if (by_el.size() < n || by_el[n - 1].first < 15.0 * kDegToRad) return nav;
   for (const GpsEphemeris& e : all.gps) {
     for (std::size_t i = 0; i < n; ++i) {
-      if (by_el[i].second != e.prn) continue;
+      if (by_el[i].second != e.sat) continue;
       nav.gps.push_back(e);
-      nav.gps.back().prn = static_cast<int>(i) + 1;
+      nav.gps.back().sat = gps_sat(static_cast<int>(i) + 1);
     }
   }
   return nav;

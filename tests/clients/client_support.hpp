@@ -40,7 +40,7 @@
 #include <vector>
 
 #include "models/geodesy.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 #include "protocols/nmea.hpp"
 #include "protocols/truth_datagram.hpp"
 #include "tests/test_support.hpp"

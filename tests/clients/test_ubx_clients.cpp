@@ -17,7 +17,7 @@
 #include "emulator/commands.hpp"
 #include "models/constellation.hpp"
 #include "models/geodesy.hpp"
-#include "models/rinex.hpp"
+#include "emulator/rinex_files.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
@@ -759,18 +759,18 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   const NavData truth_nav = nominal_constellation(start);
   std::set<int> prns_in_file;
   for (const GpsEphemeris& r : rinex.gps) {
-    SCOPED_TRACE(fmt::format("PRN {} IODE {}", r.prn, r.iode));
-    prns_in_file.insert(r.prn);
+    SCOPED_TRACE(fmt::format("PRN {} IODE {}", r.sat.number(), r.iode));
+    prns_in_file.insert(r.sat.number());
     const GpsEphemeris* sent = nullptr;
     for (const GpsEphemeris& e : truth_nav.gps)
-      if (e.prn == r.prn && (e.iode & 0xFF) == r.iode && std::abs(seconds_between(e.toe, r.toe)) < 16.0) sent = &e;
+      if (e.sat == r.sat && (e.iode & 0xFF) == r.iode && std::abs(seconds_between(e.toe, r.toe)) < 16.0) sent = &e;
     ASSERT_NE(sent, nullptr) << "no record of the built-in constellation has this IODE and toe";
     EXPECT_NEAR(r.sqrt_a_sqrtm, sent->sqrt_a_sqrtm, std::ldexp(1.0, -19));
     EXPECT_NEAR(r.e, sent->e, std::ldexp(1.0, -33));
     EXPECT_NEAR(r.i0_rad, sent->i0_rad, std::ldexp(lnav::kGpsPi, -31) * 1.01);
     EXPECT_NEAR(r.omega0_rad, std::remainder(sent->omega0_rad, 2 * lnav::kGpsPi), std::ldexp(lnav::kGpsPi, -31) * 1.01);
     // And the subframes in the capture decode to the same record.
-    const auto& w = subs[r.prn];
+    const auto& w = subs[r.sat.number()];
     for (std::size_t i = 0; i + 2 < w.size(); ++i) {
       if (lnav::decode_tlm_how(w[i]).subframe_id != 1) continue;
       const auto l = lnav::decode_ephemeris(w[i], w[i + 1], w[i + 2], wt.week);

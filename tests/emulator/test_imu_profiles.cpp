@@ -14,7 +14,7 @@
 #include "emulator/cli.hpp"
 #include "tests/emulator/cli_runner.hpp"
 #include "tests/test_support.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 namespace {

@@ -13,8 +13,8 @@
 #include "emulator/run_config.hpp"
 #include "emulator/scene_loader.hpp"
 #include "emulator/truth_csv.hpp"
-#include "models/errors.hpp"
-#include "models/rinex.hpp"
+#include "core/errors.hpp"
+#include "emulator/rinex_files.hpp"
 
 namespace navemu {
 namespace {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "emulator/commands.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
@@ -49,7 +49,7 @@ TEST(ScenarioNav, GapsAreListed) {
   for (int k : {0, 6, 12})
     for (int prn = 1; prn <= 4; ++prn) {
       GpsEphemeris e;
-      e.prn = prn;
+      e.sat = gps_sat(prn);
       e.toe = e.toc = t0.plus_s(k * 3600.0);
       nav.gps.push_back(e);
     }

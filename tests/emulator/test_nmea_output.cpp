@@ -32,7 +32,9 @@ ReceiverFix a_fix() {
   f.v_ned_mps = Vec3(0.0, 1.0, 0.0);  // east at 1 m/s
   f.dops = Dops{2.0, 1.8, 1.1, 1.4, 0.9};
   f.num_used = 2;
-  f.satellites = {{5, 120.0, 45.0, 44.0, true}, {12, 300.0, 10.0, 31.0, true}, {29, 30.0, 3.0, 25.0, false}};
+  f.satellites = {{gps_sat(5), 120.0, 45.0, 44.0, true},
+                  {gps_sat(12), 300.0, 10.0, 31.0, true},
+                  {gps_sat(29), 30.0, 3.0, 25.0, false}};
   f.sigma_h_m = 3.3;
   f.sigma_v_m = 4.2;
   return f;

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "emulator/run_config.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 namespace {

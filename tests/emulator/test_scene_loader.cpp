@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "tests/emulator/cli_runner.hpp"
 
 namespace navemu {

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <string>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 namespace {

@@ -115,7 +115,9 @@ ReceiverFix a_fix(GpsTime t) {
   f.v_ned_mps = Vec3::Zero();
   f.dops = Dops{2.0, 1.8, 1.1, 1.4, 0.9};
   f.num_used = 2;
-  f.satellites = {{5, 120.0, 45.0, 44.0, true}, {12, 300.0, 10.0, 31.0, true}, {29, 30.0, 3.0, 25.0, false}};
+  f.satellites = {{gps_sat(5), 120.0, 45.0, 44.0, true},
+                  {gps_sat(12), 300.0, 10.0, 31.0, true},
+                  {gps_sat(29), 30.0, 3.0, 25.0, false}};
   f.sigma_h_m = 3.3;
   f.sigma_v_m = 4.2;
   return f;
@@ -543,7 +545,7 @@ TEST_F(UbxDeviceTest, EpochOutputDecodesToTheReceiversFixAndMeasurements) {
     ASSERT_EQ(s.svs.size(), fix.satellites.size());
     for (std::size_t i = 0; i < s.svs.size(); ++i) {
       EXPECT_EQ(s.svs[i].gnss_id, 0);
-      EXPECT_EQ(s.svs[i].sv_id, fix.satellites[i].prn);
+      EXPECT_EQ(s.svs[i].sv_id, fix.satellites[i].sat.number());
       EXPECT_EQ((s.svs[i].flags & ubx::NavSatSv::kSvUsed) != 0, fix.satellites[i].used);
       EXPECT_NEAR(s.svs[i].elev_deg, fix.satellites[i].el_deg, 0.5);
     }
@@ -560,7 +562,7 @@ TEST_F(UbxDeviceTest, EpochOutputDecodesToTheReceiversFixAndMeasurements) {
     EXPECT_NE(r.week, 0) << "RTKLIB drops RAWX with week 0 (TESTING.md)";
     EXPECT_NEAR(r.rcv_tow_s, to_week_tow(meas.t_receiver).tow_s, 1e-9);
     for (std::size_t i = 0; i < r.meas.size(); ++i) {
-      EXPECT_EQ(r.meas[i].sv_id, with_l1[i]->prn);
+      EXPECT_EQ(r.meas[i].sv_id, with_l1[i]->sat.number());
       EXPECT_EQ(r.meas[i].pr_mes_m, with_l1[i]->signals[0]->pseudorange_m);
       EXPECT_EQ(r.meas[i].cp_mes_cycles, with_l1[i]->signals[0]->carrier_cycles);
       EXPECT_EQ(r.meas[i].trk_stat & 0x03, 0x03) << "pseudorange and phase valid";
@@ -587,7 +589,7 @@ TEST_F(UbxDeviceTest, EpochOutputDecodesToTheReceiversFixAndMeasurements) {
       EXPECT_EQ(how.tow_count, static_cast<std::uint32_t>(tow_ms / 6000) % lnav::kTowCountsPerWeek)
           << "the HOW carries the TOW count of the next subframe's start";
       const auto it = std::find_if(meas.sats.begin(), meas.sats.end(),
-                                   [&](const SatMeasurement& sm) { return sm.prn == m.sv_id; });
+                                   [&](const SatMeasurement& sm) { return sm.sat.number() == m.sv_id; });
       ASSERT_NE(it, meas.sats.end());
       subframes[m.sv_id].push_back({how.subframe_id, w, it->eph});
     }

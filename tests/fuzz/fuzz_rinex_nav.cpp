@@ -1,4 +1,4 @@
-// The RINEX navigation reader (models/rinex.hpp, RINEX 2.11 / 3.0x): the file is parsed or
+// The RINEX navigation reader (protocols/rinex.hpp, RINEX 2.11 / 3.0x): the file is parsed or
 // refused with an InputError naming file, line and field; then each GPS record it accepts is
 // selected and evaluated at its toe and two hours on (IS-GPS-200 20.3.3.4.3), as the emulator
 // would use it, which must not crash or hang whatever the orbit's numbers.
@@ -7,9 +7,9 @@
 #include <sstream>
 #include <string>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "models/orbit.hpp"
-#include "models/rinex.hpp"
+#include "protocols/rinex.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -23,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const navemu::GpsEphemeris& eph : nav.gps) {
     for (const double dt_s : {0.0, 7200.0}) {
       const navemu::GpsTime t = eph.toe.plus_s(dt_s);
-      if (const navemu::GpsEphemeris* chosen = navemu::select_ephemeris(nav, eph.prn, t))
+      if (const navemu::GpsEphemeris* chosen = navemu::select_ephemeris(nav, eph.sat, t))
         (void)navemu::gps_sat_state(*chosen, t);
       (void)navemu::gps_sat_clock_poly_s(eph, t);
     }

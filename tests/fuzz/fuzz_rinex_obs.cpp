@@ -1,4 +1,4 @@
-// The RINEX observation reader (models/rinex.hpp, RINEX 2.11 / 3.0x): the file is parsed or
+// The RINEX observation reader (protocols/rinex.hpp, RINEX 2.11 / 3.0x): the file is parsed or
 // refused with an InputError naming file, line and field; every satellite it accepts carries
 // one value, loss-of-lock and signal-strength indicator per observation type of its system.
 
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "models/errors.hpp"
-#include "models/rinex.hpp"
+#include "core/errors.hpp"
+#include "protocols/rinex.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "emulator/run_config.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

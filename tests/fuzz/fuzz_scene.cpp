@@ -9,7 +9,7 @@
 
 #include "emulator/imu_profile.hpp"
 #include "emulator/scene_loader.hpp"
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -8,7 +8,7 @@
 
 #include "emulator/run_config.hpp"
 #include "emulator/ubx_device.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 namespace {
@@ -20,7 +20,7 @@ navemu::ReceiverFix a_fix(std::int64_t epoch) {
   f.position = navemu::Geodetic{55.7, 12.5, 40.0};
   f.p_ecef_m = navemu::ecef_from_geodetic(f.position);
   f.num_used = 2;
-  f.satellites = {{5, 120.0, 45.0, 44.0, true}, {12, 300.0, 10.0, 31.0, true}};
+  f.satellites = {{navemu::gps_sat(5), 120.0, 45.0, 44.0, true}, {navemu::gps_sat(12), 300.0, 10.0, 31.0, true}};
   return f;
 }
 

@@ -13,7 +13,7 @@
 
 #include "emulator/engine.hpp"
 #include "emulator/run_config.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 #include "protocols/nmea.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"

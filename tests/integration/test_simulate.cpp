@@ -11,7 +11,7 @@
 #include <set>
 #include <sstream>
 
-#include "models/time.hpp"
+#include "core/time.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/nmea.hpp"
 #include "protocols/ubx.hpp"

@@ -7,7 +7,8 @@
 #include <string>
 
 #include "models/atmosphere.hpp"
-#include "models/rinex.hpp"
+#include "protocols/rinex.hpp"
+#include "tests/rinex_data.hpp"
 #include "tests/spirent_log.hpp"
 #include "tests/test_support.hpp"
 
@@ -121,7 +122,7 @@ TEST(Klobuchar, ZeroBelowHorizon) {
 TEST(KlobucharSpirent, MatchesSimulatorLogWithinFiveMillimetres) {
   NAVEMU_REQUIRE_SHARED();
   // Coefficients through the RINEX reader, cross-checked against the raw header lines.
-  const NavData nav = read_rinex_nav(
+  const NavData nav = test::rinex_nav_file(
       test::shared_data("gnss/spirent_simgen_static_20230108/Spirent_RINEX_GN.23N"));
   ASSERT_TRUE(nav.klobuchar.has_value());
   const KlobucharCoefficients k = *nav.klobuchar;

@@ -12,7 +12,8 @@
 
 #include "models/atmosphere.hpp"
 #include "models/orbit.hpp"
-#include "models/rinex.hpp"
+#include "protocols/rinex.hpp"
+#include "tests/rinex_data.hpp"
 #include "tests/spirent_log.hpp"
 #include "tests/test_support.hpp"
 
@@ -306,7 +307,7 @@ TEST(PseudorangeSpirent, ClockTermAndFullSumMatchSimulator) {
   const auto rows = test::read_spirent_gps_rows();
   ASSERT_EQ(rows.size(), 465u);
   const NavData nav =
-      read_rinex_nav(test::shared_data("gnss/spirent_simgen_static_20230108/Spirent_RINEX_GN.23N"));
+      test::rinex_nav_file(test::shared_data("gnss/spirent_simgen_static_20230108/Spirent_RINEX_GN.23N"));
   ASSERT_TRUE(nav.klobuchar.has_value());
   const Meteo m = standard_atmosphere(0.0, fit_simgen_humidity(rows));
 
@@ -316,7 +317,7 @@ TEST(PseudorangeSpirent, ClockTermAndFullSumMatchSimulator) {
   double max_iono_err = 0.0;
   double max_tropo_err = 0.0;
   for (const auto& r : rows) {
-    const GpsEphemeris* eph = select_ephemeris(nav, r.prn, r.t_receive);
+    const GpsEphemeris* eph = select_ephemeris(nav, gps_sat(r.prn), r.t_receive);
     ASSERT_NE(eph, nullptr) << r.prn;
     const SatGeometry g = gps_sat_geometry(*eph, r.t_receive, kSpirentRxEcef);
     const double clock_m = -kC * (g.sat.clock_bias_s - eph->tgd_s);

@@ -12,7 +12,7 @@
 #include "models/geodesy.hpp"
 #include "models/orbit.hpp"
 #include "models/solver.hpp"
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 namespace {
@@ -42,15 +42,15 @@ double wrap(double a) { return std::remainder(a, 2.0 * kPiD); }
 
 // The record with toe nearest to t for a PRN (IS-GPS-200 20.3.4.5: fit interval centred on
 // toe), independent of select_ephemeris.
-const GpsEphemeris& nearest(const NavData& nav, int prn, GpsTime t) {
+const GpsEphemeris& nearest(const NavData& nav, SatId sat, GpsTime t) {
   const GpsEphemeris* best = nullptr;
   for (const auto& e : nav.gps) {
-    if (e.prn != prn) continue;
+    if (e.sat != sat) continue;
     if (best == nullptr ||
         std::abs(seconds_between(t, e.toe)) < std::abs(seconds_between(t, best->toe)))
       best = &e;
   }
-  EXPECT_NE(best, nullptr) << "PRN " << prn;
+  EXPECT_NE(best, nullptr) << "PRN " << sat.number();
   return *best;
 }
 
@@ -90,7 +90,7 @@ TEST(NominalConstellation, TwentyFourPrnsWithFreshRecordsOverTheWindow) {
   const NavData nav = nominal_constellation(kScenario);
   EXPECT_NE(nav.source.find("SPS"), std::string::npos);
   std::map<int, std::vector<const GpsEphemeris*>> by_prn;
-  for (const auto& e : nav.gps) by_prn[e.prn].push_back(&e);
+  for (const auto& e : nav.gps) by_prn[e.sat.number()].push_back(&e);
   ASSERT_EQ(by_prn.size(), 24u);
   EXPECT_EQ(by_prn.begin()->first, 1);
   EXPECT_EQ(by_prn.rbegin()->first, 24);
@@ -118,7 +118,7 @@ TEST(NominalConstellation, TwentyFourPrnsWithFreshRecordsOverTheWindow) {
   for (double dt = -7200.0; dt <= 24 * 3600.0; dt += 600.0) {
     const GpsTime t = kScenario.plus_s(dt);
     for (int prn = 1; prn <= 24; ++prn) {
-      const GpsEphemeris* e = select_ephemeris(nav, prn, t);
+      const GpsEphemeris* e = select_ephemeris(nav, gps_sat(prn), t);
       ASSERT_NE(e, nullptr) << "PRN " << prn;
       EXPECT_LE(std::abs(seconds_between(t, e->toe)), 3600.0);
     }
@@ -153,7 +153,7 @@ TEST(NominalConstellation, CircularFiftyFiveDegreeOrbitsOfTheTableRadius) {
 // nodal period is half of it, about 11 h 58 min.
 TEST(NominalConstellation, PeriodHalfASiderealDayAndGroundTrackRepeats) {
   const NavData nav = nominal_constellation(kScenario);
-  const GpsEphemeris& e0 = nearest(nav, 1, kScenario);
+  const GpsEphemeris& e0 = nearest(nav, gps_sat(1), kScenario);
   const double a = e0.sqrt_a_sqrtm * e0.sqrt_a_sqrtm;
   const double n = std::sqrt(kGpsMu_m3ps2 / (a * a * a)) + e0.delta_n_radps;
   const double period_s = 2.0 * kPiD / n;
@@ -167,11 +167,11 @@ TEST(NominalConstellation, PeriodHalfASiderealDayAndGroundTrackRepeats) {
   for (int prn = 1; prn <= 24; ++prn) {
     for (double dt = 0.0; dt < 3 * 3600.0; dt += 1800.0) {
       const GpsTime t = kScenario.plus_s(dt);
-      const Vec3 p0 = gps_sat_state(nearest(nav, prn, t), t).p_ecef_m;
+      const Vec3 p0 = gps_sat_state(nearest(nav, gps_sat(prn), t), t).p_ecef_m;
       const GpsTime t1 = t.plus_s(repeat_s);
-      const Vec3 p1 = gps_sat_state(nearest(nav, prn, t1), t1).p_ecef_m;
+      const Vec3 p1 = gps_sat_state(nearest(nav, gps_sat(prn), t1), t1).p_ecef_m;
       const GpsTime t2 = t.plus_s(sidereal_day_s);
-      const Vec3 p2 = gps_sat_state(nearest(nav, prn, t2), t2).p_ecef_m;
+      const Vec3 p2 = gps_sat_state(nearest(nav, gps_sat(prn), t2), t2).p_ecef_m;
       // Ground track: sub-satellite points on a sphere of the Earth's equatorial radius.
       const double re = 6378137.0;
       max_repeat = std::max(max_repeat, (p1.normalized() - p0.normalized()).norm() * re);
@@ -193,7 +193,7 @@ TEST(NominalConstellation, ReproducesTableAtDefinedEpoch) {
   const NavData nav = nominal_constellation(t_ref);
   double max_raan = 0.0, max_u = 0.0;
   for (int prn = 1; prn <= 24; ++prn) {
-    const GpsEphemeris& e = nearest(nav, prn, t_ref);
+    const GpsEphemeris& e = nearest(nav, gps_sat(prn), t_ref);
     const SatState s = gps_sat_state(e, t_ref);
     const Elements el = elements(to_frame(s, kTableGha, e.omega_dot_radps));
     const SlotRef& ref = kTable[prn - 1];
@@ -243,7 +243,7 @@ TEST(NominalConstellation, GlobalCoverageAndPdop) {
     const GpsTime t = kScenario.plus_s(dt);
     std::vector<Vec3> sats;
     for (int prn = 1; prn <= 24; ++prn)
-      sats.push_back(gps_sat_state(nearest(nav, prn, t), t).p_ecef_m);
+      sats.push_back(gps_sat_state(nearest(nav, gps_sat(prn), t), t).p_ecef_m);
     for (std::size_t i = 0; i < grid.size(); ++i) {
       std::vector<AzEl> dirs;
       for (const auto& p : sats) {
@@ -279,7 +279,7 @@ TEST(NominalConstellation, UploadsEveryTwoHoursContinueTheSameOrbit) {
   const NavData nav = nominal_constellation(t);
   EXPECT_TRUE(nav.renews);
   std::map<int, std::map<std::int64_t, const GpsEphemeris*>> by_prn;  // PRN -> toe -> record
-  for (const GpsEphemeris& e : nav.gps) by_prn[e.prn][e.toe.ns] = &e;
+  for (const GpsEphemeris& e : nav.gps) by_prn[e.sat.number()][e.toe.ns] = &e;
   double max_dp = 0.0, max_dv = 0.0;
   int cutovers = 0, week_rollovers = 0;
   for (const auto& [prn, sets] : by_prn) {
@@ -297,8 +297,8 @@ TEST(NominalConstellation, UploadsEveryTwoHoursContinueTheSameOrbit) {
         max_dv = std::max(max_dv, (sa.v_ecef_mps - sb.v_ecef_mps).norm());
       }
       const GpsTime cutover = a.toe.plus_s(3600.0);
-      EXPECT_EQ(select_ephemeris(nav, prn, cutover.plus_s(-1.0)), &a);
-      EXPECT_EQ(select_ephemeris(nav, prn, cutover.plus_s(1.0)), &b);
+      EXPECT_EQ(select_ephemeris(nav, gps_sat(prn), cutover.plus_s(-1.0)), &a);
+      EXPECT_EQ(select_ephemeris(nav, gps_sat(prn), cutover.plus_s(1.0)), &b);
       ++cutovers;
     }
   }
@@ -313,8 +313,8 @@ TEST(NominalConstellation, UploadsEveryTwoHoursContinueTheSameOrbit) {
   const NavData later = nominal_constellation(t.plus_s(86400.0));
   int same_toe = 0;
   for (const GpsEphemeris& e : later.gps) {
-    const auto it = by_prn[e.prn].find(e.toe.ns);
-    if (it == by_prn[e.prn].end()) continue;
+    const auto it = by_prn[e.sat.number()].find(e.toe.ns);
+    if (it == by_prn[e.sat.number()].end()) continue;
     ++same_toe;
     EXPECT_EQ(e.iode, it->second->iode);
     EXPECT_EQ(e.m0_rad, it->second->m0_rad);
@@ -326,7 +326,7 @@ TEST(NominalConstellation, UploadsEveryTwoHoursContinueTheSameOrbit) {
   // set the constellation makes for that toe: same IODE and the same orbit.
   double max_reupload = 0.0;
   for (const GpsEphemeris& e : later.gps) {
-    const GpsEphemeris& last = *by_prn[e.prn].rbegin()->second;
+    const GpsEphemeris& last = *by_prn[e.sat.number()].rbegin()->second;
     if (e.toe <= last.toe) continue;
     const GpsEphemeris r = reuploaded(last, e.toe);
     EXPECT_EQ(r.iode, e.iode);

@@ -10,7 +10,6 @@
 #include <set>
 
 #include "models/constellation.hpp"
-#include "models/rinex.hpp"
 #include "models/solver.hpp"
 
 namespace navemu {
@@ -33,7 +32,7 @@ TEST(Measurement, ErrorFreePseudorangesAreRangeMinusBroadcastClock) {
   ASSERT_GE(e.sats.size(), 6u);
   for (const SatMeasurement& m : e.sats) {
     ASSERT_TRUE(m.signals[0]);
-    EXPECT_NEAR(m.signals[0]->pseudorange_m, m.range_m - m.sat_clock_m, 1e-6) << m.prn;
+    EXPECT_NEAR(m.signals[0]->pseudorange_m, m.range_m - m.sat_clock_m, 1e-6) << m.sat.number();
   }
   // ... and the solver gets the position back exactly.
   SolverOptions o;
@@ -81,10 +80,10 @@ TEST(Measurement, DopplerIsMinusTheCarrierPhaseRate) {
   ASSERT_EQ(e0.sats.size(), e1.sats.size());
   for (const SatMeasurement& m1 : e1.sats) {
     for (const SatMeasurement& m0 : e0.sats) {
-      if (m0.prn != m1.prn) continue;
+      if (m0.sat != m1.sat) continue;
       const double phase_rate = m1.signals[0]->carrier_cycles - m0.signals[0]->carrier_cycles;
       const double mean_doppler = 0.5 * (m0.signals[0]->doppler_hz + m1.signals[0]->doppler_hz);
-      EXPECT_NEAR(-phase_rate, mean_doppler, 0.005) << m1.prn;
+      EXPECT_NEAR(-phase_rate, mean_doppler, 0.005) << m1.sat.number();
       EXPECT_FALSE(m1.signals[0]->loss_of_lock);
     }
   }
@@ -218,7 +217,7 @@ TEST(Measurement, IonosphericGradientErrorVanishesOverheadAndGrowsTowardTheHoriz
     MeasurementGenerator gen(nav, c);
     for (const SatMeasurement& m : gen.generate(kStart, p).sats) {
       const double model = iono_paper_mapping(m.dir.el_rad) * iono_zenith_delay_m(12.0, kGpsL1_Hz);
-      auto& [e2, el] = err2_and_el[m.prn];
+      auto& [e2, el] = err2_and_el[m.sat.number()];
       e2 += (m.iono_l1_m - model) * (m.iono_l1_m - model);
       el = m.dir.el_rad;
     }
@@ -255,7 +254,7 @@ TEST(Measurement, RisingSatelliteIsTrackedAfterTheReacquisitionTime) {
     std::map<int, double> first;
     for (double t = 0; t <= 7200; t += 10)
       for (const SatMeasurement& m : gen.generate(kStart.plus_s(t), ecef_from_geodetic(kSite)).sats)
-        first.try_emplace(m.prn, t);
+        first.try_emplace(m.sat.number(), t);
     return first;
   };
   const auto immediate = first_tracked(0.0), delayed = first_tracked(60.0);
@@ -291,7 +290,7 @@ TEST(Measurement, BuiltInConstellationRenewsForDays) {
     min_sats = std::min(min_sats, e.sats.size());
     for (const SatMeasurement& m : e.sats) {
       max_age_s = std::max(max_age_s, std::abs(seconds_between(t, m.eph->toe)));
-      prn_iode.insert({m.prn, m.eph->iode});
+      prn_iode.insert({m.sat.number(), m.eph->iode});
     }
     const Solution s = solve(gen.solver_input(e), e.t_receiver, o);
     ASSERT_EQ(s.fix, FixType::k3D) << "t + " << dt << " s";
@@ -313,14 +312,14 @@ TEST(Measurement, BuiltInConstellationRenewsForDays) {
 // keeps the 7 highest) go on as edited: the renewal continues the sets it was given.
 TEST(Measurement, EditedBuiltInDataKeepTheirSatellitesWhenRenewed) {
   NavData nav = nominal_constellation(kStart);
-  std::erase_if(nav.gps, [](const GpsEphemeris& e) { return e.prn > 8; });
+  std::erase_if(nav.gps, [](const GpsEphemeris& e) { return e.sat.number() > 8; });
   MeasurementGenerator gen(nav, all_off());
   const Vec3 p = ecef_from_geodetic(kSite);
   std::set<int> late;
   for (double dt = 0.0; dt <= 2 * 86400.0; dt += 600.0) {
     for (const SatMeasurement& m : gen.generate(kStart.plus_s(dt), p).sats) {
-      EXPECT_LE(m.prn, 8);
-      if (dt > 30 * 3600.0) late.insert(m.prn);
+      EXPECT_LE(m.sat.number(), 8);
+      if (dt > 30 * 3600.0) late.insert(m.sat.number());
     }
   }
   EXPECT_GE(late.size(), 6u);

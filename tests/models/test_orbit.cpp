@@ -11,7 +11,8 @@
 #include <string>
 
 #include "models/orbit.hpp"
-#include "models/rinex.hpp"
+#include "protocols/rinex.hpp"
+#include "tests/rinex_data.hpp"
 #include "tests/spirent_log.hpp"
 #include "tests/test_support.hpp"
 
@@ -25,13 +26,13 @@ double angle_diff_deg(double a_rad, double b_rad) {
 TEST(OrbitSpirent, PositionsRangesAnglesAndVelocitiesMatchSimulatorTruth) {
   NAVEMU_REQUIRE_SHARED();
   const auto dir = test::shared_data("gnss/spirent_simgen_static_20230108");
-  const NavData nav = read_rinex_nav(dir / "Spirent_RINEX_GN.23N");
+  const NavData nav = test::rinex_nav_file(dir / "Spirent_RINEX_GN.23N");
   const auto rows = test::read_spirent_gps_rows();
   ASSERT_EQ(rows.size(), 465u);  // GPS rows, per ../shared/data/README.md
 
   double max_pos = 0, max_range = 0, max_az = 0, max_el = 0, max_vel = 0;
   for (const test::SpirentRow& r : rows) {
-    const GpsEphemeris* eph = select_ephemeris(nav, r.prn, r.t_receive);
+    const GpsEphemeris* eph = select_ephemeris(nav, gps_sat(r.prn), r.t_receive);
     ASSERT_NE(eph, nullptr) << "PRN " << r.prn;
     const SatGeometry g = gps_sat_geometry(*eph, r.t_receive, test::kSpirentRxEcef);
     max_pos = std::max(max_pos, (g.sat.p_ecef_m - r.p_ecef_m).norm());
@@ -56,7 +57,7 @@ TEST(OrbitSpirent, PositionsRangesAnglesAndVelocitiesMatchSimulatorTruth) {
 // A Keplerian test orbit with no perturbations (harmonic terms zero).
 GpsEphemeris kepler_orbit(double e, double m0_rad) {
   GpsEphemeris eph;
-  eph.prn = 1;
+  eph.sat = gps_sat(1);
   eph.sqrt_a_sqrtm = std::sqrt(26'559'710.0);
   eph.e = e;
   eph.m0_rad = m0_rad;
@@ -134,9 +135,9 @@ std::pair<double, double> max_difference(const GpsEphemeris& a, const GpsEphemer
 // move on by one per 2 h.
 TEST(Reuploaded, SameOrbitAndClockAtTheNewToe) {
   NAVEMU_REQUIRE_SHARED();
-  const NavData nav = read_rinex_nav(test::shared_data("gnss/rtklib_geonet_20050402/07590920.05n"));
+  const NavData nav = test::rinex_nav_file(test::shared_data("gnss/rtklib_geonet_20050402/07590920.05n"));
   std::map<int, std::map<std::int64_t, const GpsEphemeris*>> by_prn;
-  for (const GpsEphemeris& e : nav.gps) by_prn[e.prn][e.toe.ns] = &e;
+  for (const GpsEphemeris& e : nav.gps) by_prn[e.sat.number()][e.toe.ns] = &e;
   double ours_p = 0.0, ours_c = 0.0, real_p = 0.0, real_c = 0.0;
   int pairs = 0;
   for (const auto& [prn, sets] : by_prn) {
@@ -174,7 +175,7 @@ TEST(Reuploaded, SameOrbitAndClockAtTheNewToe) {
 // where it was: Omega0 refers to the week's start (IS-GPS-200 Table 20-IV).
 TEST(Reuploaded, AcrossAWeekRollover) {
   GpsEphemeris a;
-  a.prn = 5;
+  a.sat = gps_sat(5);
   a.toe = a.toc = from_week_tow(2244, 601200.0);
   a.sqrt_a_sqrtm = 5153.7;
   a.e = 0.012;

@@ -2,12 +2,14 @@
 // frame, the documented sign of the range error, and seeded, sigma-bounded statistics.
 
 #include "models/sat_errors.hpp"
+#include "tests/test_support.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
+#include <vector>
 
 namespace navemu {
 namespace {
@@ -51,14 +53,14 @@ TEST(SatErrors, PureRadialErrorFromBelowShortensTheRangeByTheRadialValue) {
   SatErrors e(p, 99);
   const Zenith z;
   for (int prn = 1; prn <= 32; ++prn) {
-    const double err = e.range_error_m(prn, 0.0, z.sat_p, z.sat_v, z.los());
-    const double radial = e.terms(prn).radial_m;
+    const double err = e.range_error_m(gps_sat(prn), 0.0, z.sat_p, z.sat_v, z.los());
+    const double radial = e.terms(gps_sat(prn)).radial_m;
     ASSERT_NE(radial, 0.0);
     // Broadcast too high by `radial`: the satellite is really closer, the pseudorange shorter.
     EXPECT_DOUBLE_EQ(err, -radial);
     // Seen at right angles to the radial the same error does not reach the range.
     const Vec3 los_side = Vec3(1.0, 0.0, 0.0);
-    EXPECT_NEAR(e.range_error_m(prn, 0.0, z.sat_p, z.sat_v, los_side), 0.0, 1e-12);
+    EXPECT_NEAR(e.range_error_m(gps_sat(prn), 0.0, z.sat_p, z.sat_v, los_side), 0.0, 1e-12);
   }
 }
 
@@ -75,8 +77,8 @@ TEST(SatErrors, RangeErrorIsTheRangeToTheTruePositionMinusTheBroadcastRange) {
   const Vec3 sat_v(-2'100.0, 2'800.0, 0.0);
   const Vec3 los = (sat_p - rx).normalized();
   for (int prn = 1; prn <= 32; ++prn) {
-    const double err = e.range_error_m(prn, 100.0, sat_p, sat_v, los);
-    const SatErrors::Terms t = e.terms(prn);
+    const double err = e.range_error_m(gps_sat(prn), 100.0, sat_p, sat_v, los);
+    const SatErrors::Terms t = e.terms(gps_sat(prn));
     const Vec3 dr = R_rac_from_ecef(sat_p, sat_v).transpose() * Vec3(t.radial_m, t.along_m, t.cross_m);
     const double true_range = (sat_p - dr - rx).norm();
     const double broadcast_range = (sat_p - rx).norm();
@@ -86,7 +88,7 @@ TEST(SatErrors, RangeErrorIsTheRangeToTheTruePositionMinusTheBroadcastRange) {
 
 TEST(SatErrors, UnknownPrnHasZeroTerms) {
   SatErrors e(SatErrorParams{}, 1);
-  const SatErrors::Terms t = e.terms(17);
+  const SatErrors::Terms t = e.terms(gps_sat(17));
   EXPECT_EQ(t.radial_m, 0.0);
   EXPECT_EQ(t.clock_m, 0.0);
 }
@@ -107,13 +109,15 @@ TEST(SatErrors, StationarySigmasAndCorrelationTimeWithinSigmaBounds) {
 
   double s_r = 0, s_a = 0, s_c = 0, s_k = 0, s_range = 0, s_r1 = 0, s_r01 = 0, s_range1 = 0;
   int n = 0;
-  for (std::uint64_t seed = 1; seed <= 100; ++seed) {  // 100 seeds x PRN 1..99
+  const std::vector<SatId> sats = test::first_satellites(99);
+  for (std::uint64_t seed = 1; seed <= 100; ++seed) {  // 100 seeds x 99 satellites
     SatErrors e(p, seed);
-    for (int prn = 1; prn <= kMaxPrn; ++prn, ++n) {
-      const double r0 = e.range_error_m(prn, 1000.0, sat_p, sat_v, los);
-      const SatErrors::Terms t0 = e.terms(prn);
-      const double r1 = e.range_error_m(prn, 1000.0 + p.tau_s, sat_p, sat_v, los);
-      const SatErrors::Terms t1 = e.terms(prn);
+    for (const SatId sat : sats) {
+      ++n;
+      const double r0 = e.range_error_m(sat, 1000.0, sat_p, sat_v, los);
+      const SatErrors::Terms t0 = e.terms(sat);
+      const double r1 = e.range_error_m(sat, 1000.0 + p.tau_s, sat_p, sat_v, los);
+      const SatErrors::Terms t1 = e.terms(sat);
       s_r += t0.radial_m * t0.radial_m;
       s_a += t0.along_m * t0.along_m;
       s_c += t0.cross_m * t0.cross_m;
@@ -145,22 +149,22 @@ TEST(SatErrors, ProcessesAdvanceByTheTimeSinceThePrnsLastCall) {
   const Zenith z;
   // PRN 5's values do not depend on other PRNs being queried in between.
   SatErrors a(p, 11), b(p, 11);
-  const double a0 = a.range_error_m(5, 0.0, z.sat_p, z.sat_v, z.los());
-  const double b0 = b.range_error_m(5, 0.0, z.sat_p, z.sat_v, z.los());
-  b.range_error_m(7, 0.0, z.sat_p, z.sat_v, z.los());
-  b.range_error_m(7, 400.0, z.sat_p, z.sat_v, z.los());
+  const double a0 = a.range_error_m(gps_sat(5), 0.0, z.sat_p, z.sat_v, z.los());
+  const double b0 = b.range_error_m(gps_sat(5), 0.0, z.sat_p, z.sat_v, z.los());
+  b.range_error_m(gps_sat(7), 0.0, z.sat_p, z.sat_v, z.los());
+  b.range_error_m(gps_sat(7), 400.0, z.sat_p, z.sat_v, z.los());
   EXPECT_EQ(a0, b0);
-  EXPECT_EQ(a.range_error_m(5, 600.0, z.sat_p, z.sat_v, z.los()),
-            b.range_error_m(5, 600.0, z.sat_p, z.sat_v, z.los()));
+  EXPECT_EQ(a.range_error_m(gps_sat(5), 600.0, z.sat_p, z.sat_v, z.los()),
+            b.range_error_m(gps_sat(5), 600.0, z.sat_p, z.sat_v, z.los()));
   // The same time again, or an earlier one, leaves the processes where they are.
-  const SatErrors::Terms t = a.terms(5);
-  a.range_error_m(5, 600.0, z.sat_p, z.sat_v, z.los());
-  a.range_error_m(5, 300.0, z.sat_p, z.sat_v, z.los());
-  EXPECT_EQ(a.terms(5).along_m, t.along_m);
-  EXPECT_EQ(a.terms(5).clock_m, t.clock_m);
+  const SatErrors::Terms t = a.terms(gps_sat(5));
+  a.range_error_m(gps_sat(5), 600.0, z.sat_p, z.sat_v, z.los());
+  a.range_error_m(gps_sat(5), 300.0, z.sat_p, z.sat_v, z.los());
+  EXPECT_EQ(a.terms(gps_sat(5)).along_m, t.along_m);
+  EXPECT_EQ(a.terms(gps_sat(5)).clock_m, t.clock_m);
   // Time moving on moves them.
-  a.range_error_m(5, 700.0, z.sat_p, z.sat_v, z.los());
-  EXPECT_NE(a.terms(5).along_m, t.along_m);
+  a.range_error_m(gps_sat(5), 700.0, z.sat_p, z.sat_v, z.los());
+  EXPECT_NE(a.terms(gps_sat(5)).along_m, t.along_m);
 }
 
 TEST(SatErrors, SameSeedSameErrorsDifferentSeedDifferent) {
@@ -171,9 +175,9 @@ TEST(SatErrors, SameSeedSameErrorsDifferentSeedDifferent) {
   for (int k = 0; k < 50; ++k) {
     const double t = 30.0 * k;
     for (int prn = 1; prn <= 8; ++prn) {
-      const double ea = a.range_error_m(prn, t, z.sat_p, z.sat_v, z.los());
-      ASSERT_EQ(ea, b.range_error_m(prn, t, z.sat_p, z.sat_v, z.los()));
-      same_ac += ea == c.range_error_m(prn, t, z.sat_p, z.sat_v, z.los());
+      const double ea = a.range_error_m(gps_sat(prn), t, z.sat_p, z.sat_v, z.los());
+      ASSERT_EQ(ea, b.range_error_m(gps_sat(prn), t, z.sat_p, z.sat_v, z.los()));
+      same_ac += ea == c.range_error_m(gps_sat(prn), t, z.sat_p, z.sat_v, z.los());
     }
   }
   EXPECT_EQ(same_ac, 0);

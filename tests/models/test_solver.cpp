@@ -8,7 +8,8 @@
 
 #include "models/constellation.hpp"
 #include "models/orbit.hpp"
-#include "models/rinex.hpp"
+#include "protocols/rinex.hpp"
+#include "tests/rinex_data.hpp"
 #include "models/solver.hpp"
 #include "tests/test_support.hpp"
 
@@ -53,7 +54,7 @@ std::vector<RangeMeasurement> exact_measurements(const Scenario& s, double mask_
   const GpsTime t_true = s.t_tag.plus_s(-s.clock_m / kSpeedOfLight_mps);
   std::vector<RangeMeasurement> out;
   for (int prn = 1; prn <= 24; ++prn) {
-    const GpsEphemeris* eph = select_ephemeris(nav, prn, s.t_tag);
+    const GpsEphemeris* eph = select_ephemeris(nav, gps_sat(prn), s.t_tag);
     const SatGeometry g = gps_sat_geometry(*eph, t_true, p, s.v_ecef_mps);
     if (g.dir.el_rad < mask_deg * kDegToRad) continue;
     const double rr = g.range_rate_mps + s.drift_mps;
@@ -97,7 +98,7 @@ TEST(SolverExact, ElevationMaskExcludesLowSatellites) {
     if (r.used) ++used;
     if (r.el_deg < 30.0) {
       ++below;
-      EXPECT_FALSE(r.used) << "PRN " << r.prn;
+      EXPECT_FALSE(r.used) << "PRN " << r.sat.number();
     }
   }
   EXPECT_GT(below, 0);
@@ -130,8 +131,8 @@ TEST(SolverRealDoppler, StaticStationVelocityIsNearZero) {
   NAVEMU_REQUIRE_SHARED();
   // ESBC is a static IGS station: velocities from its L1 C/A Doppler (D1C) must be ~0.
   const auto dir = test::shared_data("gnss/esbc_20200625");
-  const ObsData obs = read_rinex_obs(dir / "ESBC00DNK_R_20201770000_01H_30S_MO.rnx");
-  const NavData nav = read_rinex_nav(dir / "ESBC00DNK_R_20201770000_01D_MN.rnx");
+  const ObsData obs = test::rinex_obs_file(dir / "ESBC00DNK_R_20201770000_01H_30S_MO.rnx");
+  const NavData nav = test::rinex_nav_file(dir / "ESBC00DNK_R_20201770000_01D_MN.rnx");
   const int c1c = obs.header.index_of('G', "C1C");
   const int d1c = obs.header.index_of('G', "D1C");
   ASSERT_GE(c1c, 0);
@@ -147,7 +148,7 @@ TEST(SolverRealDoppler, StaticStationVelocityIsNearZero) {
       if (so.system != 'G') continue;
       const double pr = so.values[static_cast<std::size_t>(c1c)];
       const double d = so.values[static_cast<std::size_t>(d1c)];
-      const GpsEphemeris* eph = select_ephemeris(nav, so.prn, e.time);
+      const GpsEphemeris* eph = select_ephemeris(nav, gps_sat(so.number), e.time);
       if (eph == nullptr || !std::isfinite(pr) || !std::isfinite(d)) continue;
       meas.push_back(make_range_measurement(*eph, e.time, pr, d));
     }

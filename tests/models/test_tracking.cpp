@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "models/geodesy.hpp"
+#include "tests/test_support.hpp"
 
 namespace navemu {
 namespace {
@@ -88,13 +90,13 @@ TEST(Cn0, HeldAtTheTableEnds) {
 
 TEST(CarrierArcs, AmbiguityConstantAndIntegerWithinAnArcAndLockTimeGrows) {
   CarrierArcs arcs(123);
-  const CarrierArcs::Arc first = arcs.update(12, 100.0, true);
+  const CarrierArcs::Arc first = arcs.update(gps_sat(12), 100.0, true);
   EXPECT_TRUE(first.new_arc);
   EXPECT_EQ(first.lock_time_s, 0.0);
   EXPECT_EQ(first.ambiguity_cycles, std::floor(first.ambiguity_cycles));
   EXPECT_LE(std::abs(first.ambiguity_cycles), 1e6);
   for (int k = 1; k < 60; ++k) {
-    const CarrierArcs::Arc a = arcs.update(12, 100.0 + k, true);
+    const CarrierArcs::Arc a = arcs.update(gps_sat(12), 100.0 + k, true);
     EXPECT_FALSE(a.new_arc);
     EXPECT_EQ(a.ambiguity_cycles, first.ambiguity_cycles);
     EXPECT_DOUBLE_EQ(a.lock_time_s, k);
@@ -103,19 +105,19 @@ TEST(CarrierArcs, AmbiguityConstantAndIntegerWithinAnArcAndLockTimeGrows) {
 
 TEST(CarrierArcs, UntrackedEpochStartsANewArc) {
   CarrierArcs arcs(123);
-  const double amb0 = arcs.update(3, 0.0, true).ambiguity_cycles;
-  arcs.update(3, 1.0, true);
-  const CarrierArcs::Arc lost = arcs.update(3, 2.0, false);
+  const double amb0 = arcs.update(gps_sat(3), 0.0, true).ambiguity_cycles;
+  arcs.update(gps_sat(3), 1.0, true);
+  const CarrierArcs::Arc lost = arcs.update(gps_sat(3), 2.0, false);
   EXPECT_FALSE(lost.new_arc);
   EXPECT_EQ(lost.ambiguity_cycles, 0.0);
   EXPECT_EQ(lost.lock_time_s, 0.0);
-  arcs.update(3, 3.0, false);
-  const CarrierArcs::Arc back = arcs.update(3, 4.0, true);
+  arcs.update(gps_sat(3), 3.0, false);
+  const CarrierArcs::Arc back = arcs.update(gps_sat(3), 4.0, true);
   EXPECT_TRUE(back.new_arc);
   EXPECT_EQ(back.lock_time_s, 0.0);
   EXPECT_NE(back.ambiguity_cycles, amb0);
   EXPECT_EQ(back.ambiguity_cycles, std::floor(back.ambiguity_cycles));
-  const CarrierArcs::Arc next = arcs.update(3, 5.0, true);
+  const CarrierArcs::Arc next = arcs.update(gps_sat(3), 5.0, true);
   EXPECT_FALSE(next.new_arc);
   EXPECT_EQ(next.ambiguity_cycles, back.ambiguity_cycles);
   EXPECT_DOUBLE_EQ(next.lock_time_s, 1.0);
@@ -123,22 +125,22 @@ TEST(CarrierArcs, UntrackedEpochStartsANewArc) {
 
 TEST(CarrierArcs, GapLongerThanTheLimitStartsANewArc) {
   CarrierArcs arcs(9);  // max gap 10 s
-  const double amb0 = arcs.update(7, 0.0, true).ambiguity_cycles;
+  const double amb0 = arcs.update(gps_sat(7), 0.0, true).ambiguity_cycles;
   // Exactly 10 s without an update is still the same arc.
-  const CarrierArcs::Arc same = arcs.update(7, 10.0, true);
+  const CarrierArcs::Arc same = arcs.update(gps_sat(7), 10.0, true);
   EXPECT_FALSE(same.new_arc);
   EXPECT_EQ(same.ambiguity_cycles, amb0);
   EXPECT_DOUBLE_EQ(same.lock_time_s, 10.0);
   // More than 10 s is a loss of lock.
-  const CarrierArcs::Arc after = arcs.update(7, 20.5, true);
+  const CarrierArcs::Arc after = arcs.update(gps_sat(7), 20.5, true);
   EXPECT_TRUE(after.new_arc);
   EXPECT_NE(after.ambiguity_cycles, amb0);
   EXPECT_EQ(after.lock_time_s, 0.0);
   // A configured limit applies instead.
   CarrierArcs strict(9, 1.5);
-  strict.update(7, 0.0, true);
-  EXPECT_FALSE(strict.update(7, 1.0, true).new_arc);
-  EXPECT_TRUE(strict.update(7, 3.0, true).new_arc);
+  strict.update(gps_sat(7), 0.0, true);
+  EXPECT_FALSE(strict.update(gps_sat(7), 1.0, true).new_arc);
+  EXPECT_TRUE(strict.update(gps_sat(7), 3.0, true).new_arc);
 }
 
 TEST(CarrierArcs, SameSeedSameArcsIndependentOfOtherPrns) {
@@ -147,13 +149,13 @@ TEST(CarrierArcs, SameSeedSameArcsIndependentOfOtherPrns) {
   for (int k = 0; k < 40; ++k) {
     const bool tracked = (k % 7) != 3;  // a loss of lock every 7 epochs
     const double t = k;
-    const CarrierArcs::Arc x = a.update(21, t, tracked);
-    b.update(5, t, !tracked);  // another PRN in between must not matter
-    const CarrierArcs::Arc y = b.update(21, t, tracked);
+    const CarrierArcs::Arc x = a.update(gps_sat(21), t, tracked);
+    b.update(gps_sat(5), t, !tracked);  // another PRN in between must not matter
+    const CarrierArcs::Arc y = b.update(gps_sat(21), t, tracked);
     ASSERT_EQ(x.ambiguity_cycles, y.ambiguity_cycles);
     ASSERT_EQ(x.new_arc, y.new_arc);
     ASSERT_EQ(x.lock_time_s, y.lock_time_s);
-    const CarrierArcs::Arc z = c.update(21, t, tracked);
+    const CarrierArcs::Arc z = c.update(gps_sat(21), t, tracked);
     if (tracked) same_ac += x.ambiguity_cycles == z.ambiguity_cycles;
   }
   EXPECT_EQ(same_ac, 0);
@@ -163,14 +165,16 @@ TEST(CarrierArcs, SameSeedSameArcsIndependentOfOtherPrns) {
 // ((2e6 + 1)^2 - 1) / 12 = 3.3333e11, within five standard errors.
 TEST(CarrierArcs, AmbiguityIsUniformOverPlusMinusOneMillion) {
   CarrierArcs arcs(2024);
-  const int arcs_per_prn = 202;
-  const int n = arcs_per_prn * kMaxPrn;  // 19998 arcs, each drawing from its own stream
+  const std::vector<SatId> sats = test::first_satellites(99);
+  const int n_sats = static_cast<int>(sats.size());
+  const int arcs_per_sat = 202;
+  const int n = arcs_per_sat * n_sats;  // 19998 arcs, each drawing from its own stream
   double sum = 0, sum2 = 0, lo = 0, hi = 0;
   for (int i = 0; i < n; ++i) {
-    const int prn = 1 + i % kMaxPrn;
-    const double t = static_cast<double>(i / kMaxPrn);
-    const double x = arcs.update(prn, t, true).ambiguity_cycles;
-    arcs.update(prn, t + 0.5, false);  // lost: the next epoch of this PRN starts a new arc
+    const SatId sat = sats[static_cast<std::size_t>(i % n_sats)];
+    const double t = static_cast<double>(i / n_sats);
+    const double x = arcs.update(sat, t, true).ambiguity_cycles;
+    arcs.update(sat, t + 0.5, false);  // lost: the next epoch of this satellite starts a new arc
     ASSERT_EQ(x, std::floor(x));
     sum += x;
     sum2 += x * x;

@@ -317,7 +317,7 @@ TEST(LnavCapture, AlmanacPageDecodesAsGpsdAndReencodesBitForBit) {
     ASSERT_TRUE(a.has_value());
     // gpsd: {"ID":17,"Health":0,"e":27718,"toa":123,"deltai":6883,"Omegad":-672,
     // "sqrtA":10554716,"Omega0":4872355,"omega":-4383106,"M0":-5243049,"af0":293,"af1":2}
-    EXPECT_EQ(a->prn, 17);
+    EXPECT_EQ(a->sv_id, 17);
     EXPECT_EQ(a->health, 0);
     EXPECT_EQ(std::llround(counts(a->e, -21)), 27718);
     EXPECT_EQ(std::llround(counts(a->toa_s, 12)), 123);
@@ -444,7 +444,7 @@ RinexNav read_rinex_nav(const std::filesystem::path& path) {
     long mi = 0;
     double ss = 0.0;
     std::istringstream t(v3 ? l0.substr(1) : l0);
-    t >> e.prn >> y >> mo >> d >> hh >> mi >> ss;
+    t >> e.sv_id >> y >> mo >> d >> hh >> mi >> ss;
     if (y < 100) y += y < 80 ? 2000 : 1900;
     const long gps_days = days_from_civil(y, mo, d) - days_from_civil(1980, 1, 6);
     e.toc_s = static_cast<double>((gps_days % 7) * 86400 + hh * 3600 + mi * 60) + ss;
@@ -549,9 +549,9 @@ void check_real_broadcast(const std::string& file, double tol_lsb) {
       ASSERT_TRUE(rtklib_reads_upright(w));
     }
     const auto got = decode_ephemeris(sf[0], sf[1], sf[2], e.week);
-    ASSERT_TRUE(got.has_value()) << file << " PRN " << e.prn;
+    ASSERT_TRUE(got.has_value()) << file << " PRN " << e.sv_id;
     expect_on_grid(e, *got, tol_lsb,
-                   file + " PRN " + std::to_string(e.prn) + " toe " + std::to_string(e.toe_s));
+                   file + " PRN " + std::to_string(e.sv_id) + " toe " + std::to_string(e.toe_s));
   }
 }
 
@@ -600,7 +600,7 @@ LnavEphemeris random_ephemeris(std::mt19937_64& rng) {
     return u(-r, r - std::ldexp(1.0, lsb_exp));
   };
   LnavEphemeris e;
-  e.prn = i(1, 32);
+  e.sv_id = i(1, 32);
   e.week = i(1024, 4000);
   e.codes_on_l2 = i(0, 3);
   e.ura_index = i(0, 15);
@@ -790,7 +790,7 @@ TEST(LnavPages, EveryPageHasDataIdOneAndTheTableSvId) {
   std::vector<LnavAlmanacEntry> entries;
   for (int prn : {1, 2, 17, 24, 25, 30}) {
     LnavAlmanacEntry a;
-    a.prn = prn;
+    a.sv_id = prn;
     a.e = 0.01;
     a.sqrt_a_sqrtm = 5153.6;
     a.toa_s = 61440.0;
@@ -816,12 +816,12 @@ TEST(LnavPages, EveryPageHasDataIdOneAndTheTableSvId) {
         const bool almanac_page = table_id <= 32;
         bool present = false;
         for (const auto& a : entries)
-          if (with_almanac != 0 && a.prn == table_id) present = true;
+          if (with_almanac != 0 && a.sv_id == table_id) present = true;
         EXPECT_EQ(id.sv_id, almanac_page && !present ? 0 : table_id) << sfid << "/" << page;
         if (almanac_page && present) {
           const auto a = decode_almanac(w);
           ASSERT_TRUE(a.has_value());
-          EXPECT_EQ(a->prn, table_id);
+          EXPECT_EQ(a->sv_id, table_id);
           EXPECT_NEAR(a->sqrt_a_sqrtm, 5153.6, std::ldexp(0.5, -11));
         } else {
           EXPECT_FALSE(decode_almanac(w).has_value());
@@ -836,8 +836,8 @@ TEST(LnavPages, EveryPageHasDataIdOneAndTheTableSvId) {
     const auto p25 = lnav_subframe(5, 1234, eph, {}, 25, alm);
     EXPECT_EQ(field(p25, 69, 8), 15u);  // 61440 / 4096
     EXPECT_EQ(field(p25, 77, 8), 2244u % 256u);
-    auto health5 = [&](int prn) {  // SV 1..24: 4 per word, words 4..9
-      const int k = prn - 1;
+    auto health5 = [&](int sv_id) {  // SV 1..24: 4 per word, words 4..9
+      const int k = sv_id - 1;
       return field(p25, 91 + 30 * (k / 4) + 6 * (k % 4), 6);
     };
     EXPECT_EQ(health5(1), with_almanac != 0 ? 0u : 0x3Fu);
@@ -894,7 +894,7 @@ TEST(LnavPages, IonoUtcPageRoundTrip) {
 
 TEST(LnavPages, AlmanacFromEphemeris) {
   LnavEphemeris e;
-  e.prn = 9;
+  e.sv_id = 9;
   e.week = 2244;
   e.sqrt_a_sqrtm = 5153.65;
   e.e = 0.0121;
@@ -909,7 +909,7 @@ TEST(LnavPages, AlmanacFromEphemeris) {
   e.af1_sps = 1e-11;
   e.health = 0;
   const auto same = lnav_almanac_from_ephemeris(e, 36000.0, 2244);
-  EXPECT_EQ(same.prn, 9);
+  EXPECT_EQ(same.sv_id, 9);
   EXPECT_DOUBLE_EQ(same.m0_rad, 0.5);
   EXPECT_DOUBLE_EQ(same.omega0_rad, -1.2);
   EXPECT_NEAR(same.delta_i_rad, 0.96 - 0.3 * kGpsPi, 1e-15);

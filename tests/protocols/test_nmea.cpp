@@ -135,7 +135,7 @@ GsaFields gsa_of(const Fields& f) {
   g.selection = f[1][0];
   g.fix = std::stoi(f[2]);
   for (std::size_t i = 3; i < 15; ++i)
-    if (!f[i].empty()) g.prns.push_back(std::stoi(f[i]));
+    if (!f[i].empty()) g.sat_ids.push_back(std::stoi(f[i]));
   g.pdop = num(f[15]);
   g.hdop = num(f[16]);
   g.vdop = num(f[17]);

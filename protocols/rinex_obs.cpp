@@ -19,8 +19,8 @@
 
 #include <fmt/format.h>
 
-#include "models/rinex.hpp"
-#include "models/rinex_fields.hpp"
+#include "protocols/rinex.hpp"
+#include "protocols/rinex_fields.hpp"
 
 namespace navemu {
 
@@ -314,10 +314,10 @@ class ObsParser {
     }
   }
 
-  static SatObs make_sat(char sys, int prn, std::size_t n_types) {
+  static SatObs make_sat(char sys, int number, std::size_t n_types) {
     SatObs sat;
     sat.system = sys;
-    sat.prn = prn;
+    sat.number = number;
     sat.values.assign(n_types, kMissing);
     sat.lli.assign(n_types, 0);
     sat.ssi.assign(n_types, 0);
@@ -403,11 +403,11 @@ class ObsParser {
           fail(src_, ln, "satellite count",
                fmt::format("the epoch announces {} satellites, only {} listed", count, k));
         const char sys = id[0] == ' ' ? 'G' : id[0];
-        int prn = 0;
+        int number = 0;
         if (kSystems.find(sys) == std::string_view::npos || id.size() < 3 ||
-            rinex::to_int(id.substr(1), prn) != NumStatus::ok || prn < 1)
+            rinex::to_int(id.substr(1), number) != NumStatus::ok || number < 1)
           fail(src_, ln, "satellite", fmt::format("not a satellite number: '{}'", id));
-        ids.emplace_back(sys, prn);
+        ids.emplace_back(sys, number);
       }
       // Nothing may follow the last satellite number before the clock offset (column 69).
       const std::size_t used = count == 0 ? 0 : (static_cast<std::size_t>(count) - 1) % kV2SatsPerLine + 1;
@@ -418,16 +418,16 @@ class ObsParser {
 
       // Observations: per satellite, 5 values per line (RINEX 2.11 Table A2).
       epoch.sats.reserve(ids.size());
-      for (const auto& [sys, prn] : ids) {
+      for (const auto& [sys, number] : ids) {
         const std::vector<std::string>& types = types_for(sys, n);
-        SatObs sat = make_sat(sys, prn, types.size());
+        SatObs sat = make_sat(sys, number, types.size());
         for (int j = 0; j < lines_per_sat; ++j, ++n) {
           const std::size_t first = static_cast<std::size_t>(j) * kV2ValuesPerLine;
           if (n > lines_.size())
             fail(src_, n, types[first],
                  fmt::format("record truncated: end of file in the observations of {}{:02d} "
                              "(epoch at line {})",
-                             sys, prn, epoch_line_));
+                             sys, number, epoch_line_));
           const std::string_view obs = lines_.line(n);
           if (looks_like_v2_epoch(obs) && !is_blank(column(obs, 0, 28)))
             fail(src_, n, "satellite count",
@@ -520,11 +520,11 @@ class ObsParser {
           fail(src_, ln, "satellite",
                fmt::format("not a satellite number: '{}'", column(sl, 0, 3)));
         const char sys = sl[0];
-        int prn = 0;
-        if (rinex::to_int(sl.substr(1, 2), prn) != NumStatus::ok || prn < 1)
+        int number = 0;
+        if (rinex::to_int(sl.substr(1, 2), number) != NumStatus::ok || number < 1)
           fail(src_, ln, "satellite", fmt::format("not a satellite number: '{}'", column(sl, 0, 3)));
         const std::vector<std::string>& types = types_for(sys, ln);
-        SatObs sat = make_sat(sys, prn, types.size());
+        SatObs sat = make_sat(sys, number, types.size());
         for (std::size_t i = 0; i < types.size(); ++i)
           read_value(sl, 3 + kValueWidth * i, i, types[i], ln, sat);
         if (!is_blank(column(sl, 3 + kValueWidth * types.size(), std::string_view::npos)))
@@ -559,12 +559,12 @@ ObsData parse_obs_text(std::string text, const std::string& source) {
 
 }  // namespace
 
-ObsData parse_rinex_obs(std::istream& in, const std::string& source) {
-  return parse_obs_text(rinex::read_stream(in, source), source);
+ObsData parse_rinex_obs(std::string text, const std::string& source) {
+  return parse_obs_text(std::move(text), source);
 }
 
-ObsData read_rinex_obs(const std::filesystem::path& file) {
-  return parse_obs_text(rinex::read_file(file), file.string());
+ObsData parse_rinex_obs(std::istream& in, const std::string& source) {
+  return parse_obs_text(rinex::read_stream(in, source), source);
 }
 
 }  // namespace navemu

@@ -1,4 +1,4 @@
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

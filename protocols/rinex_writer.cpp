@@ -12,7 +12,7 @@
 // Every field is checked against its Fortran format before anything is written, so a value
 // that does not fit raises std::invalid_argument instead of shifting the columns after it.
 
-#include "models/rinex_writer.hpp"
+#include "protocols/rinex_writer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +25,7 @@
 
 #include <fmt/format.h>
 
-#include "models/time.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 namespace {
@@ -113,7 +113,7 @@ std::string time_of_obs(GpsTime t) {
 bool is_phase(const std::string& code) { return !code.empty() && code[0] == 'L'; }
 
 // Satellite identifier A1,I2.2: "G05".
-std::string sat_id(char sys, int prn) { return fmt::format("{}{:02d}", sys, prn); }
+std::string sat_id(const SatObs& s) { return fmt::format("{}{:02d}", s.system, s.number); }
 
 void check_types(const ObsHeader& header) {
   if (header.types.empty()) invalid("SYS / # / OBS TYPES: no observation types in the header");
@@ -289,7 +289,7 @@ void write_epoch(std::string& out, const ObsHeader& h, const ObsEpoch& epoch) {
   for (const SatObs& s : epoch.sats)
     if (h.types.count(s.system) != 0) sats.push_back(&s);
   std::sort(sats.begin(), sats.end(), [](const SatObs* a, const SatObs* b) {
-    return a->system != b->system ? a->system < b->system : a->prn < b->prn;
+    return a->system != b->system ? a->system < b->system : a->number < b->number;
   });
   if (sats.size() > 999) invalid(fmt::format("epoch with {} satellites (I3 holds 999)", sats.size()));
 
@@ -311,10 +311,10 @@ void write_epoch(std::string& out, const ObsHeader& h, const ObsEpoch& epoch) {
 
   for (std::size_t i = 0; i < sats.size(); ++i) {
     const SatObs& s = *sats[i];
-    if (s.prn < 1 || s.prn > 99)
-      invalid(fmt::format("epoch {}: satellite {} number {} outside 1..99", when, s.system, s.prn));
-    const std::string id = sat_id(s.system, s.prn);
-    if (i > 0 && sats[i - 1]->system == s.system && sats[i - 1]->prn == s.prn)
+    if (s.number < 1 || s.number > 99)
+      invalid(fmt::format("epoch {}: satellite {} number {} outside 1..99", when, s.system, s.number));
+    const std::string id = sat_id(s);
+    if (i > 0 && sats[i - 1]->system == s.system && sats[i - 1]->number == s.number)
       invalid(fmt::format("epoch {}: satellite {} listed twice", when, id));
     const std::vector<std::string>& types = h.types.at(s.system);
     if (s.values.size() != types.size())

@@ -1,9 +1,9 @@
 #pragma once
 // RINEX readers: navigation files 2.10/2.11 (GPS) and 3.0x/4.0x (mixed; GPS records used,
 // others parsed past), observation files 2.x and 3.x. All errors are InputError with
-// file:line and the field concerned.
+// file:line and the field concerned. The readers take a file's text (or a stream of it); the
+// emulator reads the files (emulator/rinex_files.hpp).
 
-#include <filesystem>
 #include <istream>
 #include <limits>
 #include <map>
@@ -11,14 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "models/ephemeris.hpp"
-#include "models/geodesy.hpp"
-#include "models/time.hpp"
+#include "core/nav_data.hpp"
+#include "core/satellite.hpp"
+#include "core/time.hpp"
+#include "core/vec.hpp"
 
 namespace navemu {
 
-NavData read_rinex_nav(const std::filesystem::path& file);
-// `source` names the stream in error messages.
+// `text` is the whole file; `source` names it in error messages.
+NavData parse_rinex_nav(std::string text, const std::string& source);
 NavData parse_rinex_nav(std::istream& in, const std::string& source);
 
 inline constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -40,9 +41,14 @@ struct ObsHeader {
   int index_of(char system, const std::string& code) const;
 };
 
+// One satellite's observations. Its name is kept as the file writes it (RINEX 3.05 section
+// 3.5): the system letter, which may be any a header declares types for (one simulator writes
+// QZSS as 'Q'), and the two-digit number.
 struct SatObs {
   char system = 'G';
-  int prn = 0;
+  int number = 0;
+  // The satellite, when the letter is one of the seven systems'.
+  std::optional<SatId> sat() const { return SatId::from_rinex(system, number); }
   std::vector<double> values;  // one per header type of this system; kMissing when blank
   std::vector<int> lli;        // loss-of-lock indicator per value (0 when blank)
   std::vector<int> ssi;        // signal strength indicator per value (0 when blank)
@@ -66,7 +72,7 @@ struct ObsData {
   std::string source;
 };
 
-ObsData read_rinex_obs(const std::filesystem::path& file);
+ObsData parse_rinex_obs(std::string text, const std::string& source);
 ObsData parse_rinex_obs(std::istream& in, const std::string& source);
 
 }  // namespace navemu

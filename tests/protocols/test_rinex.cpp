@@ -1,4 +1,5 @@
-// RINEX navigation and observation readers, and the choice of ephemeris record.
+// RINEX navigation and observation readers (the choice among their records:
+// tests/models/test_ephemeris.cpp).
 // Reference values are copied from the text of the files in ../shared/data/gnss.
 
 #include <gtest/gtest.h>
@@ -14,15 +15,16 @@
 #include <string>
 #include <vector>
 
-#include "models/ephemeris.hpp"
-#include "models/errors.hpp"
-#include "models/rinex.hpp"
-#include "models/time.hpp"
+#include "core/errors.hpp"
+#include "core/time.hpp"
+#include "protocols/rinex.hpp"
+#include "tests/rinex_data.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {
 namespace {
 
+using test::expect_input_error;
 using test::shared_data;
 
 // A header line: content in columns 1-60, label from column 61.
@@ -41,22 +43,6 @@ ObsData obs_from(const std::string& text, const std::string& name = "mem.obs") {
   return parse_rinex_obs(in, name);
 }
 
-// Runs `f`, expecting an InputError at `line` naming `field`; returns its message.
-std::string expect_input_error(const std::function<void()>& f, int line, const std::string& field) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError at line " << line << " (" << field << "), none thrown";
-  return {};
-}
-
 GpsTime gps(int y, int mo, int d, int h, int mi, double s) {
   return gps_from_calendar(CalendarTime{y, mo, d, h, mi, s});
 }
@@ -67,7 +53,7 @@ GpsTime gps(int y, int mo, int d, int h, int mi, double s) {
 TEST(RinexNav, Geonet0759Rinex210) {
   NAVEMU_REQUIRE_SHARED();
   const auto file = shared_data("gnss/rtklib_geonet_20050402/07590920.05n");
-  const NavData nav = read_rinex_nav(file);
+  const NavData nav = test::rinex_nav_file(file);
   EXPECT_DOUBLE_EQ(nav.rinex_version, 2.10);
   EXPECT_EQ(nav.source, file.string());
   ASSERT_EQ(nav.gps.size(), 162u);
@@ -85,7 +71,7 @@ TEST(RinexNav, Geonet0759Rinex210) {
 
   // " 1 05  4  2  2  0  0.0 3.966595977540D-04 1.705302565820D-12 0.000000000000D+00"
   const GpsEphemeris& e = nav.gps.front();
-  EXPECT_EQ(e.prn, 1);
+  EXPECT_EQ(e.sat.number(), 1);
   EXPECT_EQ(e.toc, gps(2005, 4, 2, 2, 0, 0.0));
   EXPECT_DOUBLE_EQ(e.af0_s, 3.966595977540e-04);
   EXPECT_DOUBLE_EQ(e.af1_sps, 1.705302565820e-12);
@@ -120,22 +106,22 @@ TEST(RinexNav, Geonet0759Rinex210) {
   EXPECT_EQ(e.source, file.string() + ":13");
 
   // Second and third records: PRN 3 at 00:00 and 02:00 (file order kept).
-  EXPECT_EQ(nav.gps[1].prn, 3);
+  EXPECT_EQ(nav.gps[1].sat.number(), 3);
   EXPECT_EQ(nav.gps[1].toc, gps(2005, 4, 2, 0, 0, 0.0));
-  EXPECT_EQ(nav.gps[2].prn, 3);
+  EXPECT_EQ(nav.gps[2].sat.number(), 3);
   EXPECT_EQ(nav.gps[2].iode, 84);
   EXPECT_EQ(nav.gps[2].source, file.string() + ":29");
 }
 
 TEST(RinexNav, Geonet3040Rinex210) {
   NAVEMU_REQUIRE_SHARED();
-  const NavData nav = read_rinex_nav(shared_data("gnss/rtklib_geonet_20050402/30400920.05n"));
+  const NavData nav = test::rinex_nav_file(shared_data("gnss/rtklib_geonet_20050402/30400920.05n"));
   EXPECT_EQ(nav.gps.size(), 164u);
   EXPECT_EQ(nav.leap_seconds, 13);
   EXPECT_TRUE(nav.klobuchar.has_value());
   for (const auto& e : nav.gps) {
-    EXPECT_GE(e.prn, 1);
-    EXPECT_LE(e.prn, 32);
+    EXPECT_GE(e.sat.number(), 1);
+    EXPECT_LE(e.sat.number(), 32);
     EXPECT_NEAR(e.sqrt_a_sqrtm, 5153.6, 1.0);
     EXPECT_LT(std::fabs(seconds_between(e.toe, e.toc)), 7200.0 + 1.0);
   }
@@ -144,7 +130,7 @@ TEST(RinexNav, Geonet3040Rinex210) {
 TEST(RinexNav, EsbcMixedRinex305) {
   NAVEMU_REQUIRE_SHARED();
   const auto file = shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx");
-  const NavData nav = read_rinex_nav(file);
+  const NavData nav = test::rinex_nav_file(file);
   EXPECT_DOUBLE_EQ(nav.rinex_version, 3.05);
   ASSERT_EQ(nav.gps.size(), 257u);
   // Galileo 1602, GLONASS 510, BeiDou 357, QZSS 15, SBAS 2130.
@@ -158,7 +144,7 @@ TEST(RinexNav, EsbcMixedRinex305) {
 
   // "G01 2020 06 25 04 00 00 1.604342833161e-05 7.048583938740e-12 0.000000000000e+00"
   const GpsEphemeris& e = nav.gps.front();
-  EXPECT_EQ(e.prn, 1);
+  EXPECT_EQ(e.sat.number(), 1);
   EXPECT_EQ(e.toc, gps(2020, 6, 25, 4, 0, 0.0));
   EXPECT_DOUBLE_EQ(e.af0_s, 1.604342833161e-05);
   EXPECT_EQ(e.iode, 58);
@@ -172,13 +158,13 @@ TEST(RinexNav, EsbcMixedRinex305) {
   EXPECT_EQ(e.source, file.string() + ":15880");
 
   std::set<int> prns;
-  for (const auto& g : nav.gps) prns.insert(g.prn);
+  for (const auto& g : nav.gps) prns.insert(g.sat.number());
   EXPECT_GE(prns.size(), 30u);
 }
 
 TEST(RinexNav, SpirentRinex304) {
   NAVEMU_REQUIRE_SHARED();
-  const NavData nav = read_rinex_nav(shared_data("gnss/spirent_simgen_static_20230108/Spirent_RINEX_GN.23N"));
+  const NavData nav = test::rinex_nav_file(shared_data("gnss/spirent_simgen_static_20230108/Spirent_RINEX_GN.23N"));
   EXPECT_DOUBLE_EQ(nav.rinex_version, 3.04);
   EXPECT_EQ(nav.gps.size(), 93u);
   EXPECT_EQ(nav.skipped_records, 0);
@@ -191,7 +177,7 @@ TEST(RinexNav, SpirentRinex304) {
     EXPECT_DOUBLE_EQ(nav.klobuchar->beta[k], beta[k]);
   }
   const GpsEphemeris& e = nav.gps.front();
-  EXPECT_EQ(e.prn, 1);
+  EXPECT_EQ(e.sat.number(), 1);
   EXPECT_EQ(e.toc, gps(2023, 1, 8, 10, 0, 0.0));
   EXPECT_DOUBLE_EQ(e.af0_s, 2.270801778650e-04);
   EXPECT_DOUBLE_EQ(e.af1_sps, -4.774847184308e-12);
@@ -206,10 +192,10 @@ TEST(RinexNav, ParsesLargeFilesQuickly) {
   NAVEMU_REQUIRE_SHARED();
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
-  const NavData nav = read_rinex_nav(shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx"));
+  const NavData nav = test::rinex_nav_file(shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx"));
   auto t1 = clock::now();
   const ObsData obs =
-      read_rinex_obs(shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01H_30S_MO.rnx"));
+      test::rinex_obs_file(shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01H_30S_MO.rnx"));
   auto t2 = clock::now();
   const double nav_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   const double obs_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
@@ -336,11 +322,11 @@ TEST(RinexNav, Rinex4SnippetParses) {
   EXPECT_DOUBLE_EQ(nav.rinex_version, 4.00);
   EXPECT_EQ(nav.leap_seconds, 18);
   ASSERT_EQ(nav.gps.size(), 2u);
-  EXPECT_EQ(nav.gps[0].prn, 1);
+  EXPECT_EQ(nav.gps[0].sat.number(), 1);
   EXPECT_EQ(nav.gps[0].source, "v4.rnx:4");  // the "> EPH G01 LNAV" line
   EXPECT_DOUBLE_EQ(nav.gps[0].sqrt_a_sqrtm, 5.153651281357E+03);
   EXPECT_EQ(nav.gps[0].toe, from_week_tow(2244, 36000.0));
-  EXPECT_EQ(nav.gps[1].prn, 2);
+  EXPECT_EQ(nav.gps[1].sat.number(), 2);
   EXPECT_EQ(nav.skipped_records, 4);  // E11 INAV, STO, ION, G03 CNAV
   // The GPS LNAV ION record carries the Klobuchar coefficients.
   ASSERT_TRUE(nav.klobuchar.has_value());
@@ -354,12 +340,6 @@ TEST(RinexNav, Rinex4SnippetParses) {
 
 // ---------------------------------------------------------------------------------------------
 // Navigation files: bad input
-
-TEST(RinexNavErrors, MissingFile) {
-  const std::string msg = expect_input_error(
-      [] { (void)read_rinex_nav("/nonexistent/dir/none.05n"); }, 0, "");
-  EXPECT_NE(msg.find("/nonexistent/dir/none.05n"), std::string::npos) << msg;
-}
 
 TEST(RinexNavErrors, EmptyAndNotRinex) {
   expect_input_error([] { (void)nav_from(""); }, 1, "RINEX VERSION / TYPE");
@@ -519,7 +499,7 @@ TEST(RinexNavErrors, Rinex4Problems) {
 
 TEST(RinexObs, Geonet0759Rinex210) {
   NAVEMU_REQUIRE_SHARED();
-  const ObsData obs = read_rinex_obs(shared_data("gnss/rtklib_geonet_20050402/07590920.05o"));
+  const ObsData obs = test::rinex_obs_file(shared_data("gnss/rtklib_geonet_20050402/07590920.05o"));
   const ObsHeader& h = obs.header;
   EXPECT_DOUBLE_EQ(h.version, 2.10);
   EXPECT_EQ(h.file_system, 'G');
@@ -550,7 +530,7 @@ TEST(RinexObs, Geonet0759Rinex210) {
   const std::vector<int> prns{3, 7, 8, 11, 19, 20, 24, 28};
   for (std::size_t k = 0; k < prns.size(); ++k) {
     EXPECT_EQ(e0.sats[k].system, 'G');
-    EXPECT_EQ(e0.sats[k].prn, prns[k]);
+    EXPECT_EQ(e0.sats[k].number, prns[k]);
   }
   // "  55923622.160    24767686.375    43647388.2424   24767684.8224"
   const SatObs& g3 = e0.sats[0];
@@ -574,7 +554,7 @@ TEST(RinexObs, Geonet0759Rinex210) {
 
 TEST(RinexObs, Geonet3040Rinex210) {
   NAVEMU_REQUIRE_SHARED();
-  const ObsData obs = read_rinex_obs(shared_data("gnss/rtklib_geonet_20050402/30400920.05o"));
+  const ObsData obs = test::rinex_obs_file(shared_data("gnss/rtklib_geonet_20050402/30400920.05o"));
   EXPECT_EQ(obs.header.marker_name, "3040");
   EXPECT_EQ(obs.epochs.size(), 120u);
   EXPECT_GE(obs.event_records, 1);
@@ -585,7 +565,7 @@ TEST(RinexObs, Geonet3040Rinex210) {
 TEST(RinexObs, EsbcMixedRinex305) {
   NAVEMU_REQUIRE_SHARED();
   const ObsData obs =
-      read_rinex_obs(shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01H_30S_MO.rnx"));
+      test::rinex_obs_file(shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01H_30S_MO.rnx"));
   const ObsHeader& h = obs.header;
   EXPECT_DOUBLE_EQ(h.version, 3.05);
   EXPECT_EQ(h.file_system, 'M');
@@ -624,7 +604,7 @@ TEST(RinexObs, EsbcMixedRinex305) {
   // "C05  40715949.461 5                  40715946.882 6        -2.196 5 ..."
   const SatObs& c05 = e0.sats[0];
   EXPECT_EQ(c05.system, 'C');
-  EXPECT_EQ(c05.prn, 5);
+  EXPECT_EQ(c05.number, 5);
   EXPECT_DOUBLE_EQ(c05.values[0], 40715949.461);  // C2I
   EXPECT_EQ(c05.ssi[0], 5);
   EXPECT_EQ(c05.lli[0], 0);
@@ -638,7 +618,7 @@ TEST(RinexObs, EsbcMixedRinex305) {
 
 TEST(RinexObs, SpirentRinex304) {
   NAVEMU_REQUIRE_SHARED();
-  const ObsData obs = read_rinex_obs(
+  const ObsData obs = test::rinex_obs_file(
       shared_data("gnss/spirent_simgen_static_20230108/klobuchar_saastamoinen/Spirent_RINEX_MO.obs"));
   EXPECT_DOUBLE_EQ(obs.header.version, 3.04);
   EXPECT_EQ(obs.header.types.at('G').size(), 28u);
@@ -659,7 +639,7 @@ TEST(RinexObs, SpirentRinex304) {
     EXPECT_GE(i, 0) << code;
     return e0.sats[0].values.at(static_cast<std::size_t>(i));
   };
-  EXPECT_EQ(e0.sats[0].prn, 1);
+  EXPECT_EQ(e0.sats[0].number, 1);
   EXPECT_DOUBLE_EQ(at("C1C"), 21878660.530);
   EXPECT_DOUBLE_EQ(at("L1C"), 114973009.794);
   EXPECT_EQ(e0.sats[0].ssi[0], 9);
@@ -740,7 +720,7 @@ TEST(RinexObs, Rinex2SnippetWithContinuations) {
                                               {'G', 11}, {'G', 12}, {'G', 13}};
   for (std::size_t k = 0; k < ids.size(); ++k) {
     EXPECT_EQ(e.sats[k].system, ids[k].first) << k;
-    EXPECT_EQ(e.sats[k].prn, ids[k].second) << k;
+    EXPECT_EQ(e.sats[k].number, ids[k].second) << k;
     EXPECT_DOUBLE_EQ(e.sats[k].values[0], 1000.0 * static_cast<double>(k + 1));
     EXPECT_DOUBLE_EQ(e.sats[k].values[9], 1000.0 * static_cast<double>(k + 1) + 9.0);
   }
@@ -818,8 +798,8 @@ TEST(RinexObs, Rinex3EventsAreConsumed) {
 // ---------------------------------------------------------------------------------------------
 // Observation files: bad input
 
-TEST(RinexObsErrors, MissingFileAndWrongType) {
-  expect_input_error([] { (void)read_rinex_obs("/nonexistent/none.05o"); }, 0, "");
+// A missing file: tests/emulator/test_rinex_files.cpp.
+TEST(RinexObsErrors, WrongType) {
   expect_input_error(
       [] { (void)obs_from(hdr("     2.10           N: GPS NAV DATA", "RINEX VERSION / TYPE")); }, 1,
       "file type");
@@ -943,151 +923,6 @@ TEST(RinexObsErrors, Rinex2EventProblems) {
   expect_input_error(
       [&] { (void)obs_from(obs_v2_header() + " 05  4  2  0  0  0.0000000  9  1G01\n" + v2_sat_lines(1.0)); },
       10, "epoch flag");
-}
-
-// ---------------------------------------------------------------------------------------------
-// select_ephemeris
-
-GpsEphemeris eph(int prn, GpsTime toe, int health = 0, double tx_tow = -1.0) {
-  GpsEphemeris e;
-  e.prn = prn;
-  e.toe = toe;
-  e.toc = toe;
-  e.health = health;
-  e.transmission_tow_s = tx_tow >= 0.0 ? tx_tow : to_week_tow(toe).tow_s - 7200.0;
-  return e;
-}
-
-TEST(SelectEphemeris, NearestToe) {
-  const GpsTime t0 = from_week_tow(2244, 36000.0);
-  NavData nav;
-  nav.gps = {eph(1, t0), eph(1, t0.plus_s(7200.0)), eph(2, t0.plus_s(3600.0)), eph(1, t0.plus_s(14400.0))};
-  EXPECT_EQ(select_ephemeris(nav, 1, t0.plus_s(3000.0)), &nav.gps[0]);
-  EXPECT_EQ(select_ephemeris(nav, 1, t0.plus_s(4000.0)), &nav.gps[1]);
-  EXPECT_EQ(select_ephemeris(nav, 1, t0.plus_s(7200.0)), &nav.gps[1]);
-  EXPECT_EQ(select_ephemeris(nav, 1, t0.plus_s(1e6)), &nav.gps[3]);
-  EXPECT_EQ(select_ephemeris(nav, 2, t0), &nav.gps[2]);
-  EXPECT_EQ(select_ephemeris(nav, 3, t0), nullptr);
-  EXPECT_EQ(select_ephemeris(NavData{}, 1, t0), nullptr);
-}
-
-TEST(SelectEphemeris, BeforeFirstToeTakesTheFirst) {
-  const GpsTime t0 = from_week_tow(2244, 36000.0);
-  NavData nav;
-  nav.gps = {eph(5, t0.plus_s(7200.0)), eph(5, t0), eph(5, t0.plus_s(14400.0))};
-  EXPECT_EQ(select_ephemeris(nav, 5, t0.plus_s(-86400.0)), &nav.gps[1]);
-}
-
-TEST(SelectEphemeris, UnhealthySkipped) {
-  const GpsTime t0 = from_week_tow(2244, 36000.0);
-  NavData nav;
-  nav.gps = {eph(7, t0), eph(7, t0.plus_s(7200.0), 63), eph(9, t0, 1)};
-  EXPECT_EQ(select_ephemeris(nav, 7, t0.plus_s(7200.0)), &nav.gps[0]);
-  EXPECT_EQ(select_ephemeris(nav, 9, t0), nullptr);
-}
-
-TEST(SelectEphemeris, TiesGoToTheLaterTransmission) {
-  const GpsTime t0 = from_week_tow(2244, 36000.0);
-  NavData nav;
-  nav.gps = {eph(3, t0, 0, 30000.0), eph(3, t0, 0, 31000.0), eph(3, t0, 0, 29000.0)};
-  EXPECT_EQ(select_ephemeris(nav, 3, t0), &nav.gps[1]);
-  // Equally far on both sides: the later transmitted record.
-  nav.gps = {eph(3, t0, 0, 30000.0), eph(3, t0.plus_s(7200.0), 0, 37000.0)};
-  EXPECT_EQ(select_ephemeris(nav, 3, t0.plus_s(3600.0)), &nav.gps[1]);
-}
-
-TEST(SelectEphemeris, OnGeonetNavigationFile) {
-  NAVEMU_REQUIRE_SHARED();
-  const NavData nav = read_rinex_nav(shared_data("gnss/rtklib_geonet_20050402/07590920.05n"));
-  // PRN 3 has records with toe 00:00 (IODE 83) and 02:00 (IODE 84) on 2005-04-02.
-  const GpsEphemeris* a = select_ephemeris(nav, 3, gps(2005, 4, 2, 0, 30, 0.0));
-  ASSERT_NE(a, nullptr);
-  EXPECT_EQ(a->iode, 83);
-  const GpsEphemeris* b = select_ephemeris(nav, 3, gps(2005, 4, 2, 1, 30, 0.0));
-  ASSERT_NE(b, nullptr);
-  EXPECT_EQ(b->iode, 84);
-  const GpsEphemeris* c = select_ephemeris(nav, 3, gps(2005, 4, 1, 12, 0, 0.0));
-  ASSERT_NE(c, nullptr);
-  EXPECT_EQ(c->iode, 83);
-}
-
-// ---------------------------------------------------------------------------------------------
-// covered_spans: where navigation data has at least 4 satellites inside their fit intervals
-
-TEST(CoveredSpans, FitIntervalsOfFourSatellitesMerged) {
-  const GpsTime t0 = from_week_tow(2244, 36000.0);
-  NavData nav;
-  for (int prn = 1; prn <= 4; ++prn)
-    nav.gps.insert(nav.gps.end(), {eph(prn, t0), eph(prn, t0.plus_s(7200.0))});
-  // toe +- 2 h (IS-GPS-200 4 h fit), the two uploads of each PRN joined.
-  std::vector<TimeSpan> spans = covered_spans(nav);
-  ASSERT_EQ(spans.size(), 1u);
-  EXPECT_EQ(spans[0].from, t0.plus_s(-7200.0));
-  EXPECT_EQ(spans[0].to, t0.plus_s(14400.0));
-  // Three satellites are not enough; one is, when asked for one.
-  nav.gps.resize(6);  // PRN 4 gone
-  EXPECT_TRUE(covered_spans(nav).empty());
-  EXPECT_EQ(covered_spans(nav, 1).size(), 1u);
-  EXPECT_EQ(covered_spans(nav, 3).size(), 1u);
-}
-
-TEST(CoveredSpans, GapsUnhealthyRecordsAndFitIntervalFlags) {
-  const GpsTime t0 = from_week_tow(2244, 36000.0);
-  NavData nav;
-  for (int prn = 1; prn <= 4; ++prn)
-    nav.gps.insert(nav.gps.end(), {eph(prn, t0), eph(prn, t0.plus_s(6 * 3600.0))});
-  std::vector<TimeSpan> spans = covered_spans(nav);
-  ASSERT_EQ(spans.size(), 2u);  // [t0 - 2 h, t0 + 2 h] and [t0 + 4 h, t0 + 8 h]
-  EXPECT_EQ(spans[0].to, t0.plus_s(7200.0));
-  EXPECT_EQ(spans[1].from, t0.plus_s(4 * 3600.0));
-  EXPECT_TRUE(spans[0].contains(t0.plus_s(7200.0)));
-  EXPECT_FALSE(spans[0].contains(t0.plus_s(7201.0)));
-  // An unhealthy record does not count: PRN 4 at 6 h marked unhealthy.
-  nav.gps[7].health = 1;
-  spans = covered_spans(nav);
-  ASSERT_EQ(spans.size(), 1u);
-  EXPECT_EQ(spans[0].to, t0.plus_s(7200.0));
-  // A 6 h fit interval (fit flag 1) reaches 3 h from toe; the flag written as hours (1) counts
-  // as the 4 h minimum.
-  for (GpsEphemeris& e : nav.gps) e.fit_interval_h = e.toe == t0 ? 6.0 : 1.0;
-  spans = covered_spans(nav);
-  ASSERT_EQ(spans.size(), 1u);
-  EXPECT_EQ(spans[0].from, t0.plus_s(-3 * 3600.0));
-  EXPECT_EQ(spans[0].to, t0.plus_s(3 * 3600.0));
-  EXPECT_TRUE(covered_spans(NavData{}).empty());
-}
-
-// Broadcast files as they come: the GEONET station's day holds data sets (toe, GPS time) from
-// 2005-04-02 00:00 every 2 h to 2005-04-03 00:00, the ESBC station's from 2020-06-24 22:00 to
-// 2020-06-26 00:00, the Spirent simulator's at 10:00, 12:00 and 14:00 of 2023-01-08 (the
-// records' epochs in the files), each with 9 or more satellites per set: covered from the first
-// toe - 2 h to the last toe + 2 h. Also prints how long reading and the check take.
-TEST(CoveredSpans, BroadcastFiles) {
-  NAVEMU_REQUIRE_SHARED();
-  struct Case {
-    const char* file;
-    GpsTime from, to;
-  };
-  const Case cases[] = {
-      {"rtklib_geonet_20050402/07590920.05n", gps(2005, 4, 1, 22, 0, 0.0), gps(2005, 4, 3, 2, 0, 0.0)},
-      {"esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx", gps(2020, 6, 24, 20, 0, 0.0),
-       gps(2020, 6, 26, 2, 0, 0.0)},
-      {"spirent_simgen_static_20230108/Spirent_RINEX_GN.23N", gps(2023, 1, 8, 8, 0, 0.0),
-       gps(2023, 1, 8, 16, 0, 0.0)},
-  };
-  for (const Case& c : cases) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const NavData nav = read_rinex_nav(shared_data(std::string("gnss/") + c.file));
-    const auto t1 = std::chrono::steady_clock::now();
-    const std::vector<TimeSpan> spans = covered_spans(nav);
-    const auto t2 = std::chrono::steady_clock::now();
-    ASSERT_EQ(spans.size(), 1u) << c.file;
-    EXPECT_EQ(spans[0].from, c.from) << c.file;
-    EXPECT_EQ(spans[0].to, c.to) << c.file;
-    using ms = std::chrono::duration<double, std::milli>;
-    std::printf("[ coverage ] %s: %zu GPS records (%d of other systems): read %.1f ms, coverage %.3f ms\n",
-                c.file, nav.gps.size(), nav.skipped_records, ms(t1 - t0).count(), ms(t2 - t1).count());
-  }
 }
 
 }  // namespace

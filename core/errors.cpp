@@ -1,4 +1,4 @@
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 #include <fmt/format.h>
 

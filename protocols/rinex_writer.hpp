@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "models/rinex.hpp"
+#include "protocols/rinex.hpp"
 
 namespace navemu {
 

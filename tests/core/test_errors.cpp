@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "models/errors.hpp"
+#include "core/errors.hpp"
 
 namespace navemu {
 

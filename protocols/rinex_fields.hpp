@@ -11,21 +11,18 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
-#include <filesystem>
-#include <fstream>
 #include <istream>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
-#include "models/errors.hpp"
-#include "models/time.hpp"
+#include "core/errors.hpp"
+#include "core/time.hpp"
 
 namespace navemu::rinex {
 
@@ -69,30 +66,6 @@ inline std::string read_stream(std::istream& in, const std::string& source) {
   if (in.good()) ss << in.rdbuf();
   if (in.bad()) fail(source, 0, "", "read error");
   return std::move(ss).str();
-}
-
-inline std::string read_file(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) fail(name, 0, "", "cannot open: no such file");
-  if (std::filesystem::is_directory(file, ec)) fail(name, 0, "", "cannot open: is a directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(name, 0, "", "cannot open for reading");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(0, std::ios::beg);
-  // Read whole: a bound, so that a wrong file is an error rather than memory exhausted. A day
-  // of 1 Hz multi-GNSS observations is about 0.5 GB.
-  constexpr std::streamoff kMaxBytes = std::streamoff{2} << 30;
-  if (size > kMaxBytes)
-    fail(name, 0, "", fmt::format("{} bytes: over the 2 GiB a RINEX file may have here", size));
-  std::string text;
-  if (size > 0) {
-    text.resize(static_cast<std::size_t>(size));
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    if (in.gcount() != static_cast<std::streamsize>(size)) fail(name, 0, "", "read error");
-  }
-  return text;
 }
 
 // Characters [col, col + width) of a line, clipped to its end (blank when past the end).

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "models/errors.hpp"
-#include "models/time.hpp"
+#include "core/errors.hpp"
+#include "core/time.hpp"
 #include "tests/test_support.hpp"
 
 namespace navemu {

@@ -19,8 +19,8 @@
 
 #include <fmt/format.h>
 
-#include "models/rinex.hpp"
-#include "models/rinex_fields.hpp"
+#include "protocols/rinex.hpp"
+#include "protocols/rinex_fields.hpp"
 
 namespace navemu {
 namespace {
@@ -63,12 +63,13 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
   const std::string_view first = lines.line(n);
   const Where w{src, n};
   GpsEphemeris eph;
+  int prn = 0;
   CalendarTime c;
   std::size_t clock_col = 0;
   std::size_t orbit_col = 0;
   if (format == NavFormat::v2) {
     // I2,1X,I2.2,1X,I2,1X,I2,1X,I2,1X,I2,F5.1,3D19.12 (RINEX 2.11 Table A4)
-    eph.prn = req_int(w, first, 0, 2, "PRN");
+    prn = req_int(w, first, 0, 2, "PRN");
     c.year = rinex::full_year(req_int(w, first, 3, 2, "epoch"));
     c.month = req_int(w, first, 6, 2, "epoch");
     c.day = req_int(w, first, 9, 2, "epoch");
@@ -80,7 +81,7 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
   } else {
     // A1,I2.2,1X,I4,5(1X,I2.2),3D19.12 (RINEX 3.05 GPS navigation data record)
     if (column(first, 0, 1) != "G") fail(src, n, "PRN", "expected a GPS satellite number Gnn");
-    eph.prn = req_int(w, first, 1, 2, "PRN");
+    prn = req_int(w, first, 1, 2, "PRN");
     c.year = req_int(w, first, 4, 4, "epoch");
     c.month = req_int(w, first, 9, 2, "epoch");
     c.day = req_int(w, first, 12, 2, "epoch");
@@ -90,8 +91,11 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
     clock_col = 23;
     orbit_col = 4;
   }
-  if (eph.prn < 1 || eph.prn > 63)
-    fail(src, n, "PRN", fmt::format("GPS PRN {} out of range 1-63", eph.prn));
+  eph.sat = gps_sat(prn);
+  if (prn < 1 || !eph.sat.defined())
+    fail(src, n, "PRN",
+         fmt::format("GPS PRN {} out of range {}-{}", prn, eph.sat.info().first_number,
+                     eph.sat.info().last_number));
   // toc: the epoch is GPS time (RINEX 2.11 Table A4, RINEX 3.05 GPS navigation data record).
   eph.toc = rinex::epoch_to_gps(w, c, "epoch");
   eph.af0_s = rinex::req_full_double(w, first, clock_col, 19, "af0");
@@ -108,13 +112,13 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
       fail(src, ln, names[0],
            fmt::format("record truncated: end of file where BROADCAST ORBIT - {} of G{:02d} "
                        "(record at line {}) was expected",
-                       j + 1, eph.prn, n));
+                       j + 1, prn, n));
     const std::string_view line = lines.line(ln);
     if (!is_blank(column(line, 0, orbit_col)))
       fail(src, ln, names[0],
            fmt::format("record truncated: BROADCAST ORBIT - {} of G{:02d} (record at line {}) "
                        "expected, found the start of another record",
-                       j + 1, eph.prn, n));
+                       j + 1, prn, n));
     const Where wl{src, ln};
     auto& row = v[static_cast<std::size_t>(j)];
     if (j == kOrbitLines - 1) {
@@ -211,8 +215,9 @@ int skip_other_record(const Lines& lines, int n, double version) {
     fail(src, n, "satellite system",
          fmt::format("unknown satellite system '{}' at the start of a record", sys));
   const Where w{src, n};
-  const int prn = req_int(w, first, 1, 2, "PRN");
-  if (prn < 1) fail(src, n, "PRN", fmt::format("satellite number {}{:02d} out of range", sys, prn));
+  const int number = req_int(w, first, 1, 2, "PRN");
+  if (number < 1)
+    fail(src, n, "PRN", fmt::format("satellite number {}{:02d} out of range", sys, number));
   (void)req_int(w, first, 4, 4, "epoch");
   for (int j = 1; j <= count; ++j) {
     const int ln = n + j;
@@ -220,7 +225,7 @@ int skip_other_record(const Lines& lines, int n, double version) {
       fail(src, ln, "BROADCAST ORBIT",
            fmt::format("record truncated: {} continuation lines expected for {}{:02d} (record at "
                        "line {}), found {}",
-                       count, sys, prn, n, j - 1));
+                       count, sys, number, n, j - 1));
   }
   int next = n + count + 1;
   // Writers of earlier versions may already add the later GLONASS line; take any further
@@ -394,12 +399,12 @@ NavData parse_nav_text(std::string text, const std::string& source) {
 
 }  // namespace
 
-NavData parse_rinex_nav(std::istream& in, const std::string& source) {
-  return parse_nav_text(rinex::read_stream(in, source), source);
+NavData parse_rinex_nav(std::string text, const std::string& source) {
+  return parse_nav_text(std::move(text), source);
 }
 
-NavData read_rinex_nav(const std::filesystem::path& file) {
-  return parse_nav_text(rinex::read_file(file), file.string());
+NavData parse_rinex_nav(std::istream& in, const std::string& source) {
+  return parse_nav_text(rinex::read_stream(in, source), source);
 }
 
 }  // namespace navemu
