@@ -479,6 +479,35 @@ TEST_F(UbxDeviceTest, OutputMaskUbxOnlyStopsNmea) {
   EXPECT_EQ(ubx_bytes, out.size()) << "nothing but UBX frames";
 }
 
+// Satellites are named as u-blox numbers them (ZED-F9P interface description UBX-18010854 R04,
+// appendix A "Satellite numbering"): NAV-SAT by gnssId:svId, NAV-SVINFO by the single UBX svId.
+// An SBAS (PRN 131), a Galileo (E11) and a GLONASS (slot 5) satellite beside GPS PRN 5.
+TEST_F(UbxDeviceTest, SatellitesOfEachSystemAreNumberedAsUbloxNumbersThem) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  for (ubx::MsgId id : {ubx::kNavSat, ubx::kNavSvinfo})
+    ASSERT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{id.cls, id.id, 1})), ubx::kCfgMsg));
+  ReceiverFix fix = a_fix(kT0);
+  fix.satellites = {{gps_sat(5), 120.0, 45.0, 44.0, true},
+                    {SatId(GnssSystem::kSbas, 31), 200.0, 40.0, 40.0, false},
+                    {SatId(GnssSystem::kGalileo, 11), 300.0, 10.0, 31.0, true},
+                    {SatId(GnssSystem::kGlonass, 5), 30.0, 3.0, 25.0, false}};
+  std::string out;
+  d.encode_epoch(fix, EpochMeasurements{}, 0, out);
+  const std::vector<Frame> f = frames_of(out);
+  ubx::NavSat sat;
+  ASSERT_TRUE(ubx::decode(of_type(f, ubx::kNavSat).at(0).payload, sat));
+  ubx::NavSvinfo svinfo;
+  ASSERT_TRUE(ubx::decode(of_type(f, ubx::kNavSvinfo).at(0).payload, svinfo));
+  const int gnss_ids[] = {0, 1, 2, 6}, sv_ids[] = {5, 131, 11, 5}, svinfo_ids[] = {5, 131, 221, 69};
+  ASSERT_EQ(sat.svs.size(), 4u);
+  ASSERT_EQ(svinfo.channels.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(sat.svs[i].gnss_id, gnss_ids[i]) << i;
+    EXPECT_EQ(sat.svs[i].sv_id, sv_ids[i]) << i;
+    EXPECT_EQ(svinfo.channels[i].svid, svinfo_ids[i]) << i;
+  }
+}
+
 // The receiver model's epochs through the device with NAV-PVT, NAV-SAT, RXM-RAWX and RXM-SFRBX
 // on, decoded back: NAV-PVT carries the fix (1e-7 deg on the wire), NAV-SAT the tracked
 // satellites, RAWX the raw measurements exactly (R8 pseudoranges), and SFRBX, once per 6 s
