@@ -21,7 +21,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <optional>
 #include <regex>
@@ -115,8 +117,8 @@ class CandumpRecording {
     addr.can_family = AF_CAN;
     addr.can_ifindex = static_cast<int>(::if_nametoindex(iface_.c_str()));
     if (sock_ < 0 || ::bind(sock_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) return;
-    // Bounded: 50 markers, 0.2 s each.
-    for (int i = 0; i < 50 && !receiving_ && dump_.running(); ++i) receiving_ = send_and_wait('S', 0.2);
+    const double give_up = mono_s() + 10.0;
+    while (!receiving_ && dump_.running() && mono_s() < give_up) receiving_ = send_and_wait('S', 0.2);
   }
   ~CandumpRecording() {
     if (sock_ >= 0) ::close(sock_);
@@ -137,12 +139,13 @@ class CandumpRecording {
     ::kill(dump_.pid(), SIGCONT);
   }
 
-  // Sends end markers until the last one sent is in the log (at most 10, 1 s each), stops
-  // candump and reads its log.
+  // Sends end markers until the last one sent is in the log (one a second, for at most 10 s),
+  // stops candump and reads its log.
   CandumpResult finish() {
     CandumpResult r;
     bool ended = false;
-    for (int i = 0; i < 10 && !ended && dump_.running(); ++i) ended = send_and_wait('E', 1.0);
+    const double give_up = mono_s() + 10.0;
+    while (!ended && dump_.running() && mono_s() < give_up) ended = send_and_wait('E', 1.0);
     dump_.signal(SIGINT);
     if (!dump_.wait_exit(5.0)) r.problem = "candump did not stop on SIGINT. ";
     // A marker's drops go to the next frame kept or, after the last one, to its end.
@@ -162,7 +165,8 @@ class CandumpRecording {
     r.dropped = all - std::min(all, markers_dropped);
     r.ended = ended && r.problem.empty();
     if (!ended)
-      r.problem += fmt::format("the last of {} end markers never reached candump's log", end_sent_);
+      r.problem += fmt::format("the last of {} end markers never reached candump's log{}", end_sent_,
+                               write_error_.empty() ? "" : " (last write error: " + write_error_ + ")");
     return r;
   }
 
@@ -180,8 +184,14 @@ class CandumpRecording {
     f.len = 2;
     f.data[0] = static_cast<std::uint8_t>(kind);
     f.data[1] = n;
-    // A write fails once after the interface went down and up (the socket's pending ENETDOWN).
-    if (::write(sock_, &f, sizeof f) != static_cast<ssize_t>(sizeof f)) return false;
+    // A write fails once after the interface went down and up (the socket's pending ENETDOWN),
+    // and while a queueing discipline in front of the interface is full (ENOBUFS; the CanFaults
+    // token bucket drains its 720 bytes in 0.15 s): the caller tries again a little later.
+    if (::write(sock_, &f, sizeof f) != static_cast<ssize_t>(sizeof f)) {
+      write_error_ = std::strerror(errno);
+      sleep_s(0.05);
+      return false;
+    }
     ++sent_;
     if (kind == 'E') ++end_sent_;
     const std::string line = fmt::format(" {} {:03X}#{:02X}{:02X}\n", iface_, kMarkerId, f.data[0], n);
@@ -206,6 +216,7 @@ class CandumpRecording {
   int sock_ = -1;
   unsigned sent_ = 0;
   std::uint64_t end_sent_ = 0;
+  std::string write_error_;
   bool receiving_ = false;
 };
 
