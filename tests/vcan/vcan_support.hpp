@@ -105,10 +105,11 @@ class CandumpRecording {
  public:
   static constexpr std::uint32_t kMarkerId = 0x7FF;
 
-  CandumpRecording(const TempDir& dir, std::string iface, double frames_per_s)
+  // The receive queue holds `stall_s` of frames at `frames_per_s` (0: the kernel's default).
+  CandumpRecording(const TempDir& dir, std::string iface, double frames_per_s, double stall_s = kReaderStallS)
       : iface_(std::move(iface)), log_(dir / "candump.log"), err_(dir / "candump.stderr") {
     const std::string candump = find_program("candump");
-    const long queue = receive_queue_bytes(frames_per_s, kReaderStallS);
+    const long queue = receive_queue_bytes(frames_per_s, stall_s);
     if (candump.empty()) return;
     dump_.start({candump, "-L", "-d", "-D", "-r", std::to_string(queue / 2), iface_}, log_, err_);
     sock_ = ::socket(AF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
