@@ -156,8 +156,9 @@ struct CanCheck {
 // has one; otherwise the row after the previous sample's (the first sample's: `first_row`).
 // A hole in the log (frames the reader dropped, LoggedFrame::dropped_*) ends the sample before
 // it and starts a new one after it. Those two samples may be incomplete: a classic
-// high-resolution sample there that does not decode, and J1939 frames after a hole in a sample
-// without a high-resolution time (nothing dates them), are counted as `cut`, not as problems.
+// high-resolution sample there that does not decode, and J1939 frames after a hole in samples
+// without a high-resolution time until one with it (nothing dates them), are counted as `cut`,
+// not as problems.
 inline CanCheck check_frames_against_log(const std::vector<LoggedFrame>& frames,
                                          const std::vector<ImuRow>& rows,
                                          std::size_t first_row = 0,
@@ -241,6 +242,7 @@ inline CanCheck check_frames_against_log(const std::vector<LoggedFrame>& frames,
   std::map<std::int64_t, std::size_t> row_of_time;
   for (std::size_t i = 0; i < rows.size(); ++i) row_of_time[rows[i].gps_time_ns] = i;
   std::optional<std::size_t> next_row = first_row;  // of a sample without a high-resolution time
+  bool lost_at_hole = false;  // no next_row since a hole: J1939 samples until a dated one are cut
   bool checked_any = false;
   for (const Sample& s : samples) {
     const bool at_hole = s.hole_before || s.hole_after;
@@ -276,10 +278,12 @@ inline CanCheck check_frames_against_log(const std::vector<LoggedFrame>& frames,
       row = it->second;
     } else if (s.j1939.empty()) {
       next_row.reset();  // nothing of this sample can be checked; it was counted above
+      lost_at_hole = lost_at_hole || at_hole;
       continue;
-    } else if (s.hole_before) {
+    } else if (s.hole_before || (!next_row && lost_at_hole)) {
       if (!cut) ++c.cut;
       next_row.reset();
+      lost_at_hole = true;
       continue;
     } else if (!next_row) {
       problem("J1939 sample that nothing dates (the sample before it was not found)");
@@ -291,6 +295,7 @@ inline CanCheck check_frames_against_log(const std::vector<LoggedFrame>& frames,
       row = next_row;
     }
     next_row = *row + 1;
+    lost_at_hole = false;
     const ImuRow& r = rows[*row];
     if (!checked_any) c.first_time_ns = r.gps_time_ns;
     checked_any = true;

@@ -198,6 +198,17 @@ TEST(Simulate, CanLogHoldsEverySampleAsJ1939FramesThatLog2ascConverts) {
   EXPECT_NEAR(frames[0].t_s - t0, 0.0, 0.01);  // + the profile's latency
   EXPECT_EQ(frames[1].t_s, frames[0].t_s);
   EXPECT_NEAR(frames[4998].t_s - frames[0].t_s, 2499 * 0.008, 2e-6);
+  // A reader's hole (candump -d) in a J1939-only log: the frames before it check out, and
+  // nothing dates those after it, so they are cut, not mismatched. Dropped: sample 500's ACCS
+  // and both frames of sample 501.
+  std::vector<test::LoggedFrame> holed(frames.begin(), frames.begin() + 1001);
+  holed.insert(holed.end(), frames.begin() + 1004, frames.end());
+  holed[1001].dropped_before = 3;
+  const test::CanCheck h = test::check_frames_against_log(holed, rows);
+  EXPECT_EQ(h.mismatches, 0u) << h.first_problem;
+  EXPECT_EQ(h.ari, 501u);
+  EXPECT_EQ(h.accs, 500u);
+  EXPECT_EQ(h.cut, 2500u - 502);
 
   const std::string log2asc = "/usr/bin/log2asc";
   if (!fs::exists(log2asc)) GTEST_SKIP() << "can-utils' log2asc is not installed (tools/install-deps)";
