@@ -191,6 +191,17 @@ TEST(Simulate, CanLogHoldsEverySampleAsJ1939FramesThatLog2ascConverts) {
   EXPECT_NEAR(frames[0].t_s - t0, 0.0, 0.01);  // + the profile's latency
   EXPECT_EQ(frames[1].t_s, frames[0].t_s);
   EXPECT_NEAR(frames[4998].t_s - frames[0].t_s, 2499 * 0.008, 2e-6);
+  // A reader's hole (candump -d) in a J1939-only log: the frames before it check out, and
+  // nothing dates those after it, so they are cut, not mismatched. Dropped: sample 500's ACCS
+  // and both frames of sample 501.
+  std::vector<test::LoggedFrame> holed(frames.begin(), frames.begin() + 1001);
+  holed.insert(holed.end(), frames.begin() + 1004, frames.end());
+  holed[1001].dropped_before = 3;
+  const test::CanCheck h = test::check_frames_against_log(holed, rows);
+  EXPECT_EQ(h.mismatches, 0u) << h.first_problem;
+  EXPECT_EQ(h.ari, 501u);
+  EXPECT_EQ(h.accs, 500u);
+  EXPECT_EQ(h.cut, 2500u - 502);
 
   const std::string log2asc = "/usr/bin/log2asc";
   if (!fs::exists(log2asc)) GTEST_SKIP() << "can-utils' log2asc is not installed (tools/install-deps)";
@@ -226,6 +237,59 @@ TEST(Simulate, HighResolutionFramesDecodeToFullPrecision) {
   EXPECT_EQ(c.highres_fd, 500u);
   EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
   EXPECT_LE(c.max_hr_rate_err_radps, 0.5e-7 + 1e-9);
+}
+
+// A reader that falls behind leaves holes in its log (candump -d: a DROPCOUNT line before the
+// first frame after them; tests/can_capture.hpp). Cut anywhere and at any length, what is left
+// still checks out against the IMU log: no mismatch, and every frame that is left and can be
+// dated checked (the J1939 frames before a hole dated by the sample before them, the rest of a
+// sample after one by its CAN FD frame), so each layout counts exactly the samples that kept
+// its frames.
+TEST(Simulate, FramesLeftAroundAReadersHoleAllCheckOut) {
+  const fs::path d = temp_dir("can-holes");
+  const fs::path cfg = d / "hr.yaml";
+  std::ofstream(cfg) << "imu:\n  outputs:\n    - {type: socketcan, interface: vcan0, "
+                        "layouts: [j1939, highres, highres-fd]}\n";
+  ASSERT_EQ(simulate(cfg, d / "out", 1).exit_code, 0);
+  const auto rows = test::read_imu_rows(d / "out" / "imu.csv");
+  const auto frames = test::read_candump_log(d / "out" / "can.log");
+  ASSERT_EQ(rows.size(), 125u);
+  ASSERT_EQ(frames.size(), 125u * 8);  // per sample: ARI, ACCS, 5 classic high-resolution, FD
+  for (std::size_t start = 0; start < 3 * 8; ++start) {
+    for (const std::size_t length : std::initializer_list<std::size_t>{1, 2, 4, 5, 7, 8, 9, 23}) {
+      for (const bool at_end : {false, true}) {
+        const std::size_t from = at_end ? frames.size() - length : start + 8 * 60;
+        if (at_end && start > 0) continue;
+        const auto at = [&](std::size_t i) { return frames.begin() + static_cast<std::ptrdiff_t>(i); };
+        std::vector<test::LoggedFrame> left(frames.begin(), at(from));
+        left.insert(left.end(), at(from + length), frames.end());
+        if (at_end) {
+          left.back().dropped_after = length;
+        } else {
+          left[from].dropped_before = length;
+        }
+        const auto kept = [&](std::size_t k, std::size_t first, std::size_t n) {
+          return 8 * k + first + n <= from || 8 * k + first >= from + length;
+        };
+        std::size_t ari = 0, accs = 0, highres = 0, fd = 0;
+        for (std::size_t k = 0; k < rows.size(); ++k) {
+          if (kept(k, 0, 1)) ++ari;
+          if (kept(k, 1, 1)) ++accs;
+          if (kept(k, 2, 5)) ++highres;
+          if (kept(k, 7, 1)) ++fd;
+        }
+        const test::CanCheck c = test::check_frames_against_log(left, rows);
+        const std::string where =
+            std::to_string(length) + " frames dropped after frame " + std::to_string(from);
+        EXPECT_EQ(c.mismatches, 0u) << where << ": " << c.first_problem;
+        EXPECT_EQ(c.ari, ari) << where;
+        EXPECT_EQ(c.accs, accs) << where;
+        EXPECT_EQ(c.highres, highres) << where;
+        EXPECT_EQ(c.highres_fd, fd) << where;
+        EXPECT_EQ(test::reader_dropped(left), length) << where;
+      }
+    }
+  }
 }
 
 // A scene in the loop: the same seed and scene give identical files; the street canyon costs
