@@ -1,4 +1,4 @@
-// u-blox NMEA input. Message layouts: u-blox 8 / u-blox M8 Receiver
+// u-blox NMEA input and PUBX output. Message layouts: u-blox 8 / u-blox M8 Receiver
 // description (UBX-13003221), "PUBX Messages" and "Standard Messages"; the F9 interface
 // descriptions (UBX-18010854, UBX-21023318) for the GxQ polls; field widths from real
 // receiver output (tests/protocols/test_pubx.cpp). See pubx.hpp.
@@ -233,6 +233,114 @@ Parsed parse_input(std::string_view sentence) {
 }
 
 // ---- encoding ---------------------------------------------------------------------------
+
+namespace {
+
+std::string_view nav_status_code(NavStatus s) {
+  switch (s) {
+    case NavStatus::kNoFix: return "NF";
+    case NavStatus::kDeadReckoning: return "DR";
+    case NavStatus::kStandalone2D: return "G2";
+    case NavStatus::kStandalone3D: return "G3";
+    case NavStatus::kDifferential2D: return "D2";
+    case NavStatus::kDifferential3D: return "D3";
+    case NavStatus::kGnssDeadReckoning: return "RK";
+    case NavStatus::kTimeOnly: return "TT";
+  }
+  return "NF";
+}
+
+char use_code(SvUse u) {
+  switch (u) {
+    case SvUse::kUsed: return 'U';
+    case SvUse::kEphemerisNotUsed: return 'e';
+    case SvUse::kNotUsed: return '-';
+  }
+  return '-';
+}
+
+int time_decimals(const nmea::Format& fmt) { return std::clamp(fmt.time_decimals, 0, 3); }
+
+// A value in SI units scaled to wire units, then clamped; nothing when unset or not finite.
+std::optional<double> scaled(std::optional<double> v, double scale, double lo, double hi) {
+  if (v) *v *= scale;
+  return nmea::detail::valid(v, lo, hi);
+}
+
+}  // namespace
+
+void encode(const PositionFields& f, const nmea::Format& fmt, std::string& out) {
+  using namespace nmea::detail;
+  Line l("P", "UBX,00,");
+  put_time(l, stamp(f.utc, time_decimals(fmt)));
+  put_position(l, f.position, std::clamp(fmt.latlon_minute_decimals, 0, 5));
+  l.sep();
+  put_fixed(l, valid(f.height_user_datum_m, -99999.999, 999999.999), 3);
+  l.sep();
+  l.text(nav_status_code(f.nav_status));
+  l.sep();
+  put_significant(l, valid(f.h_acc_m, 0.0, 9999999.0), 2);
+  l.sep();
+  put_significant(l, valid(f.v_acc_m, 0.0, 9999999.0), 2);
+  l.sep();
+  put_fixed(l, scaled(f.speed_mps, nmea::detail::kMpsToKmh, 0.0, 99999.999), 3);
+  l.sep();
+  put_course(l, valid(f.course_deg, -1e9, 1e9), 2, 1);
+  l.sep();
+  put_fixed(l, valid(f.velocity_down_mps, -9999.999, 9999.999), 3);
+  l.sep();
+  put_fixed(l, valid(f.diff_age_s, 0.0, 999.9), 1);
+  for (const auto& dop : {f.hdop, f.vdop, f.tdop}) {
+    l.sep();
+    put_fixed(l, valid(dop, 0.0, 99.99), 2);
+  }
+  l.format(",{},0,{}", std::clamp(f.num_svs, 0, 255), f.dead_reckoning_used ? 1 : 0);
+  l.finish(out);
+}
+
+void encode(const SvStatusFields& f, std::string& out) {
+  // Written straight into `out`: the sentence has no length bound.
+  const std::size_t start = out.size();
+  auto it = std::back_inserter(out);
+  fmt::format_to(it, "$PUBX,03,{}", f.satellites.size());
+  for (const SvStatus& s : f.satellites) {
+    fmt::format_to(it, ",{},{},", std::clamp(s.sv_id, 0, 999), use_code(s.use));
+    if (s.azimuth_deg) fmt::format_to(it, "{:03d}", (*s.azimuth_deg % 360 + 360) % 360);
+    out += ',';
+    if (s.elevation_deg) fmt::format_to(it, "{:02d}", std::clamp(*s.elevation_deg, -90, 90));
+    out += ',';
+    if (s.cno_dbhz) fmt::format_to(it, "{:02d}", std::clamp(*s.cno_dbhz, 0, 99));
+    const double lock = std::isfinite(s.carrier_lock_s) ? s.carrier_lock_s : 0.0;
+    fmt::format_to(it, ",{:03d}", static_cast<int>(std::clamp(std::floor(lock), 0.0, 64.0)));
+  }
+  const std::string_view body = std::string_view(out).substr(start + 1);
+  fmt::format_to(it, "*{:02X}\r\n", nmea::checksum(body));
+}
+
+void encode(const TimeFields& f, const nmea::Format& fmt, std::string& out) {
+  using namespace nmea::detail;
+  Line l("P", "UBX,04,");
+  const Stamp t = stamp(f.utc, time_decimals(fmt));
+  put_time(l, t);
+  l.format(",{:02d}{:02d}{:02d},", t.day, t.month, t.year % 100);
+  put_fixed(l, valid(f.utc_tow_s, 0.0, 604800.0), 2);
+  l.sep();
+  if (f.utc_week) l.format("{}", std::clamp(*f.utc_week, 0, 99999));
+  l.sep();
+  if (f.leap_seconds) {
+    l.format("{}", std::clamp(*f.leap_seconds, -99, 99));
+    if (f.leap_seconds_default) l.put('D');
+  }
+  l.sep();
+  if (const auto bias_ns = scaled(f.clock_bias_s, 1e9, -999.999e9, 999.999e9))
+    l.format("{}", std::llround(*bias_ns));
+  l.sep();
+  put_fixed(l, scaled(f.clock_drift_s_per_s, 1e9, -1e6, 1e6), 3);
+  l.sep();
+  if (const auto gran_ns = scaled(f.time_pulse_granularity_s, 1e9, 0.0, 999.0))
+    l.format("{:02d}", std::llround(*gran_ns));
+  l.finish(out);
+}
 
 namespace {
 

@@ -1,12 +1,15 @@
 #pragma once
-// The NMEA side of a u-blox receiver port: the NMEA input the part accepts.
+// The NMEA side of a u-blox receiver port: the NMEA input the part accepts, and the u-blox
+// proprietary PUBX output sentences.
 //
 //  - NmeaInputReader: bytes as a host writes them to a port (in any pieces, interleaved with
 //    UBX and RTCM frames and junk) -> complete NMEA sentences with a good checksum.
 //  - parse_input(): a sentence -> the typed command the part takes from it (PUBX,40 message
 //    rates, PUBX,41 port protocols and baud, PUBX,00/03/04 polls, standard GxQ polls), or the
 //    reason it is not one.
-//  - encode(): the input commands themselves, for tests and tools.
+//  - encode(): the PUBX,00 / 03 / 04 outputs from typed fields in SI units and degrees (units
+//    are converted here only, unset optionals and non-finite values give empty fields, as in
+//    protocols/nmea.hpp); and the input commands themselves, for tests and tools.
 //
 // Sources: u-blox 8 / u-blox M8 Receiver description including protocol specification
 // (UBX-13003221), chapter "NMEA Protocol": "PUBX Messages" (CONFIG PUBX,41, POSITION PUBX,00,
@@ -202,6 +205,92 @@ class NmeaInputReader {
   std::size_t n_ = 0;
   Counters counters_;
 };
+
+// ---- PUBX outputs -----------------------------------------------------------------------
+
+// Navigation status of PUBX,00 (navStat).
+enum class NavStatus : std::uint8_t {
+  kNoFix,              // NF
+  kDeadReckoning,      // DR: dead reckoning only solution
+  kStandalone2D,       // G2
+  kStandalone3D,       // G3
+  kDifferential2D,     // D2
+  kDifferential3D,     // D3
+  kGnssDeadReckoning,  // RK: combined GNSS + dead reckoning solution
+  kTimeOnly,           // TT
+};
+
+// PUBX,00 (POSITION), lat/long position data:
+//   $PUBX,00,time,lat,NS,long,EW,altRef,navStat,hAcc,vAcc,SOG,COG,vVel,diffAge,HDOP,VDOP,TDOP,
+//   numSvs,reserved,DR*cs
+// Wire units: altRef m, hAcc/vAcc m, SOG km/h, COG degrees, vVel m/s positive downwards,
+// diffAge s. Widths as a u-blox M8 sends them (tests: captures): time hhmmss.ss, lat/long
+// (d)ddmm.mmmmm (Format::latlon_minute_decimals; the descriptions' example has six decimals,
+// an older firmware's), altRef 3 decimals, hAcc/vAcc 2 significant digits ("1.2", "27",
+// "5303316"), SOG 3 decimals, COG 2, vVel 3, diffAge 1, DOPs 2, numSvs plain, reserved "0",
+// DR 0/1. Without a fix the part sends zeros, "NF", its large accuracies and DOPs of 99.99
+// rather than empty fields; the device fills the fields that way.
+struct PositionFields {
+  nmea::UtcTime utc;                         // the date is not sent
+  std::optional<nmea::LatLon> position;      // user datum (WGS84 by default)
+  std::optional<double> height_user_datum_m;  // altRef, above the user datum ellipsoid
+                                             // [-99999.999, 999999.999]
+  NavStatus nav_status = NavStatus::kNoFix;
+  std::optional<double> h_acc_m, v_acc_m;    // [0, 9999999]
+  std::optional<double> speed_mps;           // over ground, sent in km/h [0, 99999.999 km/h]
+  std::optional<double> course_deg;          // over ground, [0, 360)
+  std::optional<double> velocity_down_mps;   // vVel [-9999.999, 9999.999]
+  std::optional<double> diff_age_s;          // age of the differential corrections [0, 999.9]
+  std::optional<double> hdop, vdop, tdop;    // [0, 99.99]
+  int num_svs = 0;                           // satellites used [0, 255]
+  bool dead_reckoning_used = false;          // DR
+};
+
+// Use of a satellite in PUBX,03 (status).
+enum class SvUse : std::uint8_t {
+  kNotUsed,              // '-'
+  kUsed,                 // 'U': used in the navigation solution
+  kEphemerisNotUsed,     // 'e': ephemeris available, but not used for navigation
+};
+
+struct SvStatus {
+  int sv_id = 0;                     // NMEA satellite number [0, 999], sent without padding
+  SvUse use = SvUse::kNotUsed;
+  std::optional<int> azimuth_deg;    // [0, 359] (taken modulo 360), three digits
+  std::optional<int> elevation_deg;  // [-90, 90], two digits ("-2", "06")
+  std::optional<int> cno_dbhz;       // [0, 99], two digits; unset when not tracked
+  double carrier_lock_s = 0.0;       // carrier lock time; 0 code lock only; sent in whole
+                                     // seconds, three digits, at most 64 ("lock for 64 s or
+                                     // more": the M8 captures never exceed "064")
+};
+
+// PUBX,03 (SVSTATUS), satellite status, one sentence for all satellites (real receivers send
+// it longer than 82 characters: 32 satellites make ~620):
+//   $PUBX,03,GT{,sv,s,az,el,cno,lck}*cs
+struct SvStatusFields {
+  std::span<const SvStatus> satellites;
+};
+
+// PUBX,04 (TIME), time of day and clock information:
+//   $PUBX,04,time,date,utcTow,utcWk,leapSec,clkBias,clkDrift,tpGran*cs
+// Wire units: utcTow s (2 decimals), utcWk weeks (continues beyond 1023), leapSec s with a
+// trailing 'D' when it is the firmware default rather than received from the satellites,
+// clkBias integer ns, clkDrift ns/s (3 decimals), tpGran ns (two digits). The M8, u-blox 7 and
+// F9 captures end with tpGran; the descriptions' example has one more, empty field.
+struct TimeFields {
+  nmea::UtcTime utc;                       // time and date (ddmmyy)
+  std::optional<double> utc_tow_s;         // UTC time of week [0, 604800]
+  std::optional<int> utc_week;             // [0, 99999]
+  std::optional<int> leap_seconds;         // [-99, 99]
+  bool leap_seconds_default = false;       // 'D'
+  std::optional<double> clock_bias_s;      // receiver clock bias, sent in ns [-999.999, 999.999] s
+  std::optional<double> clock_drift_s_per_s;  // sent in ns/s [-1e-3, 1e-3] s/s
+  std::optional<double> time_pulse_granularity_s;  // sent in ns [0, 999e-9] s
+};
+
+void encode(const PositionFields& f, const nmea::Format& fmt, std::string& out);  // PUBX,00
+void encode(const SvStatusFields& f, std::string& out);                           // PUBX,03
+void encode(const TimeFields& f, const nmea::Format& fmt, std::string& out);      // PUBX,04
 
 // The input commands as a host sends them (tests, tools): parse_input() of the result gives
 // the command back. SetRate sends its rates up to the last set one, empty fields for unset ones
