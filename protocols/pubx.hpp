@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "protocols/nmea.hpp"
+#include "protocols/ubx_messages.hpp"
 
 namespace navemu::pubx {
 
@@ -61,17 +62,19 @@ struct Id {
 using Talker = Id<2>;     // NMEA talker ID, e.g. "GP", "EI"
 using Formatter = Id<3>;  // NMEA sentence formatter, e.g. "GLL"
 
-// Receiver ports as PUBX,41 (portId) and UBX-CFG-PRT (portID) number them: 0 DDC (I2C),
-// 1 UART1, 2 UART2, 3 USB, 4 SPI. PUBX,40 gives one rate per port in this order.
-enum class PortId : std::uint8_t { kDdc = 0, kUart1 = 1, kUart2 = 2, kUsb = 3, kSpi = 4 };
+// Receiver ports as PUBX,41 (portId) and UBX-CFG-PRT (portID) number them (ubx::kPort*): 0 DDC
+// (I2C), 1 UART1, 2 UART2, 3 USB, 4 SPI. PUBX,40 gives one rate per port in this order.
+enum class PortId : std::uint8_t {
+  kDdc = ubx::kPortDdc,
+  kUart1 = ubx::kPortUart1,
+  kUart2 = ubx::kPortUart2,
+  kUsb = ubx::kPortUsb,
+  kSpi = ubx::kPortSpi,
+};
 inline constexpr std::size_t kPortCount = 5;
 
-// Protocol mask bits of PUBX,41 inProto/outProto: those of UBX-CFG-PRT inProtoMask (bit 0 UBX,
-// 1 NMEA, 2 RTCM 2, 5 RTCM 3) and outProtoMask (bit 0 UBX, 1 NMEA, 5 RTCM 3).
-inline constexpr std::uint16_t kProtoUbx = 0x0001;
-inline constexpr std::uint16_t kProtoNmea = 0x0002;
-inline constexpr std::uint16_t kProtoRtcm2 = 0x0004;
-inline constexpr std::uint16_t kProtoRtcm3 = 0x0020;
+// PUBX,41 inProto/outProto carry the protocol masks of UBX-CFG-PRT inProtoMask/outProtoMask
+// (ubx::kProtoUbx, kProtoNmea, kProtoRtcm (RTCM 2, input only), kProtoRtcm3).
 
 // ---- input commands ---------------------------------------------------------------------
 
@@ -90,8 +93,8 @@ struct SetRate {
 
 // PUBX,41 (CONFIG), set the protocols and baud rate of a port:
 //   $PUBX,41,portId,inProto,outProto,baudrate,autobauding*cs  e.g. $PUBX,41,1,0007,0003,19200,0*25
-// inProto/outProto are hexadecimal masks (kProto*; hosts send "0007" as well as "3"), baudrate
-// is in bit/s, autobauding 0 or 1.
+// inProto/outProto are hexadecimal masks (ubx::kProto*; hosts send "0007" as well as "3"),
+// baudrate is in bit/s, autobauding 0 or 1.
 struct SetPort {
   PortId port = PortId::kUart1;
   std::uint16_t in_proto = 0;

@@ -272,8 +272,8 @@ TEST(PubxParse, MalformedRates) {
 TEST(PubxParse, ConfigDescriptionExample) {
   const SetPort c = must_accept<SetPort>("$PUBX,41,1,0007,0003,19200,0*25\r\n");
   EXPECT_EQ(c.port, PortId::kUart1);
-  EXPECT_EQ(c.in_proto, kProtoUbx | kProtoNmea | kProtoRtcm2);
-  EXPECT_EQ(c.out_proto, kProtoUbx | kProtoNmea);
+  EXPECT_EQ(c.in_proto, ubx::kProtoUbx | ubx::kProtoNmea | ubx::kProtoRtcm);
+  EXPECT_EQ(c.out_proto, ubx::kProtoUbx | ubx::kProtoNmea);
   EXPECT_EQ(c.baud_rate, 19200u);
   EXPECT_FALSE(c.autobauding);
 }
@@ -286,12 +286,12 @@ TEST(PubxParse, ConfigAsHostsSendIt) {
   EXPECT_EQ(a.out_proto, 3);
   const SetPort b = must_accept<SetPort>(sentence("PUBX,41,2,0023,002f,921600,1"));
   EXPECT_EQ(b.port, PortId::kUart2);
-  EXPECT_EQ(b.in_proto, kProtoUbx | kProtoNmea | kProtoRtcm3);
+  EXPECT_EQ(b.in_proto, ubx::kProtoUbx | ubx::kProtoNmea | ubx::kProtoRtcm3);
   EXPECT_EQ(b.out_proto, 0x2F);
   EXPECT_TRUE(b.autobauding);
   const SetPort usb = must_accept<SetPort>(sentence("PUBX,41,3,0001,0001,9600,0"));
   EXPECT_EQ(usb.port, PortId::kUsb);
-  EXPECT_EQ(usb.out_proto, kProtoUbx);
+  EXPECT_EQ(usb.out_proto, ubx::kProtoUbx);
 }
 
 TEST(PubxParse, MalformedConfigs) {
