@@ -42,23 +42,16 @@ std::optional<std::string_view> NmeaInputReader::feed(std::uint8_t byte) {
       if (c == '$') start();
       if (c == '\n') state_ = State::kIdle;
       return std::nullopt;
-    case State::kLine:
-      break;
+    case State::kLine: break;
   }
   if (c == '\n') {
     buf_[n_++] = c;  // start() and the overlong check below leave room for it
     state_ = State::kIdle;
     const std::string_view line(buf_.data(), n_);
     switch (nmea::check(line).status) {
-      case nmea::Checked::kOk:
-        ++counters_.sentences;
-        return line;
-      case nmea::Checked::kBadChecksum:
-        ++counters_.checksum_errors;
-        return std::nullopt;
-      case nmea::Checked::kMalformed:
-        ++counters_.malformed;
-        return std::nullopt;
+      case nmea::Checked::kOk: ++counters_.sentences; return line;
+      case nmea::Checked::kBadChecksum: ++counters_.checksum_errors; return std::nullopt;
+      case nmea::Checked::kMalformed: ++counters_.malformed; return std::nullopt;
     }
     return std::nullopt;
   }
@@ -109,8 +102,7 @@ bool all_upper(std::string_view s) { return std::all_of(s.begin(), s.end(), is_u
 
 // A decimal number of 1 to 10 digits.
 std::optional<std::uint64_t> decimal(std::string_view s) {
-  if (s.empty() || s.size() > 10 || !std::all_of(s.begin(), s.end(), is_digit))
-    return std::nullopt;
+  if (s.empty() || s.size() > 10 || !std::all_of(s.begin(), s.end(), is_digit)) return std::nullopt;
   std::uint64_t v = 0;
   for (char c : s) v = v * 10 + static_cast<std::uint64_t>(c - '0');
   return v;
@@ -139,8 +131,8 @@ Parsed accept(Command c) { return {c, Reason::kAccepted, 0, {}}; }
 
 // PUBX,40: PUBX,40,msgId,rddc,rus1,rus2,rusb,rspi,reserved (at least one rate).
 Parsed parse_rate(const Fields& f) {
-  static constexpr std::array<std::string_view, kPortCount> kNames{"rddc", "rus1", "rus2",
-                                                                   "rusb", "rspi"};
+  static constexpr std::array<std::string_view, kPortCount> kNames{"rddc", "rus1", "rus2", "rusb",
+                                                                   "rspi"};
   if (f.n < 4 || f.n > 9) return reject(Reason::kFieldCount, f.n);
   if (f.f[2].size() != 3 || !all_upper(f.f[2])) return reject(Reason::kBadField, 2, "msgId");
   SetRate c;
@@ -153,7 +145,8 @@ Parsed parse_rate(const Fields& f) {
     if (*v > 255) return reject(Reason::kOutOfRange, 3 + p, kNames[p]);
     c.rate[p] = static_cast<std::uint8_t>(*v);
   }
-  if (f.n == 9 && !f.f[8].empty() && !decimal(f.f[8])) return reject(Reason::kBadField, 8, "reserved");
+  if (f.n == 9 && !f.f[8].empty() && !decimal(f.f[8]))
+    return reject(Reason::kBadField, 8, "reserved");
   return accept(c);
 }
 
@@ -191,8 +184,8 @@ Parsed parse_standard_poll(const Fields& f) {
     return reject(Reason::kNotInput);
   if (f.n != 2) return reject(Reason::kFieldCount, f.n);
   if (f.f[1].size() != 3 || !all_upper(f.f[1])) return reject(Reason::kBadField, 1, "msgId");
-  return accept(PollStandard{Talker::of(addr.substr(0, 2)), Talker::of(listener),
-                             Formatter::of(f.f[1])});
+  return accept(
+      PollStandard{Talker::of(addr.substr(0, 2)), Talker::of(listener), Formatter::of(f.f[1])});
 }
 
 }  // namespace

@@ -142,8 +142,8 @@ std::string_view to_string(Reason r);
 struct Parsed {
   std::optional<Command> command;  // set when reason is kAccepted
   Reason reason = Reason::kMalformed;
-  std::size_t field = 0;           // the offending field (0 = address), kFieldCount: the count
-  std::string_view field_name;     // its name in the description ("baudrate"), else empty
+  std::size_t field = 0;        // the offending field (0 = address), kFieldCount: the count
+  std::string_view field_name;  // its name in the description ("baudrate"), else empty
 };
 
 // A received sentence "$...*hh" (CR LF or LF optional) -> its command or the reason there is
@@ -234,30 +234,30 @@ enum class NavStatus : std::uint8_t {
 // DR 0/1. Without a fix the part sends zeros, "NF", its large accuracies and DOPs of 99.99
 // rather than empty fields; the device fills the fields that way.
 struct PositionFields {
-  nmea::UtcTime utc;                         // the date is not sent
-  std::optional<nmea::LatLon> position;      // user datum (WGS84 by default)
+  nmea::UtcTime utc;                          // the date is not sent
+  std::optional<nmea::LatLon> position;       // user datum (WGS84 by default)
   std::optional<double> height_user_datum_m;  // altRef, above the user datum ellipsoid
-                                             // [-99999.999, 999999.999]
+                                              // [-99999.999, 999999.999]
   NavStatus nav_status = NavStatus::kNoFix;
-  std::optional<double> h_acc_m, v_acc_m;    // [0, 9999999]
-  std::optional<double> speed_mps;           // over ground, sent in km/h [0, 99999.999 km/h]
-  std::optional<double> course_deg;          // over ground, [0, 360)
-  std::optional<double> velocity_down_mps;   // vVel [-9999.999, 9999.999]
-  std::optional<double> diff_age_s;          // age of the differential corrections [0, 999.9]
-  std::optional<double> hdop, vdop, tdop;    // [0, 99.99]
-  int num_svs = 0;                           // satellites used [0, 255]
-  bool dead_reckoning_used = false;          // DR
+  std::optional<double> h_acc_m, v_acc_m;   // [0, 9999999]
+  std::optional<double> speed_mps;          // over ground, sent in km/h [0, 99999.999 km/h]
+  std::optional<double> course_deg;         // over ground, [0, 360)
+  std::optional<double> velocity_down_mps;  // vVel [-9999.999, 9999.999]
+  std::optional<double> diff_age_s;         // age of the differential corrections [0, 999.9]
+  std::optional<double> hdop, vdop, tdop;   // [0, 99.99]
+  int num_svs = 0;                          // satellites used [0, 255]
+  bool dead_reckoning_used = false;         // DR
 };
 
 // Use of a satellite in PUBX,03 (status).
 enum class SvUse : std::uint8_t {
-  kNotUsed,              // '-'
-  kUsed,                 // 'U': used in the navigation solution
-  kEphemerisNotUsed,     // 'e': ephemeris available, but not used for navigation
+  kNotUsed,           // '-'
+  kUsed,              // 'U': used in the navigation solution
+  kEphemerisNotUsed,  // 'e': ephemeris available, but not used for navigation
 };
 
 struct SvStatus {
-  int sv_id = 0;                     // NMEA satellite number [0, 999], sent without padding
+  int sv_id = 0;  // NMEA satellite number [0, 999], sent without padding
   SvUse use = SvUse::kNotUsed;
   std::optional<int> azimuth_deg;    // [0, 359] (taken modulo 360), three digits
   std::optional<int> elevation_deg;  // [-90, 90], two digits ("-2", "06")
@@ -281,13 +281,13 @@ struct SvStatusFields {
 // clkBias integer ns, clkDrift ns/s (3 decimals), tpGran ns (two digits). The M8, u-blox 7 and
 // F9 captures end with tpGran; the descriptions' example has one more, empty field.
 struct TimeFields {
-  nmea::UtcTime utc;                       // time and date (ddmmyy)
-  std::optional<double> utc_tow_s;         // UTC time of week [0, 604800]
-  std::optional<int> utc_week;             // [0, 99999]
-  std::optional<int> leap_seconds;         // [-99, 99]
-  bool leap_seconds_default = false;       // 'D'
-  std::optional<double> clock_bias_s;      // receiver clock bias, sent in ns [-999.999, 999.999] s
-  std::optional<double> clock_drift_s_per_s;  // sent in ns/s [-1e-3, 1e-3] s/s
+  nmea::UtcTime utc;                   // time and date (ddmmyy)
+  std::optional<double> utc_tow_s;     // UTC time of week [0, 604800]
+  std::optional<int> utc_week;         // [0, 99999]
+  std::optional<int> leap_seconds;     // [-99, 99]
+  bool leap_seconds_default = false;   // 'D'
+  std::optional<double> clock_bias_s;  // receiver clock bias, sent in ns [-999.999, 999.999] s
+  std::optional<double> clock_drift_s_per_s;       // sent in ns/s [-1e-3, 1e-3] s/s
   std::optional<double> time_pulse_granularity_s;  // sent in ns [0, 999e-9] s
 };
 

@@ -62,9 +62,9 @@ const std::vector<std::string> kInputs = {
     "$PUBX,40,GLL,0,0,0,0*5C\r\n",          // the short form hosts send to u-blox 6/7/8
     "$PUBX,00*33\r\n",                      // F9 description, PUBX,00 poll
     "$PUBX,03*30\r\n",
-    "$PUBX,04*37\r\n",                      // F9 description, PUBX,04 poll
-    "$EIGPQ,RMC*3A\r\n",                    // ZED-F9P 4.2.9
-    "$EIGBQ,RMC*28\r\n",                    // ZED-F9P 4.2.2
+    "$PUBX,04*37\r\n",    // F9 description, PUBX,04 poll
+    "$EIGPQ,RMC*3A\r\n",  // ZED-F9P 4.2.9
+    "$EIGBQ,RMC*28\r\n",  // ZED-F9P 4.2.2
 };
 
 std::string encoded(const Command& c) {
@@ -131,10 +131,12 @@ TEST(PubxReader, InterleavedWithUbxFramesAndJunk) {
       stream.insert(stream.end(), s.begin(), s.end());
     }
   }
-  stream.insert(stream.end(), 5000, std::uint8_t{0});  // settles a UBX candidate that junk may have opened
+  stream.insert(stream.end(), 5000,
+                std::uint8_t{0});  // settles a UBX candidate that junk may have opened
   NmeaInputReader r;
   std::vector<std::string> expected;
-  for (int round = 0; round < 20; ++round) expected.insert(expected.end(), kInputs.begin(), kInputs.end());
+  for (int round = 0; round < 20; ++round)
+    expected.insert(expected.end(), kInputs.begin(), kInputs.end());
   EXPECT_EQ(read_all(r, stream), expected);
   EXPECT_GT(r.counters().abandoned, 0u);  // the '$' inside the frames and the junk
 
@@ -198,8 +200,9 @@ TEST(PubxReader, MalformedAndCutLines) {
   // No checksum; a lone CR inside; a cut write followed by the next sentence; a UBX frame
   // cutting a sentence; LF without CR (accepted: NMEA 0183 asks for CR LF, the descriptions do
   // not say what the part does with LF alone).
-  const std::string s = "$PUBX,00\r\n$PUBX,0\r0*33\r\n$PUBX,0$PUBX,04*37\r\n$PUBX,0\xB5\x62"
-                        "$PUBX,03*30\n";
+  const std::string s =
+      "$PUBX,00\r\n$PUBX,0\r0*33\r\n$PUBX,0$PUBX,04*37\r\n$PUBX,0\xB5\x62"
+      "$PUBX,03*30\n";
   EXPECT_EQ(read_all(r, bytes_of(s)),
             (std::vector<std::string>{"$PUBX,04*37\r\n", "$PUBX,03*30\n"}));
   EXPECT_EQ(r.counters().malformed, 2u);
@@ -220,8 +223,8 @@ TEST(PubxReader, NothingBeforeTheLineEnd) {
 template <typename T>
 T must_accept(std::string_view s) {
   const Parsed p = parse_input(s);
-  EXPECT_EQ(p.reason, Reason::kAccepted) << s << ": " << to_string(p.reason) << " field "
-                                         << p.field << " " << p.field_name;
+  EXPECT_EQ(p.reason, Reason::kAccepted)
+      << s << ": " << to_string(p.reason) << " field " << p.field << " " << p.field_name;
   if (!p.command || !std::holds_alternative<T>(*p.command)) {
     ADD_FAILURE() << s << " is not the expected command";
     return T{};
@@ -301,8 +304,7 @@ TEST(PubxParse, MalformedConfigs) {
   expect_rejected(sentence("PUBX,41,1,0007,00003,19200,0"), Reason::kBadField, 4, "outProto");
   expect_rejected(sentence("PUBX,41,1,0007,,19200,0"), Reason::kBadField, 4, "outProto");
   expect_rejected(sentence("PUBX,41,1,0007,0003,0,0"), Reason::kOutOfRange, 5, "baudrate");
-  expect_rejected(sentence("PUBX,41,1,0007,0003,4294967296,0"), Reason::kOutOfRange, 5,
-                  "baudrate");
+  expect_rejected(sentence("PUBX,41,1,0007,0003,4294967296,0"), Reason::kOutOfRange, 5, "baudrate");
   expect_rejected(sentence("PUBX,41,1,0007,0003,19200.0,0"), Reason::kBadField, 5, "baudrate");
   expect_rejected(sentence("PUBX,41,1,0007,0003,19200,2"), Reason::kBadField, 6, "autobauding");
   expect_rejected(sentence("PUBX,41,1,0007,0003,19200"), Reason::kFieldCount, 6);
@@ -315,9 +317,10 @@ TEST(PubxParse, PubxPolls) {
   EXPECT_EQ(must_accept<PollPubx>("$PUBX,04*37\r\n").msg_id, 4);
   // An output sent back is no poll ("polled by sending the PUBX,00 message without any data
   // fields"); PUBX,05/06 are not in the descriptions of these parts.
-  expect_rejected("$PUBX,00,035231.00,0641.64673,N,10137.05675,E,19.144,G3,1.2,2.2,0.015,0.00,"
-                  "0.037,,0.51,0.93,0.58,26,0,0*6D",
-                  Reason::kFieldCount, 21);
+  expect_rejected(
+      "$PUBX,00,035231.00,0641.64673,N,10137.05675,E,19.144,G3,1.2,2.2,0.015,0.00,"
+      "0.037,,0.51,0.93,0.58,26,0,0*6D",
+      Reason::kFieldCount, 21);
   expect_rejected(sentence("PUBX,05"), Reason::kNotInput, 1, "msgId");
   expect_rejected(sentence("PUBX,4"), Reason::kNotInput, 1, "msgId");
   expect_rejected(sentence("PUBX"), Reason::kFieldCount, 1);
@@ -358,8 +361,9 @@ TEST(PubxParse, OtherSentencesAndBadFraming) {
 TEST(PubxParse, DamagedInputNeverCrashes) {
   std::mt19937 rng(21);
   std::vector<std::string> seeds = kInputs;
-  seeds.push_back("$PUBX,00,035231.00,0641.64673,N,10137.05675,E,19.144,G3,1.2,2.2,0.015,0.00,"
-                  "0.037,,0.51,0.93,0.58,26,0,0*6D\r\n");
+  seeds.push_back(
+      "$PUBX,00,035231.00,0641.64673,N,10137.05675,E,19.144,G3,1.2,2.2,0.015,0.00,"
+      "0.037,,0.51,0.93,0.58,26,0,0*6D\r\n");
   std::uniform_int_distribution<int> byte(0, 255), action(0, 4);
   NmeaInputReader reader;
   std::size_t accepted = 0;
@@ -371,8 +375,12 @@ TEST(PubxParse, DamagedInputNeverCrashes) {
       switch (action(rng)) {
         case 0: s[pos] = static_cast<char>(byte(rng)); break;
         case 1: s.insert(pos, 1, static_cast<char>(byte(rng))); break;
-        case 2: s.insert(pos, 1, ",0123456789ABCDEF-."[static_cast<std::size_t>(byte(rng)) % 19]); break;
-        case 3: if (s.size() > 1) s.erase(pos, 1); break;
+        case 2:
+          s.insert(pos, 1, ",0123456789ABCDEF-."[static_cast<std::size_t>(byte(rng)) % 19]);
+          break;
+        case 3:
+          if (s.size() > 1) s.erase(pos, 1);
+          break;
         default: s.resize(pos + 1);
       }
     }
@@ -395,7 +403,6 @@ TEST(PubxParse, DamagedInputNeverCrashes) {
 }
 
 // ---- input commands encoded: round trips -------------------------------------------------------
-
 
 TEST(PubxCommands, DescriptionExamplesRoundTrip) {
   for (const std::string& s : kInputs) {
@@ -430,11 +437,13 @@ TEST(PubxCommands, RandomCommandsRoundTrip) {
                     static_cast<std::uint32_t>(u8(rng)) * 16777216u + 1u, coin(rng) != 0};
         break;
       case 2:
-        c = PollPubx{static_cast<std::uint8_t>(std::array{0, 3, 4}[static_cast<std::size_t>(i % 3)])};
+        c = PollPubx{
+            static_cast<std::uint8_t>(std::array{0, 3, 4}[static_cast<std::size_t>(i % 3)])};
         break;
       default:
         c = PollStandard{Talker::of("EI"),
-                         Talker::of(std::array{"GP", "GN", "GL", "GB", "GA", "GQ"}[static_cast<std::size_t>(i % 6)]),
+                         Talker::of(std::array{"GP", "GN", "GL", "GB", "GA",
+                                               "GQ"}[static_cast<std::size_t>(i % 6)]),
                          id3()};
     }
     const std::string s = encoded(c);
@@ -487,7 +496,9 @@ std::vector<SvStatus> satellites_of(const Fields& f) {
   for (std::size_t i = 3; i + 5 < f.size(); i += 6) {
     SvStatus s;
     s.sv_id = std::stoi(f[i]);
-    s.use = f[i + 1] == "U" ? SvUse::kUsed : f[i + 1] == "e" ? SvUse::kEphemerisNotUsed : SvUse::kNotUsed;
+    s.use = f[i + 1] == "U"   ? SvUse::kUsed
+            : f[i + 1] == "e" ? SvUse::kEphemerisNotUsed
+                              : SvUse::kNotUsed;
     s.azimuth_deg = inum(f[i + 2]);
     s.elevation_deg = inum(f[i + 3]);
     s.cno_dbhz = inum(f[i + 4]);
@@ -608,8 +619,7 @@ TEST(PubxEncode, DescriptionExamples) {
   expect_same_values(reencoded(sv), nmea::check(sv).body);
 
   // Its checksum is wrong (see the reader test): the fields are taken as printed.
-  const std::string tim =
-      "$PUBX,04,073731.00,091202,113851.00,1196,15D,1930035,-2660.664,43,*3C";
+  const std::string tim = "$PUBX,04,073731.00,091202,113851.00,1196,15D,1930035,-2660.664,43,*3C";
   const std::string_view tim_body = nmea::check(tim).body;
   ASSERT_EQ(nmea::check(tim).status, nmea::Checked::kBadChecksum);
   const std::string fixed = sentence(tim_body);
