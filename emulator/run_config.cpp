@@ -326,7 +326,6 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
     x.protver = u.text("protver").value_or("");
     if (x.protver.size() != 5 || x.protver[2] != '.')
       u.fail("protver", "the protocol version as MON-VER gives it, e.g. \"18.00\"");
-    x.firmware = u.text("firmware").value_or("");
     x.sw_version = u.text("sw_version").value_or("");
     x.hw_version = u.text("hw_version").value_or("");
     x.extensions = u.text_list("extensions").value_or(std::vector<std::string>{});

@@ -19,7 +19,6 @@ namespace navemu {
 // A u-blox receiver's identity and defaults (configs/gnss/ublox-*.yaml, key `ubx`).
 struct UbxSettings {
   std::string protver;  // "18.00": MON-VER's PROTVER=, and whether CFG-VALSET/VALGET exist (>= 27)
-  std::string firmware;  // "HPG 1.13": which configuration items the part has (protocol 27+)
   std::string sw_version, hw_version;
   std::vector<std::string> extensions;
   // UBX messages output by default ("NAV-PVT") with their rate (every n-th solution).

@@ -86,8 +86,12 @@ std::vector<std::pair<std::uint32_t, std::uint64_t>> profile_defaults(const Gnss
   return d;
 }
 
+// Which configuration items the part has: those of its firmware, as MON-VER's FWVER extension
+// names it (F9 HPG 1.13 UBX-21023318 for HPG 1.1x, F9 HPG 1.32 UBX-22008968 for HPG 1.3x).
 std::uint8_t firmware_of(const UbxSettings& u) {
-  return u.firmware.find("1.3") != std::string::npos ? kFwHpg132 : kFwHpg113;
+  for (const std::string& e : u.extensions)
+    if (e.starts_with("FWVER=HPG 1.3")) return kFwHpg132;
+  return kFwHpg113;
 }
 
 }  // namespace

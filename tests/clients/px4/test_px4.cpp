@@ -525,11 +525,18 @@ TEST_P(Px4Driver, DISABLED_ConfiguresAtOnceAndReportsEveryEpochAsSent) {
 // have is not processed.
 const std::vector<PartNak> kM8Naks{{ubx::kCfgValset, "UBX-13003221 32.5: no CFG-VALSET in protocol 18"}};
 
+// The jamming detector's sensitivity item, CFG-SEC-JAMDET_SENSITIVITY_HI (0x10f60051), came with
+// HPG 1.30: it is in the configuration reference of the F9 HPG 1.32 interface description
+// (UBX-22008968) and not in that of HPG 1.13 (UBX-21023318), so an HPG 1.1x part NAKs the
+// CFG-VALSET that holds it (VALSET: "an unknown key ... the whole message is rejected").
+const std::vector<PartNak> kHpg112Naks{{ubx::kCfgValset, "UBX-21023318: no CFG-SEC-JAMDET_SENSITIVITY_HI before HPG 1.30"}};
+
 std::vector<Px4Case> cases() {
   std::vector<Px4Case> out;
   for (const bool fixed : {false, true}) {
     out.push_back({"ublox-m8", "u_blox8", kM8Naks, fixed});
-    out.push_back({"ublox-f9p", "u_blox9_F9P_L1L2", {}, fixed});
+    out.push_back({"ublox-f9p", "u_blox9_F9P_L1L2", kHpg112Naks, fixed});
+    out.push_back({"ublox-f9p-hpg132", "u_blox9_F9P_L1L2", {}, fixed});
   }
   return out;
 }
