@@ -868,7 +868,7 @@ struct Descriptions : Describing {
           u1(&MonHw::vp, "VP"), u1(&MonHw::jam_ind, "jamInd"), u1(&MonHw::reserved2, "reserved2"),
           x4(&MonHw::pin_irq, "pinIrq"), x4(&MonHw::pull_h, "pullH"), x4(&MonHw::pull_l, "pullL")),
       describe<CfgPrtPoll>(kCfgPrt, "CFG-PRT", Length::kExact,
-          optional_u1(&CfgPrtPoll::has_port_id, &CfgPrtPoll::port_id, "portID")),
+          optional(&CfgPrtPoll::has_port_id, u1(&CfgPrtPoll::port_id, "portID"))),
       describe<CfgPrt>(kCfgPrt, "CFG-PRT", Length::kExact,
           u1(&CfgPrt::port_id, "portID"), u1(&CfgPrt::reserved1, "reserved1"),
           x2(&CfgPrt::tx_ready, "txReady"), x4(&CfgPrt::mode, "mode"),
@@ -908,7 +908,7 @@ struct Descriptions : Describing {
       describe<CfgCfg>(kCfgCfg, "CFG-CFG", Length::kExact,
           x4(&CfgCfg::clear_mask, "clearMask"), x4(&CfgCfg::save_mask, "saveMask"),
           x4(&CfgCfg::load_mask, "loadMask"),
-          optional_u1(&CfgCfg::has_device_mask, &CfgCfg::device_mask, "deviceMask")),
+          optional(&CfgCfg::has_device_mask, x1(&CfgCfg::device_mask, "deviceMask"))),
       describe<CfgRst>(kCfgRst, "CFG-RST", Length::kExact,
           x2(&CfgRst::nav_bbr_mask, "navBbrMask"), u1(&CfgRst::reset_mode, "resetMode"),
           u1(&CfgRst::reserved1, "reserved1")),
@@ -968,11 +968,14 @@ struct MessageInfo {
   MsgId id;
   const char* name;
   Length length;
-  std::size_t header_size;   // the fixed part (the whole payload without a block)
-  std::size_t block_size;    // one repeated block; 0: none, or of variable size
-  std::size_t count_offset;  // the U1 count of the blocks; header_size: not counted
-  bool key_values;           // key/value pairs to the end (CFG-VALGET answer, CFG-VALSET)
-  bool text;                 // NUL-padded strings: what follows a NUL is not kept
+  std::size_t header_size;    // the fixed part (the whole payload without a block)
+  std::size_t block_size;     // one repeated block; 0: none, or of variable size
+  std::size_t count_offset;   // the count of the blocks; header_size: not counted
+  std::size_t count_size;     // bytes of that count (1, or 2 for MON-PATCH)
+  std::size_t min_blocks;     // blocks a payload has at least
+  std::size_t optional_size;  // bytes of all optional last groups (0: none)
+  bool key_values;            // key/value pairs to the end (CFG-VALGET answer, CFG-VALSET)
+  bool text;                  // NUL-padded strings: what follows a NUL is not kept
   bool (*reencode)(std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
 };
 

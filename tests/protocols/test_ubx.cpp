@@ -1183,13 +1183,13 @@ TEST(UbxRobustness, DecodersOnTruncatedRealFrames) {
 // ---- the descriptions, generically ---------------------------------------------------------
 
 // Every described message through its registry hook (decode, then append): payloads shaped by
-// the description (fixed part, counted blocks, blocks to the end, an optional last byte,
+// the description (fixed part, counted blocks, blocks to the end, optional last groups,
 // configuration key/value pairs) with random contents, and some bytes too many. Whatever
 // decodes must append the very same frame, but for what the rules of
 // protocols/ubx_messages.hpp drop: bytes after an output message's table (a later protocol's
 // extension) and characters after a string's NUL (the frame keeps its length, and appending
 // it again changes nothing). A payload longer than an exact-length message must not decode,
-// unless the extra byte is its optional last field.
+// unless the extra bytes are its optional last groups.
 TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
   std::mt19937 rng(20);
   // Bytes 0 and 1 a quarter of the time (version fields, counts), otherwise any.
@@ -1207,7 +1207,10 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
       std::size_t extra = 0;
       if (m.block_size > 0) {
         const std::size_t n = rng() % 4;
-        if (m.count_offset < m.header_size) p[m.count_offset] = static_cast<std::uint8_t>(n);
+        if (m.count_offset < m.header_size) {
+          p[m.count_offset] = static_cast<std::uint8_t>(n);
+          if (m.count_size == 2) p[m.count_offset + 1] = 0;
+        }
         for (std::size_t i = 0; i < n * m.block_size; ++i) p.push_back(byte());
       } else if (m.key_values) {
         for (std::size_t i = rng() % 4; i > 0; --i) {
@@ -1216,7 +1219,8 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
           for (std::size_t k = cfg_value_size(key); k > 0; --k) p.push_back(byte());
         }
       } else {
-        extra = rng() % 3;
+        // Beyond the fixed part: none, part or all of the optional groups, and a byte or two.
+        extra = rng() % (m.optional_size + 3);
         for (std::size_t i = 0; i < extra; ++i) p.push_back(byte());
       }
       Bytes out;
