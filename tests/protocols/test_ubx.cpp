@@ -1197,7 +1197,7 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
     const auto r = static_cast<std::uint32_t>(rng());
     return static_cast<std::uint8_t>(r % 4 == 0 ? (r >> 8) % 2 : r >> 16);
   };
-  ASSERT_EQ(messages().size(), 34u);
+  ASSERT_EQ(messages().size(), 93u);
   for (const MessageInfo& m : messages()) {
     SCOPED_TRACE(m.name);
     int decoded = 0;
@@ -1250,7 +1250,13 @@ TEST(UbxDescriptions, RegistryFindsByIdAndName) {
   EXPECT_EQ(find_message("RXM-SFRBX")->id, kRxmSfrbx);
   EXPECT_EQ(find_message("RXM-SFRBX")->block_size, 4u);
   EXPECT_EQ(find_message("RXM-SFRBX")->count_offset, 4u);  // numWords
-  EXPECT_EQ(find_message(kNavTimels), nullptr);             // not described
+  EXPECT_EQ(find_message(kNavTimels)->header_size, NavTimels::kPayloadSize);
+  EXPECT_EQ(find_message(MsgId{kClassNav, 0x05}), nullptr);  // NAV-ATT: not described
+  // A message with several forms is found by its first: the CFG-PRT poll (0 or 1 byte).
+  ASSERT_NE(find_message(kCfgPrt), nullptr);
+  EXPECT_EQ(find_message(kCfgPrt)->header_size, 0u);
+  EXPECT_EQ(find_message(kCfgPrt)->optional_size, 1u);
+  EXPECT_EQ(find_message("MON-PATCH")->count_size, 2u);
   EXPECT_EQ(find_message("NAV-NONE"), nullptr);
 }
 
