@@ -114,27 +114,36 @@ inline constexpr std::array<SignalInfo, 29> kSignals{{
 inline constexpr int kGlonassMinChannel = -7;
 inline constexpr int kGlonassMaxChannel = 6;
 
+// The index of the signal's row in kSignals, -1 when it has none. Constant expressions use the
+// index rather than a pointer: g++ 12 with -fsanitize=undefined does not fold pointer comparisons.
+constexpr int signal_index(SignalId s) {
+  for (std::size_t k = 0; k < kSignals.size(); ++k)
+    if (kSignals[k].id == s) return static_cast<int>(k);
+  return -1;
+}
+
 // The signal's row of kSignals, nullptr when it has none.
 constexpr const SignalInfo* signal_info(SignalId s) {
-  for (const SignalInfo& i : kSignals)
-    if (i.id == s) return &i;
-  return nullptr;
+  const int k = signal_index(s);
+  return k < 0 ? nullptr : &kSignals[static_cast<std::size_t>(k)];
 }
 
 // Carrier frequency of a signal in the table; for GLONASS on frequency channel k.
 constexpr double carrier_frequency_hz(SignalId s, int glonass_channel = 0) {
-  const SignalInfo* i = signal_info(s);
-  return i == nullptr ? 0.0 : i->carrier_hz + glonass_channel * i->channel_step_hz;
+  const int k = signal_index(s);
+  if (k < 0) return 0.0;
+  const SignalInfo& i = kSignals[static_cast<std::size_t>(k)];
+  return i.carrier_hz + glonass_channel * i.channel_step_hz;
 }
 
 // UBX sigId of a satellite's signal. BeiDou's GEO satellites (PRN 1-5 and 59-63) broadcast the
 // D2 navigation message on B1I and B2I (BDS-SIS-ICD-B1I 3.0, 5.1), which u-blox tells apart.
 constexpr std::optional<int> ubx_sig_id(SatId sat, SignalId s) {
-  const SignalInfo* i = signal_info(s);
-  if (i == nullptr || i->ubx_sig_id < 0) return std::nullopt;
+  const int k = signal_index(s);
+  if (k < 0 || kSignals[static_cast<std::size_t>(k)].ubx_sig_id < 0) return std::nullopt;
   const bool d2 = sat.system() == GnssSystem::kBeidou && (s == kBeidouB1I || s == kBeidouB2I) &&
                   (sat.number() <= 5 || sat.number() >= 59);
-  return i->ubx_sig_id + (d2 ? 1 : 0);
+  return kSignals[static_cast<std::size_t>(k)].ubx_sig_id + (d2 ? 1 : 0);
 }
 
 // UBX freqId of a GLONASS frequency channel: k + 7, 0..13 (UBX-RXM-RAWX, UBX-NAV-SIG).

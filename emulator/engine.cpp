@@ -149,10 +149,10 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   if (offline && cfg.truth.kind == TruthSourceKind::kUdp)
     throw InputError(cfg.file.string(), 0, "truth.source", "simulate needs a generator or a CSV truth, not udp");
 
-  RunPlan plan = resolve_run(cfg, opt, log);
   // Host time stamps of truth datagrams map onto the scenario's clock: the scenario's start
-  // corresponds to the host's "now" at start.
+  // corresponds to the host's "now" at start (read before setting up, which takes a while).
   const GpsTime host_offset{start.ns - gps_now().ns};
+  RunPlan plan = resolve_run(cfg, opt, log);
   std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
   // Navigation data are checked before anything opens; lockstep knows its start only at the
   // first datagram, so it checks them then.

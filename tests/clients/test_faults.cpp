@@ -1097,9 +1097,11 @@ TEST(Faults, TruthThatIsAllRejectedEndsTheFixAfterTheTimeoutThoughDatagramsArriv
   EXPECT_GE(void_in_bad, 10);
   EXPECT_GE(valid_after, 5);
   std::string states;
-  for (const StatusLine& sl : status_lines(nav.err())) states += sl.truth + " ";
+  const std::vector<StatusLine> status = status_lines(nav.err());
+  for (const StatusLine& sl : status) states += sl.truth + " ";
   EXPECT_NE(states.find("rejecting rejecting"), std::string::npos) << states;
-  EXPECT_EQ(states.substr(states.size() - 3), "ok ") << states;
+  ASSERT_FALSE(status.empty());
+  EXPECT_TRUE(status.back().truth_ok) << states;  // ok, or extrapolating on a busy machine
 }
 
 // (n) A slow truth stream (1.5 Hz, within the 1 s timeout): every epoch has truth and a fix,
