@@ -69,16 +69,17 @@ bool GnssChannel::run_event(EventContext& ctx) {
   const GpsTime te{k_ * period_ns_};
   const std::optional<ImuTruth> tr = ctx.truth.at(te);
   const ReceiverFix& fix = receiver_->update(te, tr ? &*tr : nullptr);
-  chunk_.clear();
-  device_->encode_epoch(fix, receiver_->measurements(), k_, chunk_);
+  device_->update(fix, receiver_->measurements(), k_);
   const GpsTime deadline{te.ns + latency_ns_};
   const bool realtime = ctx.clock.realtime();
   if (realtime && ctx.clock.wait_until(deadline) == Clock::Wait::kStopped) return false;
-  for (auto& p : io_.ports) {
-    p->service();
-    if (!p->write(chunk_)) ++chunks_dropped_;
+  for (std::size_t i = 0; i < io_.ports.size(); ++i) {
+    chunk_.clear();
+    device_->encode(io_.receiver_ports[i], chunk_);
+    io_.ports[i]->service();
+    if (!io_.ports[i]->write(chunk_)) ++chunks_dropped_;
+    if (i == 0 && io_.capture_out) io_.capture_out->write(chunk_);
   }
-  if (io_.capture_out) io_.capture_out->write(chunk_);
   if (realtime) {
     const double late_ms = static_cast<double>(ctx.clock.monotonic_now() - ctx.clock.mono_of(deadline)) * 1e-6;
     ctx.lateness.add(late_ms);
@@ -93,33 +94,39 @@ bool GnssChannel::run_event(EventContext& ctx) {
   const EpochRecord record{te, seconds_between(te, start_), tr, fix};
   for (auto& r : recorders_) r->record(record);
   ++k_;
-  // A client changed the navigation rate (u-blox CFG-RATE): the next epoch lies on the new
-  // grid, after this one.
-  if (device_->period_ns() != period_ns_) {
-    period_ns_ = device_->period_ns();
-    k_ = te.ns / period_ns_ + 1;
-  }
+  follow_rate(te);
   return true;
+}
+
+// A client changed the navigation rate (u-blox CFG-RATE): the next epoch lies on the new grid,
+// after the last one sent.
+void GnssChannel::follow_rate(GpsTime last) {
+  if (device_->period_ns() == period_ns_) return;
+  period_ns_ = device_->period_ns();
+  k_ = std::max(last.ns / period_ns_ + 1, first_index_at_or_after(start_, period_ns_));
 }
 
 // Commands from the clients, answered on the port they came from.
 void GnssChannel::service() {
-  for (auto& p : io_.ports) {
+  for (std::size_t i = 0; i < io_.ports.size(); ++i) {
+    transport::BytePort& p = *io_.ports[i];
     for (int n = 0; n < 16; ++n) {  // bounded: a flooding client cannot hold the loop
-      const std::size_t len = p->read(input_);
+      const std::size_t len = p.read(input_);
       if (len == 0) break;
       replies_.clear();
       const std::span<const std::uint8_t> in(input_.data(), len);
-      device_->receive(in, replies_);
-      if (io_.capture_in) io_.capture_in->write(in);
+      device_->receive(in, io_.receiver_ports[i], replies_);
+      if (i == 0 && io_.capture_in) io_.capture_in->write(in);
       if (!replies_.empty()) {
-        p->write(replies_);
-        if (io_.capture_out) io_.capture_out->write(replies_);
+        p.write(replies_);
+        if (i == 0 && io_.capture_out) io_.capture_out->write(replies_);
       }
     }
   }
-  if (const std::optional<int> baud = device_->take_baud_change())
-    for (auto& p : io_.ports) transport::set_serial_baud(*p, *baud);
+  for (std::size_t i = 0; i < io_.ports.size(); ++i)
+    if (const std::optional<int> baud = device_->take_baud_change(io_.receiver_ports[i]))
+      transport::set_serial_baud(*io_.ports[i], *baud);
+  follow_rate(GpsTime{(k_ - 1) * period_ns_});
 }
 
 void GnssChannel::status(fmt::memory_buffer& out, ChannelStatus& st) {

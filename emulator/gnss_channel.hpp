@@ -6,7 +6,7 @@
 // It is computed kComputeLead before its deadline and written at the deadline; an epoch more
 // than one period late is skipped (a receiver outputs the current solution, not old ones). A
 // client that changes the navigation rate (u-blox CFG-RATE) moves the next epoch onto the new
-// grid, after the current one.
+// grid, after the current one, as soon as the command is taken.
 
 #include <array>
 #include <memory>
@@ -24,9 +24,12 @@
 
 namespace navemu {
 
-// Where the receiver's bytes go: its ports, and the mirrors of everything sent and received.
+// Where the receiver's bytes go: its ports, each standing for one of the receiver's own
+// (outputs' `port`: UART1 unless said), and the mirrors of everything the first one sends and
+// receives.
 struct GnssPorts {
   std::vector<std::unique_ptr<transport::BytePort>> ports;
+  std::vector<ReceiverPort> receiver_ports;  // one per port
   std::unique_ptr<transport::BytePort> capture_out, capture_in;
   void service();  // accepts TCP clients and the like while nothing runs yet (lockstep)
 };
@@ -51,6 +54,7 @@ class GnssChannel final : public SensorChannel {
 
  private:
   static constexpr std::int64_t kComputeLead_ns = 2'000'000;  // computed 2 ms before output
+  void follow_rate(GpsTime last);
 
   std::unique_ptr<NavData> nav_;  // before the receiver and device, which refer to it
   std::unique_ptr<Receiver> receiver_;

@@ -16,22 +16,44 @@
 
 namespace navemu {
 
+// The receiver's ports (u-blox port IDs, UBX-13003221 "UBX-CFG-PRT" and the F9 interface
+// description's CFG-UART1/UART2/USB/I2C/SPI groups): each output of a run stands for one.
+enum class ReceiverPort : std::uint8_t { kI2c = 0, kUart1 = 1, kUart2 = 2, kUsb = 3, kSpi = 4 };
+inline constexpr std::size_t kReceiverPorts = 5;
+
 class GnssDevice {
  public:
   virtual ~GnssDevice() = default;
-  // Appends the bytes of one navigation epoch (index = whole periods since the GPS epoch).
-  virtual void encode_epoch(const ReceiverFix& fix, const EpochMeasurements& meas,
-                            std::int64_t epoch_index, std::string& out) = 0;
-  // Takes bytes from the client; replies (acknowledgements, answers to polls) are appended to
-  // `replies` and go out at once.
-  virtual void receive(std::span<const std::uint8_t> bytes, std::string& replies) {
+  // The solution and measurements of one navigation epoch (index = whole periods since the GPS
+  // epoch); then encode() for each port.
+  virtual void update(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) = 0;
+  // Appends the bytes of the last updated epoch that `port` sends.
+  virtual void encode(ReceiverPort port, std::string& out) = 0;
+  // update() and encode() for UART1.
+  void encode_epoch(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index,
+                    std::string& out) {
+    update(fix, meas, epoch_index);
+    encode(ReceiverPort::kUart1, out);
+  }
+  // Takes bytes a client sent to `port`; replies (acknowledgements, answers to polls) are
+  // appended to `replies` and go out at once on that port.
+  virtual void receive(std::span<const std::uint8_t> bytes, ReceiverPort port, std::string& replies) {
     (void)bytes;
+    (void)port;
     (void)replies;
+  }
+  void receive(std::span<const std::uint8_t> bytes, std::string& replies) {
+    receive(bytes, ReceiverPort::kUart1, replies);
   }
   // The navigation epoch period; a client may change it (u-blox CFG-RATE).
   virtual std::int64_t period_ns() const = 0;
-  // A baud rate the client asked for, to apply after the acknowledgement went out (once).
-  virtual std::optional<int> take_baud_change() { return std::nullopt; }
+  // A baud rate the client asked for on a UART, to apply after the acknowledgement went out
+  // (once).
+  virtual std::optional<int> take_baud_change(ReceiverPort port) {
+    (void)port;
+    return std::nullopt;
+  }
+  std::optional<int> take_baud_change() { return take_baud_change(ReceiverPort::kUart1); }
   // True until a client-requested restart has produced its first fix again.
   virtual bool restarting(GpsTime t) const {
     (void)t;

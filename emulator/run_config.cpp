@@ -50,6 +50,13 @@ Geodetic position(YamlMap m, const Geodetic& fallback) {
 OutputSpec output(YamlMap m) {
   OutputSpec o;
   o.type = m.text("type").value_or("");
+  const char* receiver_port_key = o.type == "tcp" || o.type == "udp" ? "receiver_port" : "port";
+  o.receiver_port = m.text(receiver_port_key).value_or(o.receiver_port);
+  static const std::vector<std::string> kPorts = {"i2c", "uart1", "uart2", "usb", "spi"};
+  if (std::find(kPorts.begin(), kPorts.end(), o.receiver_port) == kPorts.end())
+    m.fail(receiver_port_key, fmt::format("'{}' is not one of i2c, uart1, uart2, usb, spi (the receiver's port "
+                                          "this output stands for)",
+                                          o.receiver_port));
   static const std::vector<std::string> kTypes = {"pty", "serial", "tcp", "udp", "file"};
   if (std::find(kTypes.begin(), kTypes.end(), o.type) == kTypes.end())
     m.fail("type", fmt::format("'{}' is not one of pty, serial, tcp, udp, file", o.type));
@@ -319,6 +326,7 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
     x.protver = u.text("protver").value_or("");
     if (x.protver.size() != 5 || x.protver[2] != '.')
       u.fail("protver", "the protocol version as MON-VER gives it, e.g. \"18.00\"");
+    x.firmware = u.text("firmware").value_or("");
     x.sw_version = u.text("sw_version").value_or("");
     x.hw_version = u.text("hw_version").value_or("");
     x.extensions = u.text_list("extensions").value_or(std::vector<std::string>{});

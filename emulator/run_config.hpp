@@ -19,6 +19,7 @@ namespace navemu {
 // A u-blox receiver's identity and defaults (configs/gnss/ublox-*.yaml, key `ubx`).
 struct UbxSettings {
   std::string protver;  // "18.00": MON-VER's PROTVER=, and whether CFG-VALSET/VALGET exist (>= 27)
+  std::string firmware;  // "HPG 1.13": which configuration items the part has (protocol 27+)
   std::string sw_version, hw_version;
   std::vector<std::string> extensions;
   // UBX messages output by default ("NAV-PVT") with their rate (every n-th solution).
@@ -68,6 +69,9 @@ struct OutputSpec {
   std::string path;  // file
   std::size_t max_backlog_bytes = 4096;  // pty
   std::string gpsd_socket;  // pty: gpsd's control socket, told when the pty comes and goes
+  // The receiver's port it stands for: i2c, uart1, uart2, usb, spi (YAML `port` on pty, serial
+  // and file outputs, `receiver_port` on tcp and udp ones, whose `port` is the network's).
+  std::string receiver_port = "uart1";
 };
 
 // How IMU samples become CAN frames (protocols/can_frames.hpp, configs/can/navemu.dbc).

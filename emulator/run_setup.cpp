@@ -49,6 +49,17 @@ std::unique_ptr<transport::BytePort> open_output(const OutputSpec& o, const Gnss
   return transport::open_log_file(o.path);
 }
 
+ReceiverPort receiver_port(const std::string& name) {
+  constexpr std::pair<const char*, ReceiverPort> kPorts[] = {{"i2c", ReceiverPort::kI2c},
+                                                             {"uart1", ReceiverPort::kUart1},
+                                                             {"uart2", ReceiverPort::kUart2},
+                                                             {"usb", ReceiverPort::kUsb},
+                                                             {"spi", ReceiverPort::kSpi}};
+  for (const auto& [n, p] : kPorts)
+    if (name == n) return p;
+  return ReceiverPort::kUart1;
+}
+
 // The receiver's models from the profile: its class, mask, channels and antenna, the geoid, and
 // the scene it sees.
 ReceiverParams receiver_params(const RunConfig& cfg, std::ostream& log) {
@@ -135,10 +146,14 @@ RunOutputs open_outputs(const RunConfig& cfg, const RunPlan& plan, const EngineO
     if (offline) {
       // The receiver's byte stream as on the wire: NMEA, or UBX mixed with NMEA.
       out.gnss.ports.push_back(transport::open_log_file((opt.out_dir / (cfg.gnss.ubx ? "ubx.bin" : "nmea.log")).string()));
+      out.gnss.receiver_ports.push_back(ReceiverPort::kUart1);
       out.epoch_recorders.push_back(make_truth_csv(opt.out_dir));
       out.epoch_recorders.push_back(make_gnss_csv(opt.out_dir));
     } else {
-      for (const OutputSpec& o : cfg.gnss_outputs) out.gnss.ports.push_back(open_output(o, cfg.gnss));
+      for (const OutputSpec& o : cfg.gnss_outputs) {
+        out.gnss.ports.push_back(open_output(o, cfg.gnss));
+        out.gnss.receiver_ports.push_back(receiver_port(o.receiver_port));
+      }
       if (!cfg.gnss_capture.empty()) {
         out.gnss.capture_out = transport::open_log_file(cfg.gnss_capture);
         out.gnss.capture_in = transport::open_log_file(cfg.gnss_capture + ".in");

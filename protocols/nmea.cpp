@@ -14,6 +14,8 @@
 #include <iterator>
 #include <utility>
 
+#include "protocols/nmea_fields.hpp"
+
 namespace navemu::nmea {
 
 Format Format::garmin() {
@@ -34,15 +36,9 @@ Format Format::garmin() {
   return f;
 }
 
-namespace {
+namespace detail {
 
-// "$" + address + fields + "*hh" + CR LF (NMEA 0183 section 5.3).
-constexpr std::size_t kMaxSentence = 82;
-constexpr std::size_t kTail = 5;  // "*hh\r\n"
-
-constexpr std::array<std::int64_t, 7> kPow10{1, 10, 100, 1000, 10000, 100000, 1000000};
 constexpr double kMpsToKnots = 3600.0 / 1852.0;  // 1 international knot = 1852 m/h
-constexpr double kMpsToKmh = 3.6;
 constexpr double kMaxKnots = 9999.999;
 constexpr double kMaxSpeed_mps = kMaxKnots / kMpsToKnots;
 
@@ -78,62 +74,6 @@ std::optional<double> valid(std::optional<double> v, double lo, double hi) {
 }
 
 char letter_or(char c, char fallback) { return c >= 'A' && c <= 'Z' ? c : fallback; }
-
-// One sentence assembled in a fixed buffer (no allocation). Every field is preceded by ','.
-class Line {
- public:
-  Line(std::string_view talker, std::string_view type) {
-    put('$');
-    text(talker.substr(0, 2));
-    text(type);
-  }
-
-  void put(char c) {
-    if (n_ < buf_.size()) buf_[n_++] = c;
-  }
-  void text(std::string_view s) {
-    for (char c : s) put(c);
-  }
-  void sep() { put(','); }
-
-  template <typename... T>
-  void format(fmt::format_string<T...> f, T&&... args) {
-    const auto r =
-        fmt::format_to_n(buf_.data() + n_, buf_.size() - n_, f, std::forward<T>(args)...);
-    n_ = std::min(buf_.size(), n_ + r.size);
-  }
-
-  // Fixed point with `decimals` digits and at least `int_digits` zero-padded integer digits; no
-  // sign on a value that rounds to zero ("-0.0" is not sent).
-  void fixed(double v, int decimals, int int_digits = 1) {
-    const int width = int_digits + (decimals > 0 ? decimals + 1 : 0);
-    std::array<char, 48> tmp{};
-    const auto r =
-        fmt::format_to_n(tmp.data(), tmp.size(), "{:0{}.{}f}", std::fabs(v), width, decimals);
-    const std::string_view s(tmp.data(), std::min(tmp.size(), r.size));
-    if (v < 0 && s.find_first_of("123456789") != std::string_view::npos) put('-');
-    text(s);
-  }
-
-  // `units` (a non-negative count of 10^-decimals) as "i.fff" with zero-padded integer part.
-  void scaled(std::int64_t units, int decimals, int int_digits) {
-    const std::int64_t scale = kPow10[static_cast<std::size_t>(decimals)];
-    format("{:0{}d}", units / scale, int_digits);
-    if (decimals > 0) format(".{:0{}d}", units % scale, decimals);
-  }
-
-  bool fits() const { return n_ + kTail <= kMaxSentence; }
-
-  void finish(std::string& out) const {
-    const std::string_view body(buf_.data() + 1, n_ - 1);
-    out.append(buf_.data(), n_);
-    fmt::format_to(std::back_inserter(out), "*{:02X}\r\n", checksum(body));
-  }
-
- private:
-  std::array<char, 160> buf_{};  // longer than any sentence before fitting (see nmea.hpp)
-  std::size_t n_ = 0;
-};
 
 // Renders a sentence; while it is longer than 82 characters, takes one decimal off the first
 // number in `shrink` that still has one and renders it again. The value clamps make the
@@ -181,14 +121,6 @@ Civil civil_from_days(std::int64_t z) {
   const int m = static_cast<int>(mp < 10 ? mp + 3 : mp - 9);
   return {era * 400 + yoe + (m <= 2 ? 1 : 0), m, d};
 }
-
-// A UTC time rounded as a whole to the sent number of decimals; the rounding carries through
-// seconds, minutes, hours and the date, so 60 seconds never appear.
-struct Stamp {
-  int year, month, day, hour, minute, second;
-  std::int64_t fraction;  // units of 10^-decimals s
-  int decimals;
-};
 
 Stamp stamp(const UtcTime& t, int decimals) {
   const std::int64_t scale = kPow10[static_cast<std::size_t>(decimals)];
@@ -258,7 +190,7 @@ void put_course(Line& l, std::optional<double> v, int decimals, int int_digits) 
   l.scaled(units, decimals, int_digits);
 }
 
-void put_fixed(Line& l, std::optional<double> v, int decimals, int int_digits = 1) {
+void put_fixed(Line& l, std::optional<double> v, int decimals, int int_digits) {
   if (v) l.fixed(*v, decimals, int_digits);
 }
 
@@ -290,7 +222,9 @@ void put_int(Line& l, std::optional<int> v, int digits, int lo, int hi) {
   if (v) l.format("{:0{}d}", std::clamp(*v, lo, hi), digits);
 }
 
-}  // namespace
+}  // namespace detail
+
+using namespace detail;
 
 // ---- sentences ---------------------------------------------------------------------------
 
@@ -556,30 +490,36 @@ int hex_digit(char c) {
 }
 }  // namespace
 
-std::optional<std::vector<std::string>> parse(std::string_view s) {
+Checked check(std::string_view s) {
   if (s.ends_with("\r\n")) {
     s.remove_suffix(2);
   } else if (s.ends_with('\n')) {
     s.remove_suffix(1);
   }
-  if (s.size() < 4 || s.front() != '$' || s[s.size() - 3] != '*') return std::nullopt;
+  if (s.size() < 4 || s.front() != '$' || s[s.size() - 3] != '*') return {Checked::kMalformed, {}};
   const int hi = hex_digit(s[s.size() - 2]);
   const int lo = hex_digit(s[s.size() - 1]);
-  if (hi < 0 || lo < 0) return std::nullopt;
+  if (hi < 0 || lo < 0) return {Checked::kMalformed, {}};
   const std::string_view body = s.substr(1, s.size() - 4);
-  if (body.empty() || body.front() == ',') return std::nullopt;  // no address field
+  if (body.empty() || body.front() == ',') return {Checked::kMalformed, {}};  // no address field
   for (char c : body) {
     const auto u = static_cast<unsigned char>(c);
     // The reserved characters of NMEA 0183 other than the field delimiter (and '^', the
     // hexadecimal escape, which may appear in a body).
     if (u < 0x20 || u > 0x7E || c == '$' || c == '*' || c == '!' || c == '\\' || c == '~')
-      return std::nullopt;
+      return {Checked::kMalformed, {}};
   }
-  if (checksum(body) != hi * 16 + lo) return std::nullopt;
+  if (checksum(body) != hi * 16 + lo) return {Checked::kBadChecksum, body};
+  return {Checked::kOk, body};
+}
+
+std::optional<std::vector<std::string>> parse(std::string_view s) {
+  const Checked c = check(s);
+  if (c.status != Checked::kOk) return std::nullopt;
   std::vector<std::string> fields;
   for (std::size_t start = 0;;) {
-    const std::size_t comma = body.find(',', start);
-    fields.emplace_back(body.substr(start, comma - start));
+    const std::size_t comma = c.body.find(',', start);
+    fields.emplace_back(c.body.substr(start, comma - start));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }

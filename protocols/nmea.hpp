@@ -201,11 +201,20 @@ void encode(const PgrmeFields& f, const Format& fmt, std::string& out);
 // The checksum of a sentence body (the characters between '$' and '*'): XOR of the bytes.
 std::uint8_t checksum(std::string_view body);
 
+// The framing and checksum of a received sentence "$...*hh" (CR LF or LF optional), without
+// splitting or allocating. kMalformed: no leading '$', no address field, a character outside
+// printable ASCII or a reserved one ('$', '*', '!', '\\', '~') in the body, or no '*' followed
+// by exactly two hex digits (either case). kBadChecksum: framed right, checksum mismatch. The
+// body (between '$' and '*') is set unless malformed. The length is not checked (real
+// receivers exceed 82 characters now and then).
+struct Checked {
+  enum Status { kOk, kMalformed, kBadChecksum } status = kMalformed;
+  std::string_view body;
+};
+Checked check(std::string_view sentence);
+
 // A received sentence split into fields, for tests and tools: "$GPGGA,...*hh" (CR LF or LF
-// optional) -> {"GPGGA", ...}. Empty when the framing or checksum is wrong: no leading '$', no
-// address field, a character outside printable ASCII or a reserved one ('$', '*', '!', '\\',
-// '~') in the body, no '*' followed by exactly two hex digits (either case), or a checksum
-// mismatch. The length is not checked (real receivers exceed 82 characters now and then).
+// optional) -> {"GPGGA", ...}. Empty unless check() finds it kOk.
 std::optional<std::vector<std::string>> parse(std::string_view sentence);
 
 }  // namespace navemu::nmea

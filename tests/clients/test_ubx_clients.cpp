@@ -22,6 +22,7 @@
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
 #include "tests/clients/client_support.hpp"
+#include "tests/clients/ubx_frames.hpp"
 
 namespace navemu::test::clients {
 namespace {
@@ -67,36 +68,7 @@ std::string ubx_config(const fs::path& profile, const fs::path& link, const fs::
       link.string(), log.string());
 }
 
-// ---- UBX frames --------------------------------------------------------------------------
-
-struct UbxFrame {
-  ubx::MsgId id;
-  std::vector<std::uint8_t> payload;
-  double t_mono = 0;  // arrival (pty reads); 0 for frames from a file
-};
-
-// Every good frame of a byte stream (NMEA and junk in between are skipped).
-std::vector<UbxFrame> parse_frames(const std::string& bytes, ubx::Parser::Counters* counters = nullptr) {
-  ubx::Parser p(65535);
-  std::vector<UbxFrame> out;
-  p.feed(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()),
-         [&](ubx::Parser::Result r) {
-           if (r != ubx::Parser::Result::kFrame) return;
-           out.push_back({{p.cls(), p.id()}, {p.payload().begin(), p.payload().end()}, 0.0});
-         });
-  if (counters != nullptr) *counters = p.counters();
-  return out;
-}
-
-template <typename Msg>
-std::vector<Msg> decode_all(const std::vector<UbxFrame>& frames, ubx::MsgId id) {
-  std::vector<Msg> out;
-  for (const UbxFrame& f : frames) {
-    Msg m;
-    if (f.id == id && ubx::decode(f.payload, m)) out.push_back(m);
-  }
-  return out;
-}
+// ---- UBX frames (tests/clients/ubx_frames.hpp) -------------------------------------------
 
 std::vector<std::uint8_t> ubx_poll(ubx::MsgId id) {
   std::vector<std::uint8_t> out;
@@ -587,8 +559,9 @@ TEST(UbxTool, M8PollsRateChangeAndRefusals) {
 }
 
 // ubxtool on the ZED-F9P profile (protocol 27.11): MON-VER shows PROTVER=27.11; VALSET
-// CFG-RATE-MEAS 200 (RAM) is acknowledged and VALGET reads 200 back; a VALSET of a key the
-// receiver does not emulate (CFG-TP-PERIOD_TP1) gets ACK-NAK; NAV-PVT switched on by
+// CFG-RATE-MEAS 200 (RAM) is acknowledged and VALGET reads 200 back; a key navemu does not
+// model (CFG-TP-PERIOD_TP1) is stored and read back; a value out of range gets ACK-NAK
+// (F9 HPG 1.13 description, UBX-CFG-VALSET); NAV-PVT switched on by
 // CFG-MSGOUT-UBX_NAV_PVT_UART1 then comes at 5 Hz.
 TEST(UbxTool, F9pValsetValget) {
   NAVEMU_REQUIRE_TOOL(ubxtool, "ubxtool", "python3-gps 3.22 (gpsd-clients)");
@@ -608,7 +581,13 @@ TEST(UbxTool, F9pValsetValget) {
   EXPECT_TRUE(has_message(out, "UBX-CFG-VALGET:", "item CFG-RATE-MEAS/0x30210001 val 200")) << out;
   EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x8b (VALGET)")) << out;
 
+  // A key navemu does not model is stored and read back as on the part.
   out = run_ubxtool(ubxtool, dir, link, "27", {"-z", "CFG-TP-PERIOD_TP1,500000,1"}, 0.5);
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x8a (VALSET)")) << out;
+  out = run_ubxtool(ubxtool, dir, link, "27", {"-g", "CFG-TP-PERIOD_TP1"});
+  EXPECT_TRUE(has_message(out, "UBX-CFG-VALGET:", "item CFG-TP-PERIOD_TP1/0x40050002 val 500000")) << out;
+  // A value below the item's range (CFG-RATE-MEAS: 25 ms at least) is refused.
+  out = run_ubxtool(ubxtool, dir, link, "27", {"-z", "CFG-RATE-MEAS,10,1"}, 0.5);
   EXPECT_TRUE(has_message(out, "UBX-ACK-NAK:", "NAK to Class x06 (CFG) ID x8a (VALSET)")) << out;
 
   out = run_ubxtool(ubxtool, dir, link, "27", {"-z", "CFG-MSGOUT-UBX_NAV_PVT_UART1,1,1"}, 0.5);

@@ -113,6 +113,22 @@ TEST(RunConfig, BadCanSettingsNameTheKey) {
             std::string::npos);
 }
 
+// Each GNSS output stands for one of the receiver's ports: `port:` on pty, serial and file,
+// `receiver_port:` on tcp and udp (where `port` is the network port); UART1 when not given.
+TEST(RunConfig, GnssOutputsNameTheReceiverPortTheyStandFor) {
+  const RunConfig c = load_run_config(write_temp(
+      "ports.yaml",
+      "gnss:\n  profile: ublox-f9p\n  outputs:\n    - {type: pty, link: /tmp/x-usb, port: usb}\n"
+      "    - {type: tcp, port: 5000, receiver_port: uart2}\n    - {type: file, path: /tmp/x.ubx}\n"));
+  ASSERT_EQ(c.gnss_outputs.size(), 3u);
+  EXPECT_EQ(c.gnss_outputs[0].receiver_port, "usb");
+  EXPECT_EQ(c.gnss_outputs[1].receiver_port, "uart2");
+  EXPECT_EQ(c.gnss_outputs[2].receiver_port, "uart1");
+  const std::string e = load_error("gnss:\n  outputs:\n    - {type: pty, port: usb3}\n");
+  EXPECT_NE(e.find(":3: gnss.outputs[0].port: 'usb3' is not one of i2c, uart1, uart2, usb, spi"), std::string::npos)
+      << e;
+}
+
 TEST(RunConfig, EveryShippedGnssProfileLoads) {
   const auto names = available_gnss_profiles();
   ASSERT_GE(names.size(), 2u);

@@ -346,17 +346,19 @@ TEST_F(UbxDeviceTest, ValsetValgetOnProtocol27) {
   EXPECT_EQ(valget(ubx::cfgkey::kRateMeas), 200u);
   EXPECT_EQ(d.period_ns(), 200'000'000);
 
-  // One unknown key (CFG-TP-PERIOD_TP1, not implemented) beside a valid one: NAK, neither set.
+  // One key the part does not have (group 0xfe is unassigned) beside a valid one: NAK, neither
+  // set.
   ubx::CfgValset mixed;
-  mixed.values = {{ubx::cfgkey::kRateMeas, 500}, {0x40050002, 1'000'000}};
+  mixed.values = {{ubx::cfgkey::kRateMeas, 500}, {0x40fe0002, 1'000'000}};
   EXPECT_TRUE(only_ack(send(d, frame(mixed)), ubx::kCfgValset, true));
   EXPECT_EQ(valget(ubx::cfgkey::kRateMeas), 200u);
   EXPECT_EQ(d.period_ns(), 200'000'000);
-  EXPECT_FALSE(valget(0x40050002).has_value()) << "VALGET of an unknown key: ACK-NAK";
+  EXPECT_FALSE(valget(0x40fe0002).has_value()) << "VALGET of an unknown key: ACK-NAK";
 
-  // 30 ms is above the receiver's 25 Hz: refused like CFG-RATE, not clamped after an ACK.
+  // 20 ms is below CFG-RATE-MEAS's minimum of 25 ms (F9 HPG 1.13 description, CFG-RATE):
+  // refused like CFG-RATE, not clamped after an ACK.
   ubx::CfgValset fast;
-  fast.values = {{ubx::cfgkey::kRateMeas, 30}};
+  fast.values = {{ubx::cfgkey::kRateMeas, 20}};
   EXPECT_TRUE(only_ack(send(d, frame(fast)), ubx::kCfgValset, true));
   EXPECT_EQ(valget(ubx::cfgkey::kRateMeas), 200u);
 
@@ -647,6 +649,53 @@ TEST_F(UbxDeviceTest, EpochOutputDecodesToTheReceiversFixAndMeasurements) {
     }
   }
   EXPECT_GE(decoded, 5) << "satellites whose subframes 1-3 came in order within 48 s";
+}
+
+// Each port keeps its own message rates and protocol masks (F9 HPG 1.13 description, CFG-MSGOUT
+// items per port, CFG-USBOUTPROT; UBX-13003221 UBX-CFG-MSG "current port"): a command that
+// arrives on USB changes USB, UART1 goes on as it was. At power-up every port but UART2 sends
+// the profile's NMEA.
+TEST_F(UbxDeviceTest, EachPortKeepsItsOwnRatesAndProtocols) {
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
+    const auto epoch = [&](ReceiverPort port) {
+      d.update(a_fix(kT0), EpochMeasurements{}, 0);
+      std::string out;
+      d.encode(port, out);
+      return out;
+    };
+    EXPECT_NE(epoch(ReceiverPort::kUsb).find("$GPGGA"), std::string::npos) << p->ubx->protver;
+    EXPECT_EQ(epoch(ReceiverPort::kUart1), epoch(ReceiverPort::kUsb));
+
+    const std::vector<std::uint8_t> on = frame(ubx::CfgMsgCurrentPort{0x01, 0x07, 1});
+    std::string replies;
+    d.receive(std::span<const std::uint8_t>(on.data(), on.size()), ReceiverPort::kUsb, replies);
+    EXPECT_TRUE(only_ack(replies, ubx::kCfgMsg));
+    EXPECT_EQ(d.rate(ubx::kNavPvt, ubx::kPortUsb), 1);
+    EXPECT_EQ(d.rate(ubx::kNavPvt, ubx::kPortUart1), 0);
+    EXPECT_EQ(of_type(frames_of(epoch(ReceiverPort::kUsb)), ubx::kNavPvt).size(), 1u);
+    EXPECT_EQ(of_type(frames_of(epoch(ReceiverPort::kUart1)), ubx::kNavPvt).size(), 0u);
+  }
+  // USB output without NMEA by key, on the part that has keys.
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  ubx::CfgValset set;
+  set.values = {{0x10780002, 0}};  // CFG-USBOUTPROT-NMEA
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgValset));
+  d.update(a_fix(kT0), EpochMeasurements{}, 0);
+  std::string usb, uart1;
+  d.encode(ReceiverPort::kUsb, usb);
+  d.encode(ReceiverPort::kUart1, uart1);
+  EXPECT_EQ(usb.find('$'), std::string::npos);
+  EXPECT_NE(uart1.find("$GPGGA"), std::string::npos);
+
+  // A baud rate is a UART's: set over USB, UART1 changes after the ACK and USB has none.
+  set.values = {{0x40520001, 115200}};  // CFG-UART1-BAUDRATE
+  const std::vector<std::uint8_t> baud = frame(set);
+  std::string replies;
+  d.receive(std::span<const std::uint8_t>(baud.data(), baud.size()), ReceiverPort::kUsb, replies);
+  EXPECT_TRUE(only_ack(replies, ubx::kCfgValset));
+  EXPECT_EQ(d.take_baud_change(ReceiverPort::kUsb), std::nullopt);
+  EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), 115200);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "protocols/nmea.hpp"
+#include "tests/protocols/nmea_test_fields.hpp"
 
 namespace navemu::nmea {
 namespace {
@@ -53,44 +54,7 @@ std::string type_of(const std::string& sentence) { return sentence.substr(3, 3);
 
 // ---- fields of a parsed sentence -> SI ---------------------------------------------------------
 
-using Fields = std::vector<std::string>;
-
-Fields must_parse(std::string_view s) {
-  auto f = parse(s);
-  EXPECT_TRUE(f.has_value()) << s;
-  return f.value_or(Fields{});
-}
-
-std::optional<double> num(const std::string& s) {
-  if (s.empty()) return std::nullopt;
-  return std::stod(s);
-}
-
-std::optional<int> inum(const std::string& s) {
-  if (s.empty()) return std::nullopt;
-  return std::stoi(s);
-}
-
-UtcTime time_of(const std::string& hhmmss, const std::string& ddmmyy = "010100") {
-  UtcTime t;
-  t.hour = std::stoi(hhmmss.substr(0, 2));
-  t.minute = std::stoi(hhmmss.substr(2, 2));
-  t.second = std::stod(hhmmss.substr(4));
-  t.day = std::stoi(ddmmyy.substr(0, 2));
-  t.month = std::stoi(ddmmyy.substr(2, 2));
-  t.year = 2000 + std::stoi(ddmmyy.substr(4, 2));
-  return t;
-}
-
-// ddmm.mmmm,N,dddmm.mmmm,W starting at fields[i].
-std::optional<LatLon> position_of(const Fields& f, std::size_t i) {
-  if (f[i].empty()) return std::nullopt;
-  const auto coordinate = [](const std::string& v, std::size_t deg_digits, const std::string& h) {
-    const double d = std::stod(v.substr(0, deg_digits)) + std::stod(v.substr(deg_digits)) / 60.0;
-    return h == "S" || h == "W" ? -d : d;
-  };
-  return LatLon{coordinate(f[i], 2, f[i + 1]), coordinate(f[i + 2], 3, f[i + 3])};
-}
+using namespace navemu::nmea::test_fields;
 
 std::string_view talker_of(const Fields& f) { return std::string_view(f[0]).substr(0, 2); }
 

@@ -1,0 +1,50 @@
+#pragma once
+// The UBX output messages of a u-blox receiver (u-blox 8 description UBX-13003221 and the F9
+// interface description UBX-18010854, "UBX-NAV-*", "UBX-RXM-*"), built from one epoch of the
+// receiver model: which messages the part has, the CFG-MSGOUT items that set their rates, and
+// how each is filled.
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "core/nav_data.hpp"
+#include "models/receiver.hpp"
+#include "models/measurement.hpp"
+#include "protocols/ubx_messages.hpp"
+
+namespace navemu {
+
+// Messages with lists, refilled every epoch (the lists keep their storage, so encoding an epoch
+// does not allocate once they have grown).
+struct UbxListScratch {
+  ubx::NavSvinfo svinfo;
+  ubx::NavSat sat;
+  ubx::RxmRawx rawx;
+  ubx::RxmSfrbx sfrbx;
+};
+
+struct EpochView;
+
+// One output message: its ID, the middle of its CFG-MSGOUT item names ("UBX_NAV_PVT" in
+// CFG-MSGOUT-UBX_NAV_PVT_UART1), which parts have it, and its encoder.
+struct UbxOutput {
+  ubx::MsgId id;
+  std::string_view msgout;
+  bool m8, f9;  // on u-blox 8 (protocol < 27) / u-blox F9 (protocol 27+) receivers
+  void (*emit)(const EpochView&, std::vector<std::uint8_t>&);
+};
+
+// In the order of one epoch's output: raw measurement data first (it is measured before the
+// solution), the navigation messages, and NAV-EOE closing the epoch (UBX-NAV-EOE).
+std::span<const UbxOutput> ubx_outputs();
+const UbxOutput* find_ubx_output(ubx::MsgId id);
+
+// Appends, for the epoch of `fix` and `meas`, the output messages whose bit (their index in
+// ubx_outputs()) is set in `due`, in the order of ubx_outputs().
+void emit_ubx_outputs(std::uint64_t due, const ReceiverFix& fix, const EpochMeasurements& meas,
+                      const NavData& nav, ReceiverMode mode, UbxListScratch& lists,
+                      std::vector<std::uint8_t>& out);
+
+}  // namespace navemu
