@@ -7,12 +7,17 @@
 // R4 R8 CH), the field's name in the table, the struct member it maps to and, where the wire
 // unit is a fraction of the quantity's unit, the value of one LSB in that unit (the scale: 1e-7
 // for a longitude in 1e-7 deg gives degrees, 1e-3 for a height in mm gives metres). Beside single fields a description holds
-//   - the count of a repeated block (a U1 field whose value is the number of blocks),
+//   - the count of a repeated block (a U1 field whose value is the number of blocks; U2 in
+//     MON-PATCH),
 //   - one repeated block (a vector member; its rows describe one element), counted by that
-//     field or following from the length,
-//   - an optional last field (present or not by the length: CFG-PRT poll, CFG-CFG),
+//     field or following from the length (then possibly with a least number of blocks: a
+//     CFG-PRT set carries at least one port, its empty form being the poll),
+//   - optional groups of last fields, present or not by the length, each only after the one
+//     before (CFG-PRT and CFG-TP5 polls, CFG-CFG, CFG-NMEA's 4/12/20-byte forms),
 //   - configuration key/value pairs whose value size follows from the key ID (UBX-18010854
-//     section 6).
+//     section 6), or the rest of the payload as text (INF messages).
+// Rows that several descriptions share (a CFG-PRT port block, the datum of CFG-DAT) are written
+// once as a group and used as rows wherever they occur.
 // The engine is pure and allocation-free while encoding (append into a vector with capacity):
 // explicit little-endian Writer/Reader calls, no packed structs. Everything about a row
 // (its wire type, size and member) is a compile-time constant, so the generated code is the
@@ -222,39 +227,66 @@ struct Field {
   }
 };
 
-// The number of repeated blocks that follow (U1: at most 255 are sent).
+// The number of repeated blocks that follow (U1, or U2: at most 255 or 65535 are sent).
+template <Wire W>
 struct Count {
-  static constexpr Wire kWire = Wire::kU1;
-  static constexpr std::size_t kSize = 1;
-  static constexpr std::size_t kMax = 255;
+  static_assert(W == Wire::kU1 || W == Wire::kU2);
+  static constexpr Wire kWire = W;
+  static constexpr std::size_t kSize = wire_size(W);
+  static constexpr std::size_t kMax = W == Wire::kU1 ? 0xFF : 0xFFFF;
   const char* name;
   template <class S>
   void put(Writer& w, const S&, std::size_t blocks) const {
-    w.u1(static_cast<std::uint8_t>(blocks));
+    if constexpr (W == Wire::kU1) w.u1(static_cast<std::uint8_t>(blocks));
+    else w.u2(static_cast<std::uint16_t>(blocks));
   }
   template <class S>
   bool get(const Reader& r, Cursor& c, S&) const {
-    c.blocks = r.u1(c.off);
+    c.blocks = W == Wire::kU1 ? r.u1(c.off) : r.u2(c.off);
     c.off += kSize;
     return true;
   }
 };
 
-// A last field that is present or not (the payload is kSize longer when it is).
-template <Wire W, class S, class M>
-struct OptionalField {
+// A group of last fields that is present or not (the payload is kOptionalSize longer when it
+// is). Several groups follow one another, each present only with the ones before it; a
+// decoded absent group leaves its members at their defaults.
+template <class S, class... Rows>
+struct Optional {
   using Struct = S;
   static constexpr std::size_t kSize = 0;  // not part of the fixed length
-  static constexpr std::size_t kOptionalSize = wire_size(W);
+  static constexpr std::size_t kOptionalSize = (Rows::kSize + ...);
   bool S::*present;
-  M S::*member;
-  const char* name;
+  std::tuple<Rows...> rows;
   void put(Writer& w, const S& m, std::size_t) const {
-    if (m.*present) put_value(w, m.*member);
+    if (m.*present) std::apply([&](const auto&... row) { (row.put(w, m, 0), ...); }, rows);
   }
   bool get(const Reader& r, Cursor& c, S& m) const {
-    m.*present = r.size() == c.off + kOptionalSize;
-    m.*member = m.*present ? get_value<M>(r, c.off) : M{};
+    m.*present = r.size() >= c.off + kOptionalSize;
+    bool ok = true;
+    std::apply([&](const auto&... row) {
+      if (m.*present) ((ok = row.get(r, c, m) && ok), ...);
+      else ((m.*row.member = {}), ...);
+    }, rows);
+    return ok;
+  }
+};
+
+// The rest of the payload as text, every byte kept (INF messages: "CH[N]", N from the length).
+template <class S>
+struct Text {
+  using Struct = S;
+  static constexpr std::size_t kSize = 0;
+  std::string S::*member;
+  const char* name;
+  void put(Writer& w, const S& m, std::size_t) const {
+    const std::string& t = m.*member;
+    w.bytes(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(t.data()), t.size()));
+  }
+  bool get(const Reader& r, Cursor& c, S& m) const {
+    std::string& t = m.*member;
+    t.clear();
+    for (; c.off < r.size(); ++c.off) t.push_back(static_cast<char>(r.u1(c.off)));
     return true;
   }
 };
@@ -287,7 +319,14 @@ struct Block {
   static constexpr Repeat kRepeat = R;
   std::vector<E> S::*member;
   std::tuple<Rows...> rows;
+  std::size_t min_blocks = 0;  // fewer blocks fail to decode
 
+  // The same block, decoded only when at least n blocks are present.
+  constexpr Block at_least(std::size_t n) const {
+    Block b = *this;
+    b.min_blocks = n;
+    return b;
+  }
   void put(Writer& w, const S& m, std::size_t blocks) const {
     const std::vector<E>& v = m.*member;
     for (std::size_t i = 0; i < blocks; ++i)
@@ -344,8 +383,19 @@ template <class S, class E, Repeat R, class... Rows>
 struct IsBlock<Block<S, E, R, Rows...>> : std::true_type {};
 template <class T>
 struct IsOptional : std::false_type {};
-template <Wire W, class S, class M>
-struct IsOptional<OptionalField<W, S, M>> : std::true_type {};
+template <class S, class... Rows>
+struct IsOptional<Optional<S, Rows...>> : std::true_type {};
+template <class T>
+struct IsCount : std::false_type {};
+template <Wire W>
+struct IsCount<Count<W>> : std::true_type {};
+// Rows that take the rest of the payload, whatever its length.
+template <class T>
+struct IsRest : std::false_type {};
+template <class S, class KV>
+struct IsRest<KeyValues<S, KV>> : std::true_type {};
+template <class S>
+struct IsRest<Text<S>> : std::true_type {};
 template <class T>
 struct IsKeyValues : std::false_type {};
 template <class S, class KV>
@@ -376,6 +426,27 @@ constexpr std::size_t optional_size_of() {
   if constexpr (IsOptional<Row>::value) return Row::kOptionalSize;
   else return 0;
 }
+template <class Row>
+constexpr std::size_t count_size_of() {
+  if constexpr (IsCount<Row>::value) return Row::kSize;
+  else return 0;
+}
+
+// A description's rows written as single rows or as groups (tuples of rows) of them, in wire
+// order, as one tuple of rows.
+template <class T>
+struct IsGroup : std::false_type {};
+template <class... R>
+struct IsGroup<std::tuple<R...>> : std::true_type {};
+template <class R>
+constexpr auto as_group(const R& r) {
+  if constexpr (IsGroup<R>::value) return r;
+  else return std::tuple<R>(r);
+}
+template <class... R>
+constexpr auto flatten(const R&... rows) {
+  return std::tuple_cat(as_group(rows)...);
+}
 
 }  // namespace layout
 
@@ -391,10 +462,11 @@ struct Layout {
 
   // Bytes before the repeated part (the whole payload when there is none).
   static constexpr std::size_t kHeaderSize = (std::size_t{0} + ... + Rows::kSize);
-  static constexpr bool kHasBlock = (layout::IsBlock<Rows>::value || ...);
-  static constexpr bool kHasOptional = (layout::IsOptional<Rows>::value || ...);
-  static constexpr bool kHasKeyValues = (layout::IsKeyValues<Rows>::value || ...);
-  static constexpr bool kHasText = (layout::has_text<Rows>() || ...);
+  static constexpr bool kHasBlock = (false || ... || layout::IsBlock<Rows>::value);
+  static constexpr bool kHasOptional = (false || ... || layout::IsOptional<Rows>::value);
+  static constexpr bool kHasRest = (false || ... || layout::IsRest<Rows>::value);
+  static constexpr bool kHasKeyValues = (false || ... || layout::IsKeyValues<Rows>::value);
+  static constexpr bool kHasText = (false || ... || layout::has_text<Rows>());
   // Size of one repeated block (0: none).
   static constexpr std::size_t kBlockSize = [] {
     std::size_t n = 0;
@@ -406,15 +478,17 @@ struct Layout {
     ((r = layout::repeat_of<Rows>(r)), ...);
     return r;
   }();
-  // Offset of the count field (kHeaderSize: none).
+  // Offset of the count field (kHeaderSize: none) and its size (1 or 2 bytes).
   static constexpr std::size_t kCountOffset = [] {
     std::size_t off = 0;
     bool found = false;
-    ((found = found || std::is_same_v<Rows, layout::Count>, off += found ? 0 : Rows::kSize), ...);
+    ((found = found || layout::IsCount<Rows>::value, off += found ? 0 : Rows::kSize), ...);
     return found ? off : kHeaderSize;
   }();
+  static constexpr std::size_t kCountSize = (std::size_t{0} + ... + layout::count_size_of<Rows>());
   static constexpr bool kCounted = kCountOffset < kHeaderSize;
-  // Bytes of the optional last field (0: none).
+  static constexpr std::size_t kCountMax = kCountSize == 1 ? 0xFF : 0xFFFF;
+  // Bytes of all optional groups (0: none).
   static constexpr std::size_t kOptionalSize = (std::size_t{0} + ... + layout::optional_size_of<Rows>());
   static_assert(!kCounted || (kHasBlock && kRepeat == layout::Repeat::kCounted),
                 "a count field needs a counted block");
@@ -422,12 +496,33 @@ struct Layout {
   // The length check of a payload before it is decoded.
   constexpr bool fits(std::span<const std::uint8_t> p) const {
     if (p.size() < kHeaderSize) return false;
-    if constexpr (kCounted) return p.size() == kHeaderSize + kBlockSize * p[kCountOffset];
-    else if constexpr (kHasBlock) return (p.size() - kHeaderSize) % kBlockSize == 0;
-    else if constexpr (kHasKeyValues) return true;
-    else if constexpr (kHasOptional)
-      return p.size() == kHeaderSize || p.size() == kHeaderSize + kOptionalSize;
-    else return length == Length::kAtLeast || p.size() == kHeaderSize;
+    if constexpr (kCounted) {
+      std::size_t n = p[kCountOffset];
+      if constexpr (kCountSize == 2) n |= std::size_t{p[kCountOffset + 1]} << 8;
+      return p.size() == kHeaderSize + kBlockSize * n && n >= min_blocks();
+    } else if constexpr (kHasBlock) {
+      const std::size_t rest = p.size() - kHeaderSize;
+      return rest % kBlockSize == 0 && rest / kBlockSize >= min_blocks();
+    } else if constexpr (kHasRest) {
+      return true;
+    } else if constexpr (kHasOptional) {
+      // The fixed part, then each optional group only after the ones before it.
+      bool ok = p.size() == kHeaderSize;
+      std::size_t n = kHeaderSize;
+      ((n += layout::optional_size_of<Rows>(), ok = ok || p.size() == n), ...);
+      return ok;
+    } else {
+      return length == Length::kAtLeast || p.size() == kHeaderSize;
+    }
+  }
+
+  // The least number of repeated blocks a payload carries (0 without a block).
+  constexpr std::size_t min_blocks() const {
+    std::size_t n = 0;
+    std::apply([&](const auto&... row) {
+      ((n = std::max(n, layout::IsBlock<std::remove_cvref_t<decltype(row)>>::value ? min_of(row) : 0)), ...);
+    }, rows);
+    return n;
   }
 
   // Blocks an encoder sends of `m` (0 without a block).
@@ -464,11 +559,16 @@ struct Layout {
 
  private:
   template <class Row>
+  static constexpr std::size_t min_of(const Row& row) {
+    if constexpr (layout::IsBlock<Row>::value) return row.min_blocks;
+    else return 0;
+  }
+  template <class Row>
   static std::size_t count_of(const Row& row, const S& m) {
     if constexpr (layout::IsBlock<Row>::value) {
       const std::size_t n = (m.*row.member).size();
       if constexpr (Row::kRepeat == layout::Repeat::kCounted)
-        return std::min(n, layout::Count::kMax);
+        return std::min(n, kCountMax);
       else if constexpr (Row::kRepeat == layout::Repeat::kFitLength)
         return std::min(n, (kMaxWirePayload - kHeaderSize) / Row::kBlockSize);
       else return n;
@@ -514,9 +614,18 @@ struct Describing {
   static constexpr FieldOf<Wire::kR8> r8{};
   using Repeat = layout::Repeat;
 
+  // A message's description: its rows, single or in groups, in wire order.
   template <class S, class... R>
-  static constexpr Layout<S, R...> describe(MsgId id, const char* name, Length length, R... rows) {
-    return {id, name, length, std::tuple<R...>(rows...)};
+  static constexpr auto describe(MsgId id, const char* name, Length length, R... rows) {
+    return std::apply(
+        [&](auto... r) { return Layout<S, decltype(r)...>{id, name, length, std::tuple{r...}}; },
+        layout::flatten(rows...));
+  }
+  // Rows written once and used in several descriptions (as the rows of a message and of a
+  // block of another, or by a struct and the structs derived from it).
+  template <class... R>
+  static constexpr std::tuple<R...> group(R... rows) {
+    return {rows...};
   }
   // CH[n]: a NUL-padded string of n characters.
   template <std::size_t N, class S>
@@ -524,38 +633,51 @@ struct Describing {
                                                                   const char* name) {
     return {member, name};
   }
-  // The count of the repeated block (U1).
-  static constexpr layout::Count count(const char* name) { return {name}; }
+  // The count of the repeated block (U1; U2 where the table says so).
+  static constexpr layout::Count<Wire::kU1> count(const char* name) { return {name}; }
+  static constexpr layout::Count<Wire::kU2> count_u2(const char* name) { return {name}; }
   // A repeated block of E counted by the count field: block(&NavSat::svs, rows of E...).
   template <class S, class E, class... R>
-  static constexpr layout::Block<S, E, Repeat::kCounted, R...> block(std::vector<E> S::*member,
-                                                                     R... rows) {
-    return {member, std::tuple<R...>(rows...)};
+  static constexpr auto block(std::vector<E> S::*member, R... rows) {
+    return block_of<Repeat::kCounted>(member, rows...);
   }
   // A repeated block whose count follows from the length; an encoder sends as many as the
   // frame takes (Repeat::kFitLength) or every element (Repeat::kAll).
   template <Repeat P, class S, class E, class... R>
-  static constexpr layout::Block<S, E, P, R...> block_to_end(std::vector<E> S::*member,
-                                                             R... rows) {
-    return {member, std::tuple<R...>(rows...)};
+  static constexpr auto block_to_end(std::vector<E> S::*member, R... rows) {
+    return block_of<P>(member, rows...);
   }
   // The element itself as the only row of a block: self<Wire::kU4, std::uint32_t>("dwrd").
   template <Wire W, class E, std::size_t Chars = 0>
   static constexpr layout::Self<W, E, Chars> self(const char* name) {
     return {name};
   }
-  // An optional last U1 field, present when the payload is one byte longer.
-  template <class S, class M>
-  static constexpr layout::OptionalField<Wire::kU1, S, M> optional_u1(bool S::*present,
-                                                                      M S::*member,
-                                                                      const char* name) {
-    return {present, member, name};
+  // A group of last fields, present (and `present` true) when the payload is that much
+  // longer: optional(&CfgCfg::has_device_mask, x1(&CfgCfg::device_mask, "deviceMask")).
+  template <class S, class... R>
+  static constexpr auto optional(bool S::*present, R... rows) {
+    return std::apply(
+        [&](auto... r) { return layout::Optional<S, decltype(r)...>{present, std::tuple{r...}}; },
+        layout::flatten(rows...));
+  }
+  // The rest of the payload as text, byte for byte.
+  template <class S>
+  static constexpr layout::Text<S> text(std::string S::*member, const char* name) {
+    return {member, name};
   }
   // Configuration key/value pairs to the end of the payload.
   template <class S, class KV>
   static constexpr layout::KeyValues<S, KV> key_values(std::vector<KV> S::*member,
                                                        std::size_t (*value_size)(std::uint32_t)) {
     return {member, value_size};
+  }
+
+ private:
+  template <Repeat P, class S, class E, class... R>
+  static constexpr auto block_of(std::vector<E> S::*member, R... rows) {
+    return std::apply(
+        [&](auto... r) { return layout::Block<S, E, P, decltype(r)...>{member, std::tuple{r...}}; },
+        layout::flatten(rows...));
   }
 };
 

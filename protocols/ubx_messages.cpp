@@ -33,8 +33,9 @@ template <class L>
 constexpr MessageInfo info(const L& l) {
   using T = typename L::Struct;
   static_assert(sizes_agree<T>(), "a description's length differs from its struct's");
-  return {l.id,           l.name,           l.length,          L::kHeaderSize, L::kBlockSize,
-          L::kCountOffset, L::kHasKeyValues, L::kHasText,      &reencode<T>};
+  return {l.id,          l.name,           l.length,     L::kHeaderSize, L::kBlockSize,
+          L::kCountOffset, L::kCountSize,   l.min_blocks(), L::kOptionalSize, L::kHasKeyValues,
+          L::kHasText,     &reencode<T>};
 }
 
 // Every description, in the order of the tables.

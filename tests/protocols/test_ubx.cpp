@@ -1183,13 +1183,13 @@ TEST(UbxRobustness, DecodersOnTruncatedRealFrames) {
 // ---- the descriptions, generically ---------------------------------------------------------
 
 // Every described message through its registry hook (decode, then append): payloads shaped by
-// the description (fixed part, counted blocks, blocks to the end, an optional last byte,
+// the description (fixed part, counted blocks, blocks to the end, optional last groups,
 // configuration key/value pairs) with random contents, and some bytes too many. Whatever
 // decodes must append the very same frame, but for what the rules of
 // protocols/ubx_messages.hpp drop: bytes after an output message's table (a later protocol's
 // extension) and characters after a string's NUL (the frame keeps its length, and appending
 // it again changes nothing). A payload longer than an exact-length message must not decode,
-// unless the extra byte is its optional last field.
+// unless the extra bytes are its optional last groups.
 TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
   std::mt19937 rng(20);
   // Bytes 0 and 1 a quarter of the time (version fields, counts), otherwise any.
@@ -1197,7 +1197,7 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
     const auto r = static_cast<std::uint32_t>(rng());
     return static_cast<std::uint8_t>(r % 4 == 0 ? (r >> 8) % 2 : r >> 16);
   };
-  ASSERT_EQ(messages().size(), 34u);
+  ASSERT_EQ(messages().size(), 93u);
   for (const MessageInfo& m : messages()) {
     SCOPED_TRACE(m.name);
     int decoded = 0;
@@ -1207,7 +1207,10 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
       std::size_t extra = 0;
       if (m.block_size > 0) {
         const std::size_t n = rng() % 4;
-        if (m.count_offset < m.header_size) p[m.count_offset] = static_cast<std::uint8_t>(n);
+        if (m.count_offset < m.header_size) {
+          p[m.count_offset] = static_cast<std::uint8_t>(n);
+          if (m.count_size == 2) p[m.count_offset + 1] = 0;
+        }
         for (std::size_t i = 0; i < n * m.block_size; ++i) p.push_back(byte());
       } else if (m.key_values) {
         for (std::size_t i = rng() % 4; i > 0; --i) {
@@ -1216,7 +1219,8 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
           for (std::size_t k = cfg_value_size(key); k > 0; --k) p.push_back(byte());
         }
       } else {
-        extra = rng() % 3;
+        // Beyond the fixed part: none, part or all of the optional groups, and a byte or two.
+        extra = rng() % (m.optional_size + 3);
         for (std::size_t i = 0; i < extra; ++i) p.push_back(byte());
       }
       Bytes out;
@@ -1246,7 +1250,13 @@ TEST(UbxDescriptions, RegistryFindsByIdAndName) {
   EXPECT_EQ(find_message("RXM-SFRBX")->id, kRxmSfrbx);
   EXPECT_EQ(find_message("RXM-SFRBX")->block_size, 4u);
   EXPECT_EQ(find_message("RXM-SFRBX")->count_offset, 4u);  // numWords
-  EXPECT_EQ(find_message(kNavTimels), nullptr);             // not described
+  EXPECT_EQ(find_message(kNavTimels)->header_size, NavTimels::kPayloadSize);
+  EXPECT_EQ(find_message(MsgId{kClassNav, 0x05}), nullptr);  // NAV-ATT: not described
+  // A message with several forms is found by its first: the CFG-PRT poll (0 or 1 byte).
+  ASSERT_NE(find_message(kCfgPrt), nullptr);
+  EXPECT_EQ(find_message(kCfgPrt)->header_size, 0u);
+  EXPECT_EQ(find_message(kCfgPrt)->optional_size, 1u);
+  EXPECT_EQ(find_message("MON-PATCH")->count_size, 2u);
   EXPECT_EQ(find_message("NAV-NONE"), nullptr);
 }
 
