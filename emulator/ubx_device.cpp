@@ -109,6 +109,7 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
   lists_.svinfo.channels.reserve(kDefinedSatellites);
   lists_.sat.svs.reserve(kDefinedSatellites);
   lists_.rawx.meas.reserve(kDefinedSatellites);
+  lists_.rf.blocks.reserve(2);
   // Messages without a CFG-MSGOUT item on this part (u-blox 8 ones): the profile's rates, on
   // the ports profile_defaults() sets.
   const auto keep = [&](MsgId id, int rate) {
@@ -243,7 +244,6 @@ struct UbxDevice::Command {
 
 const UbxDevice::Command UbxDevice::kCommands[] = {
     {kMonVer, false, &UbxDevice::poll_mon_ver, nullptr},
-    {kMonHw, false, &UbxDevice::poll_mon_hw, nullptr},
     {kCfgPrt, false, nullptr, &UbxDevice::handle_cfg_prt},
     {kCfgMsg, false, nullptr, &UbxDevice::handle_cfg_msg},
     {kCfgRate, false, &UbxDevice::poll_cfg_rate, &UbxDevice::handle_cfg_rate},
@@ -282,14 +282,6 @@ void UbxDevice::poll_mon_ver(std::uint8_t, Bytes& out) {
   append(MonVer{u.sw_version, u.hw_version, u.extensions}, out);
 }
 
-void UbxDevice::poll_mon_hw(std::uint8_t, Bytes& out) {
-  MonHw hw;
-  hw.a_status = MonHw::kAntOk;
-  hw.a_power = 1;
-  hw.noise_per_ms = 85;
-  hw.agc_cnt = 5000;
-  append(hw, out);
-}
 
 // CFG-PRT: one or more 20-byte port blocks (UBX-18010854 "UBX-CFG-PRT": several configurations
 // may be concatenated in one input message), each onto its port's configuration items.

@@ -66,7 +66,6 @@ class UbxDevice final : public GnssDevice {
   void ack(ubx::MsgId msg, Bytes& out);
   void nak(ubx::MsgId msg, Bytes& out);
   void poll_mon_ver(std::uint8_t port, Bytes& out);
-  void poll_mon_hw(std::uint8_t port, Bytes& out);
   void poll_cfg_rate(std::uint8_t port, Bytes& out);
   void poll_cfg_nav5(std::uint8_t port, Bytes& out);
   void poll_cfg_gnss(std::uint8_t port, Bytes& out);

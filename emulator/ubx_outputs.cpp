@@ -386,15 +386,75 @@ void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
   }
 }
 
-// Every UBX output message the device can produce, in the order of one epoch's output: raw
-// measurement data first (it is measured before the solution), the navigation messages, and
-// NAV-EOE closing the epoch (u-blox interface description, "NAV-EOE"). Names (profiles' `ubx:
-// messages`) are those of the message descriptions (ubx::find_message).
+// High-precision geodetic position (F9 HPG 1.13 description, UBX-NAV-HPPOSLLH): the 1e-7 deg
+// and mm parts as NAV-POSLLH has them, the remainders in 1e-9 deg (-99..99) and 0.1 mm (-9..9),
+// accuracies in 0.1 mm.
+void emit_nav_hpposllh(const EpochView& e, std::vector<std::uint8_t>& out) {
+  const Geodetic& p = e.fix.position;
+  NavHpposllh m;
+  m.flags = e.valid ? 0 : NavHpposllh::kInvalidLlh;
+  m.i_tow_ms = e.i_tow;
+  const auto split = [](double v, double unit_per_hp, auto& whole, auto& hp) {
+    const double hp_units = std::round(v);
+    whole = clamp_cast<std::int32_t>(std::trunc(hp_units / unit_per_hp));
+    hp = static_cast<std::int8_t>(hp_units - static_cast<double>(whole) * unit_per_hp);
+  };
+  split(p.lon_deg * 1e9, 100.0, m.lon_1e7deg, m.lon_hp_1e9deg);
+  split(p.lat_deg * 1e9, 100.0, m.lat_1e7deg, m.lat_hp_1e9deg);
+  split(p.h_m * 1e4, 10.0, m.height_mm, m.height_hp_0p1mm);
+  split((p.h_m - e.separation_m) * 1e4, 10.0, m.h_msl_mm, m.h_msl_hp_0p1mm);
+  m.h_acc_0p1mm = clamp_cast<std::uint32_t>(e.acc.h_m * 1e4);
+  m.v_acc_0p1mm = clamp_cast<std::uint32_t>(e.acc.v_m * 1e4);
+  append(m, out);
+}
+
+// The RF front end as MON-HW (u-blox 8, UBX-13003221 "UBX-MON-HW") and MON-RF (F9, one block per
+// band) report it. navemu models no RF interference yet, so these are an active antenna's
+// quiet-sky readings: antenna OK and powered, no CW jamming indicated (jamInd well below the
+// level the M8 description's "Jamming/interference indicator" section treats as interference),
+// jamming state "ok", noise and AGC mid-range as real receivers in open sky report them.
+struct QuietFrontEnd {
+  std::uint16_t noise_per_ms = 88;
+  std::uint16_t agc_cnt = 5200;  // of 8191
+  std::uint8_t jam_ind = 6;      // of 255
+};
+constexpr QuietFrontEnd kFrontEnd;
+
+void emit_mon_hw(const EpochView&, std::vector<std::uint8_t>& out) {
+  MonHw m;
+  m.a_status = MonHw::kAntOk;
+  m.a_power = 1;
+  m.noise_per_ms = kFrontEnd.noise_per_ms;
+  m.agc_cnt = kFrontEnd.agc_cnt;
+  m.jam_ind = kFrontEnd.jam_ind;
+  m.flags = 1 << 2;  // jammingState 1: ok, no significant jamming
+  append(m, out);
+}
+
+void emit_mon_rf(const EpochView& e, std::vector<std::uint8_t>& out) {
+  MonRf& m = e.lists.rf;
+  m.blocks.resize(2);  // L1 and L2 front ends of the ZED-F9P
+  for (std::uint8_t b = 0; b < 2; ++b) {
+    MonRfBlock& k = m.blocks[b];
+    k.block_id = b;
+    k.flags = 1;  // jammingState ok
+    k.ant_status = MonHw::kAntOk;
+    k.ant_power = 1;
+    k.noise_per_ms = kFrontEnd.noise_per_ms;
+    k.agc_cnt = kFrontEnd.agc_cnt;
+    k.jam_ind = kFrontEnd.jam_ind;
+  }
+  append(m, out);
+}
 
 }  // namespace
 
 namespace {
 
+// Every UBX output message the device can produce, in the order of one epoch's output: raw
+// measurement data first (it is measured before the solution), the navigation messages, the
+// monitor messages, and NAV-EOE closing the epoch (u-blox interface description, "NAV-EOE").
+// Names (profiles' `ubx: messages`) are those of the message descriptions (ubx::find_message).
 constexpr UbxOutput kOutputs[] = {
     {kRxmRawx, "UBX_RXM_RAWX", true, true, &emit_rxm_rawx},
     {kRxmSfrbx, "UBX_RXM_SFRBX", true, true, &emit_rxm_sfrbx},
@@ -411,6 +471,9 @@ constexpr UbxOutput kOutputs[] = {
     {kNavClock, "UBX_NAV_CLOCK", true, true, &emit_nav_clock},
     {kNavSvinfo, "", true, false, &emit_nav_svinfo},
     {kNavSat, "UBX_NAV_SAT", true, true, &emit_nav_sat},
+    {kNavHpposllh, "UBX_NAV_HPPOSLLH", false, true, &emit_nav_hpposllh},
+    {kMonHw, "UBX_MON_HW", true, true, &emit_mon_hw},
+    {kMonRf, "UBX_MON_RF", false, true, &emit_mon_rf},
     {kNavEoe, "UBX_NAV_EOE", true, true, &emit_nav_eoe},
 };
 

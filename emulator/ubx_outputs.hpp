@@ -23,6 +23,7 @@ struct UbxListScratch {
   ubx::NavSat sat;
   ubx::RxmRawx rawx;
   ubx::RxmSfrbx sfrbx;
+  ubx::MonRf rf;
 };
 
 struct EpochView;

@@ -698,5 +698,46 @@ TEST_F(UbxDeviceTest, EachPortKeepsItsOwnRatesAndProtocols) {
   EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), 115200);
 }
 
+// NAV-HPPOSLLH (F9 HPG 1.13 description): the standard-precision part and the remainder
+// (1e-9 deg, 0.1 mm) add up to the position; MON-RF has the L1 and L2 front ends with the
+// antenna OK and no jamming. Both by their CFG-MSGOUT items, on the F9P only.
+TEST_F(UbxDeviceTest, HighPrecisionPositionAndRfMonitor) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  ubx::CfgValset set;
+  set.values = {{0x20910034, 1}, {0x2091035a, 1}};  // CFG-MSGOUT-UBX_NAV_HPPOSLLH_UART1, _MON_RF_UART1
+  ASSERT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgValset));
+  ReceiverFix fix = a_fix(kT0);
+  fix.position = Geodetic{-32.123456789, 150.987654321, 61.2347};
+  std::string out;
+  d.encode_epoch(fix, EpochMeasurements{}, 0, out);
+  const std::vector<Frame> f = frames_of(out);
+  const std::vector<Frame> hp = of_type(f, ubx::kNavHpposllh);
+  ASSERT_EQ(hp.size(), 1u);
+  ubx::NavHpposllh m;
+  ASSERT_TRUE(ubx::decode(hp[0].payload, m));
+  EXPECT_NEAR(m.lat_1e7deg * 1e-7 + m.lat_hp_1e9deg * 1e-9, fix.position.lat_deg, 0.6e-9);
+  EXPECT_NEAR(m.lon_1e7deg * 1e-7 + m.lon_hp_1e9deg * 1e-9, fix.position.lon_deg, 0.6e-9);
+  EXPECT_NEAR(m.height_mm * 1e-3 + m.height_hp_0p1mm * 1e-4, fix.position.h_m, 0.6e-4);
+  EXPECT_EQ(m.lat_1e7deg, -321234567) << "the standard part as NAV-POSLLH truncates it";
+  EXPECT_TRUE(std::abs(m.lat_hp_1e9deg) <= 99 && std::abs(m.height_hp_0p1mm) <= 9);
+  EXPECT_EQ(m.flags & ubx::NavHpposllh::kInvalidLlh, 0);
+
+  const std::vector<Frame> rf = of_type(f, ubx::kMonRf);
+  ASSERT_EQ(rf.size(), 1u);
+  ubx::MonRf r;
+  ASSERT_TRUE(ubx::decode(rf[0].payload, r));
+  ASSERT_EQ(r.blocks.size(), 2u);
+  for (const ubx::MonRfBlock& b : r.blocks) {
+    EXPECT_EQ(b.ant_status, ubx::MonHw::kAntOk);
+    EXPECT_EQ(b.flags & ubx::MonRfBlock::kJammingStateMask, 1);
+    EXPECT_GT(b.noise_per_ms, 0);
+    EXPECT_LT(b.jam_ind, 25);
+  }
+
+  UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_TRUE(frames_of(send(m8, poll(ubx::kMonRf))).empty()) << "the u-blox 8 has no MON-RF";
+  EXPECT_EQ(of_type(frames_of(send(m8, poll(ubx::kMonHw))), ubx::kMonHw).size(), 1u);
+}
+
 }  // namespace
 }  // namespace navemu
