@@ -356,7 +356,7 @@ TEST(Simulate, UbloxScenariosDriveForeverAndWriteUbxIntoUbxBin) {
          i = bin.find("\xb5\x62", i + 1)) {
       const auto u8 = [&](std::size_t k) { return static_cast<unsigned char>(bin[i + k]); };
       ++count[{u8(2), u8(3)}];
-      i += 6u + (u8(4) | u8(5) << 8) + 1u;
+      i += 6u + static_cast<std::size_t>(u8(4) | u8(5) << 8) + 1u;
     }
     EXPECT_EQ((count[{0x01, 0x07}]), 600) << "NAV-PVT";
     EXPECT_EQ((count[{0x01, 0x35}]), 600) << "NAV-SAT";
