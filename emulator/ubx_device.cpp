@@ -205,6 +205,8 @@ UbxDeviceCounters UbxDevice::counters() const {
     c.too_long += p.counters().too_long;
     c.junk_bytes += p.counters().junk_bytes;
   }
+  for (const pubx::NmeaInputReader& r : nmea_in_)
+    c.nmea_ignored += r.counters().checksum_errors + r.counters().malformed + r.counters().overlong;
   return c;
 }
 
@@ -214,12 +216,17 @@ void UbxDevice::receive(std::span<const std::uint8_t> bytes, ReceiverPort port, 
   const auto p = static_cast<std::uint8_t>(port);
   scratch_.clear();
   Parser& parser = parsers_[p];
-  parser.feed(bytes, [&](Parser::Result r) {
+  const auto on_ubx = [&](Parser::Result r) {
     if (r != Parser::Result::kFrame) return;
     ++counters_.frames;
     if (ports_[p].in_ubx) handle(parser.cls(), parser.id(), parser.payload(), p, scratch_);
     refresh();
-  });
+  };
+  // Byte by byte through both readers, so that commands take effect in the order they came.
+  for (const std::uint8_t& b : bytes) {
+    parser.feed(std::span<const std::uint8_t>(&b, 1), on_ubx);
+    if (const std::optional<std::string_view> s = nmea_in_[p].feed(b)) receive_nmea(*s, p, scratch_);
+  }
   replies.append(reinterpret_cast<const char*>(scratch_.data()), scratch_.size());
 }
 
@@ -312,19 +319,24 @@ void UbxDevice::handle_cfg_prt(Payload p, std::uint8_t port, Bytes& out) {
     CfgPrt set;
     if (!decode(p.subspan(at, CfgPrt::kPayloadSize), set) || set.port_id >= kReceiverPorts)
       return nak(kCfgPrt, out);
-    const auto flag = [&](bool in, const char* proto, std::uint16_t mask, std::uint16_t bit) {
-      if (const std::uint32_t id = proto_item(set.port_id, in, proto)) values.push_back({id, (mask & bit) ? 1u : 0u});
-    };
-    flag(true, "UBX", set.in_proto_mask, kProtoUbx);
-    flag(true, "NMEA", set.in_proto_mask, kProtoNmea);
-    flag(true, "RTCM3X", set.in_proto_mask, kProtoRtcm3);
-    flag(false, "UBX", set.out_proto_mask, kProtoUbx);
-    flag(false, "NMEA", set.out_proto_mask, kProtoNmea);
-    flag(false, "RTCM3X", set.out_proto_mask, kProtoRtcm3);
-    if (const std::uint32_t b = baud_item(set.port_id); b && set.baud_rate != 0) values.push_back({b, set.baud_rate});
+    port_values(set.port_id, set.in_proto_mask, set.out_proto_mask, set.baud_rate, values);
   }
   if (!config_.set_ram(values)) return nak(kCfgPrt, out);
   ack(kCfgPrt, out);
+}
+
+void UbxDevice::port_values(std::uint8_t port, std::uint16_t in_mask, std::uint16_t out_mask, std::uint32_t baud,
+                            std::vector<CfgKeyValue>& values) const {
+  const auto flag = [&](bool in, const char* proto, std::uint16_t mask, std::uint16_t bit) {
+    if (const std::uint32_t id = proto_item(port, in, proto)) values.push_back({id, (mask & bit) ? 1u : 0u});
+  };
+  flag(true, "UBX", in_mask, kProtoUbx);
+  flag(true, "NMEA", in_mask, kProtoNmea);
+  flag(true, "RTCM3X", in_mask, kProtoRtcm3);
+  flag(false, "UBX", out_mask, kProtoUbx);
+  flag(false, "NMEA", out_mask, kProtoNmea);
+  flag(false, "RTCM3X", out_mask, kProtoRtcm3);
+  if (const std::uint32_t b = baud_item(port); b && baud != 0) values.push_back({b, baud});
 }
 
 void UbxDevice::handle_cfg_msg(Payload p, std::uint8_t port, Bytes& out) {

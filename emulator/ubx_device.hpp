@@ -5,7 +5,8 @@
 // and through the legacy CFG messages on every part), answers to polls, ACK-ACK for accepted
 // configuration and ACK-NAK for what the part refuses, and each epoch's output per port: the
 // enabled UBX messages (emulator/ubx_outputs.hpp) and NMEA, each when the port's output
-// protocols include it.
+// protocols include it. A port whose input protocols include NMEA also takes the NMEA input
+// the part accepts (PUBX,40/41, PUBX and standard polls: emulator/ubx_nmea_input.cpp).
 
 #include <array>
 #include <map>
@@ -17,6 +18,7 @@
 #include "emulator/nmea_output.hpp"
 #include "emulator/ubx_config.hpp"
 #include "emulator/ubx_outputs.hpp"
+#include "protocols/pubx.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
 
@@ -25,6 +27,9 @@ namespace navemu {
 struct UbxDeviceCounters {
   std::uint64_t frames = 0, acks = 0, naks = 0, polls = 0;
   std::uint64_t checksum_errors = 0, too_long = 0, junk_bytes = 0;
+  // NMEA input: commands taken, and complete lines ignored (bad checksum or framing, too
+  // long, not an input of the part, a bad field, NMEA not in the port's input protocols).
+  std::uint64_t nmea_commands = 0, nmea_ignored = 0;
 };
 
 class UbxDevice final : public GnssDevice {
@@ -80,6 +85,12 @@ class UbxDevice final : public GnssDevice {
   void handle_valget(Payload payload, std::uint8_t port, Bytes& out);
   void handle_valdel(Payload payload, std::uint8_t port, Bytes& out);
   bool output_message(ubx::MsgId id, Bytes& out);
+  // A port's protocol masks (ubx::kProto*) and baud (0: unchanged) as configuration items
+  // (CFG-PRT, PUBX,41).
+  void port_values(std::uint8_t port, std::uint16_t in_mask, std::uint16_t out_mask, std::uint32_t baud,
+                   std::vector<ubx::CfgKeyValue>& values) const;
+  // An NMEA sentence received on `port` (emulator/ubx_nmea_input.cpp).
+  void receive_nmea(std::string_view sentence, std::uint8_t port, Bytes& out);
 
   GnssProfile profile_;
   ReceiverMode mode_;
@@ -89,6 +100,7 @@ class UbxDevice final : public GnssDevice {
     std::uint32_t rate_meas, rate_nav, rate_timeref;
   } keys_;
   std::array<ubx::Parser, kReceiverPorts> parsers_;
+  std::array<pubx::NmeaInputReader, kReceiverPorts> nmea_in_;
   UbxDeviceCounters counters_;
   UbxConfig config_;
   std::uint64_t seen_generation_ = 0;

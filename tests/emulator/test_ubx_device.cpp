@@ -20,6 +20,7 @@
 #include "models/constellation.hpp"
 #include "models/receiver.hpp"
 #include "protocols/gps_lnav.hpp"
+#include "protocols/nmea.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
 
@@ -737,6 +738,218 @@ TEST_F(UbxDeviceTest, HighPrecisionPositionAndRfMonitor) {
   UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
   EXPECT_TRUE(frames_of(send(m8, poll(ubx::kMonRf))).empty()) << "the u-blox 8 has no MON-RF";
   EXPECT_EQ(of_type(frames_of(send(m8, poll(ubx::kMonHw))), ubx::kMonHw).size(), 1u);
+}
+
+
+// ---- NMEA input (emulator/ubx_nmea_input.cpp) ------------------------------------------------
+// Sentences from the u-blox 8 receiver description (UBX-13003221) "PUBX Messages" and the F9
+// interface descriptions' polls ($PUBX,00*33, $PUBX,04*37, $EIGPQ,RMC*3A); others with their
+// checksums computed by hand (XOR of the bytes between '$' and '*').
+
+std::string send_nmea(UbxDevice& d, std::string_view sentence, ReceiverPort port = ReceiverPort::kUart1) {
+  std::string replies;
+  d.receive(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(sentence.data()), sentence.size()),
+            port, replies);
+  return replies;
+}
+
+// What `port` sends at epoch k (the same fix each time).
+std::string epoch_output(UbxDevice& d, std::int64_t k, ReceiverPort port = ReceiverPort::kUart1) {
+  d.update(a_fix(kT0.plus_s(static_cast<double>(k))), EpochMeasurements{}, k);
+  std::string out;
+  d.encode(port, out);
+  return out;
+}
+
+// A sentence's fields after the address, "$PUBX,04,a,b*cs\r\n" -> {"PUBX", "04", "a", "b"}.
+std::vector<std::string> fields_of(const std::string& sentence) {
+  std::vector<std::string> f(1);
+  for (char c : sentence.substr(1, sentence.find('*') - 1)) {
+    if (c == ',') f.emplace_back();
+    else f.back() += c;
+  }
+  return f;
+}
+
+ubx::CfgPrt cfg_prt_of(UbxDevice& d, std::uint8_t port) {
+  const std::vector<Frame> f = frames_of(send(d, frame(ubx::CfgPrtPoll{true, port})));
+  ubx::CfgPrt prt;
+  EXPECT_TRUE(!f.empty() && ubx::decode(f[0].payload, prt));
+  return prt;
+}
+
+// PUBX,41 with in and out masks of UBX only on UART1 (what an autopilot's driver sends): no
+// reply (NMEA input has no acknowledgement), the baud handed to the transport once, from the
+// next epoch no NMEA on UART1 while UBX goes on, USB untouched; NMEA input on UART1 is off now,
+// so a PUBX,41 turning NMEA back on is ignored, a CFG-PRT is not.
+TEST_F(UbxDeviceTest, PubxConfigUbxOnlyStopsNmeaOnThatPort) {
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    SCOPED_TRACE(p->ubx->protver);
+    UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
+    EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{0x01, 0x07, 1})), ubx::kCfgMsg));
+    EXPECT_NE(epoch_output(d, 0).find("$GPGGA"), std::string::npos);
+    EXPECT_EQ(send_nmea(d, "$PUBX,41,1,0001,0001,38400,0*24\r\n"), "");
+    EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), p->baud == 38400 ? std::nullopt : std::optional<int>(38400));
+    EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), std::nullopt);
+    const std::string out = epoch_output(d, 1);
+    EXPECT_EQ(out.find('$'), std::string::npos) << "no NMEA after PUBX,41 with outProto UBX";
+    EXPECT_EQ(of_type(frames_of(out), ubx::kNavPvt).size(), 1u);
+    EXPECT_NE(epoch_output(d, 2, ReceiverPort::kUsb).find("$GPGGA"), std::string::npos) << "USB keeps NMEA";
+    const ubx::CfgPrt prt = cfg_prt_of(d, ubx::kPortUart1);
+    EXPECT_EQ(prt.in_proto_mask, ubx::kProtoUbx);
+    EXPECT_EQ(prt.out_proto_mask, ubx::kProtoUbx);
+    EXPECT_EQ(prt.baud_rate, 38400u);
+    EXPECT_EQ(d.counters().nmea_commands, 1u);
+
+    EXPECT_EQ(send_nmea(d, "$PUBX,41,1,0003,0003,9600,0*14\r\n"), "");
+    EXPECT_EQ(d.counters().nmea_ignored, 1u) << "NMEA is no input protocol of UART1 any more";
+    EXPECT_EQ(epoch_output(d, 3).find('$'), std::string::npos);
+    ubx::CfgPrt back = prt;
+    back.in_proto_mask = back.out_proto_mask = ubx::kProtoUbx | ubx::kProtoNmea;
+    EXPECT_TRUE(only_ack(send(d, frame(back)), ubx::kCfgPrt));
+    EXPECT_NE(epoch_output(d, 4).find("$GPGGA"), std::string::npos);
+  }
+}
+
+// The description's example $PUBX,41,1,0007,0003,19200,0*25 (in UBX+NMEA+RTCM, out UBX+NMEA,
+// 19200 baud); sent over USB it configures UART1, and a PUBX,41 for USB sets USB's masks and
+// has no baud.
+TEST_F(UbxDeviceTest, PubxConfigDescriptionExampleAndOtherPorts) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_EQ(send_nmea(d, "$PUBX,41,1,0007,0003,19200,0*25\r\n", ReceiverPort::kUsb), "");
+  EXPECT_EQ(d.take_baud_change(ReceiverPort::kUsb), std::nullopt);
+  EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), 19200);
+  const ubx::CfgPrt prt = cfg_prt_of(d, ubx::kPortUart1);
+  EXPECT_EQ(prt.baud_rate, 19200u);
+  EXPECT_EQ(prt.out_proto_mask, ubx::kProtoUbx | ubx::kProtoNmea);
+  EXPECT_EQ(prt.in_proto_mask & (ubx::kProtoUbx | ubx::kProtoNmea), ubx::kProtoUbx | ubx::kProtoNmea);
+  EXPECT_EQ(d.config().get(0x40520001), 19200u);  // CFG-UART1-BAUDRATE
+
+  EXPECT_EQ(send_nmea(d, "$PUBX,41,3,0001,0001,115200,0*1E\r\n", ReceiverPort::kUart1), "");
+  EXPECT_EQ(d.config().get(0x10780002), 0u);  // CFG-USBOUTPROT-NMEA
+  EXPECT_EQ(d.take_baud_change(ReceiverPort::kUsb), std::nullopt);
+  EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), std::nullopt);
+  EXPECT_EQ(epoch_output(d, 0, ReceiverPort::kUsb).find('$'), std::string::npos);
+  EXPECT_NE(epoch_output(d, 0, ReceiverPort::kUart1).find("$GPGGA"), std::string::npos);
+}
+
+// PUBX,40 sets one sentence's rate on each port given, like CFG-MSG: the description's example
+// $PUBX,40,GLL,1,0,0,0,0,0*5D (GLL on DDC every solution, off on the UARTs, USB and SPI); the
+// short form hosts send leaves SPI as it was; ZDA switched on for UART1 only.
+TEST_F(UbxDeviceTest, PubxRateSetsTheSentenceRatePerPort) {
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    SCOPED_TRACE(p->ubx->protver);
+    UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
+    const ubx::MsgId gll{ubx::kClassNmea, 0x01}, zda{ubx::kClassNmea, 0x08};
+    EXPECT_NE(epoch_output(d, 0).find("$GPGLL"), std::string::npos);
+    EXPECT_EQ(send_nmea(d, "$PUBX,40,GLL,1,0,0,0,0,0*5D\r\n"), "");
+    EXPECT_EQ(d.rate(gll, ubx::kPortDdc), 1);
+    for (std::uint8_t q : {ubx::kPortUart1, ubx::kPortUart2, ubx::kPortUsb, ubx::kPortSpi}) EXPECT_EQ(d.rate(gll, q), 0);
+    EXPECT_EQ(epoch_output(d, 1).find("$GPGLL"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 1).find("$GPGGA"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 1, ReceiverPort::kI2c).find("$GPGLL"), std::string::npos);
+
+    EXPECT_EQ(send_nmea(d, "$PUBX,40,ZDA,0,1,0,0,0,0*45\r\n"), "");
+    EXPECT_EQ(d.rate(zda, ubx::kPortUart1), 1);
+    EXPECT_EQ(d.rate(zda, ubx::kPortUsb), 0);
+    EXPECT_NE(epoch_output(d, 2).find("$GPZDA"), std::string::npos);
+    EXPECT_EQ(epoch_output(d, 2, ReceiverPort::kUsb).find("$GPZDA"), std::string::npos);
+    if (p == &f9p_) {
+      EXPECT_EQ(d.config().get(0x209100d9), 1u);  // CFG-MSGOUT-NMEA_ID_ZDA_UART1
+    }
+
+    ubx::CfgMsg spi{ubx::kClassNmea, 0x01, {}};
+    spi.rate[ubx::kPortSpi] = 3;
+    EXPECT_TRUE(only_ack(send(d, frame(spi)), ubx::kCfgMsg));
+    EXPECT_EQ(send_nmea(d, "$PUBX,40,GLL,0,0,0,0*5C\r\n"), "");
+    EXPECT_EQ(d.rate(gll, ubx::kPortDdc), 0);
+    EXPECT_EQ(d.rate(gll, ubx::kPortSpi), 3) << "no SPI field: SPI keeps its rate";
+    EXPECT_EQ(d.counters().nmea_commands, 3u);
+  }
+}
+
+// PUBX polls: answered on the port they came from with the latest epoch's sentence. The fix of
+// a_fix(): 2010-11-17 13:00:00 UTC (GPS week 1610, Wednesday; GPS - UTC = 15 s), 32.3 N
+// 90.9 W, 60 m, 2 satellites used of 3 tracked.
+TEST_F(UbxDeviceTest, PubxPollsAnswerWithTheLatestEpoch) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  epoch_output(d, 0);
+  const std::string pos = send_nmea(d, "$PUBX,00*33\r\n");
+  ASSERT_EQ(nmea::check(pos).status, nmea::Checked::kOk) << pos;
+  EXPECT_EQ(std::count(pos.begin(), pos.end(), '\n'), 1);
+  const std::vector<std::string> p = fields_of(pos);
+  ASSERT_EQ(p.size(), 21u) << pos;
+  EXPECT_EQ(p[1], "00");
+  EXPECT_EQ(p[2], "130000.00");
+  EXPECT_EQ(p[3] + p[4] + p[5] + p[6], "3218.00000N09054.00000W");
+  EXPECT_EQ(p[7], "60.000");
+  EXPECT_EQ(p[8], "G3");
+  EXPECT_EQ(p[9] + "/" + p[10], "3.3/4.2");
+  EXPECT_EQ(p[15] + "/" + p[16] + "/" + p[17], "1.10/1.40/0.90");
+  EXPECT_EQ(p[18], "2");
+
+  const std::vector<std::string> t = fields_of(send_nmea(d, "$PUBX,04*37\r\n"));
+  ASSERT_GE(t.size(), 8u);
+  EXPECT_EQ(t[1], "04");
+  EXPECT_EQ(t[2] + " " + t[3], "130000.00 171110");
+  EXPECT_EQ(t[4] + " " + t[5] + " " + t[6], "306000.00 1610 15");
+
+  const std::string sv = send_nmea(d, "$PUBX,03*30\r\n", ReceiverPort::kUsb);
+  ASSERT_EQ(nmea::check(sv).status, nmea::Checked::kOk) << sv;
+  const std::vector<std::string> s = fields_of(sv);
+  ASSERT_EQ(s.size(), 3u + 3 * 6) << sv;
+  EXPECT_EQ(s[2], "3");
+  EXPECT_EQ(s[3] + "," + s[4] + "," + s[5] + "," + s[6] + "," + s[7], "5,U,120,45,44");
+  EXPECT_EQ(s[15] + "," + s[16] + "," + s[17] + "," + s[18], "29,-,030,03");
+  EXPECT_EQ(d.counters().polls, 3u);
+}
+
+// Standard polls: $EIGPQ,RMC*3A (ZED-F9P description 4.2.9) is answered with the RMC the port
+// sends at that epoch; a sentence the port does not send (ZDA) is answered too; a poll naming
+// another talker ID than the receiver's (GN: the receiver is GP) and a message the device does
+// not produce (GBS) get nothing.
+TEST_F(UbxDeviceTest, StandardPollsAnswerWithTheSentence) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  const std::string epoch = epoch_output(d, 0);
+  const std::string rmc = send_nmea(d, "$EIGPQ,RMC*3A\r\n");
+  ASSERT_TRUE(rmc.starts_with("$GPRMC,130000.00,A,3218.00000,N,09054.00000,W,")) << rmc;
+  EXPECT_NE(epoch.find(rmc), std::string::npos) << "the epoch's own RMC";
+  EXPECT_EQ(std::count(rmc.begin(), rmc.end(), '\n'), 1);
+  const std::string zda = send_nmea(d, "$EIGPQ,ZDA*39\r\n");
+  EXPECT_TRUE(zda.starts_with("$GPZDA,130000.00,17,11,2010,")) << zda;
+  EXPECT_EQ(nmea::check(zda).status, nmea::Checked::kOk);
+  EXPECT_EQ(send_nmea(d, "$EIGNQ,RMC*24\r\n"), "");
+  EXPECT_EQ(send_nmea(d, "$EIGPQ,GBS*30\r\n"), "");
+  EXPECT_EQ(d.counters().nmea_commands, 2u);
+  EXPECT_EQ(d.counters().nmea_ignored, 2u);
+}
+
+// Malformed input gets no reply and changes nothing: a wrong checksum, a bad field, an unknown
+// sentence for PUBX,40, a sentence that is no input ($GPGGA), one cut by a UBX frame; each is
+// counted. A UBX poll and an NMEA poll in one write are answered in the order they came.
+TEST_F(UbxDeviceTest, MalformedNmeaInputIsIgnoredAndCounted) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  epoch_output(d, 0);
+  const std::vector<std::uint8_t> mon = poll(ubx::kMonVer);
+  const std::string mon_s(mon.begin(), mon.end());
+  const std::string junk = "$PUBX,41,1,0001,0001,38400,0*00\r\n"   // checksum
+                           "$PUBX,41,1,00G1,0001,38400,0*53\r\n"   // not hexadecimal
+                           "$PUBX,40,XYZ,0,1,0,0,0,0*41\r\n"       // no such sentence
+                           "$GPGGA,,,,,,0,00,99.99,,,,,,*48\r\n"   // an output, not an input
+                           "$PUBX,41,1,0001," + mon_s + ",38400,0*24\r\n";  // cut by a frame
+  const std::string replies = send_nmea(d, junk);
+  EXPECT_EQ(replies.find('$'), std::string::npos) << replies;
+  EXPECT_EQ(of_type(frames_of(replies), ubx::kMonVer).size(), 1u);
+  EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), std::nullopt);
+  EXPECT_NE(epoch_output(d, 1).find("$GPGGA"), std::string::npos);
+  EXPECT_EQ(d.counters().nmea_commands, 0u);
+  EXPECT_EQ(d.counters().nmea_ignored, 4u);
+
+  const std::string both = send_nmea(d, mon_s + "$PUBX,00*33\r\n");
+  ASSERT_GT(both.size(), mon.size());
+  EXPECT_EQ(of_type(frames_of(both), ubx::kMonVer).size(), 1u);
+  EXPECT_TRUE(both.substr(both.find('$')).starts_with("$PUBX,00,")) << "the PUBX,00 after the MON-VER";
+  EXPECT_EQ(both[0], static_cast<char>(ubx::kSync1));
 }
 
 }  // namespace
