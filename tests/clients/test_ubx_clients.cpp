@@ -910,5 +910,47 @@ TEST(UbxFaults, GarbageFromTheClientNeverStopsTheOutput) {
               garbage_bytes, bursts, g1 - g0, max_gap(pvt_t), max_gap(rmc_t), *answered_s * 1e3);
 }
 
+
+// ---- NMEA input ------------------------------------------------------------------------------
+
+// $PUBX,41 written to the pty with in/out masks of UBX only (what an autopilot's u-blox driver
+// sends to make its port UBX-only; UBX-13003221 "PUBX,41"): the NMEA stops from the next epoch
+// while NAV-PVT goes on, with no reply to the sentence. (The pty has no baud: the 38400 asked
+// for is the UART's and changes nothing here.)
+TEST(UbxNmeaInput, PubxConfigUbxOnlyStopsNmeaOnThePty) {
+  TempDir dir("ubx-pubx41");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  const fs::path profile = write_profile(dir, "ublox-m8", "NAV-PVT: 1");
+  NavemuRun nav(dir, "navemu", ubx_config(profile, link, log), 30);
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  PtyClient pty;
+  ASSERT_TRUE(pty.open(link));
+  pty.read_until(mono_s() + 2.5);
+  ASSERT_GE(pty.nmea_times("RMC").size(), 1u) << "NMEA at power-up" << nav.diagnostics();
+  const std::string cmd = "$PUBX,41,1,0001,0001,38400,0*24\r\n";
+  const double t_cmd = mono_s();
+  ASSERT_TRUE(pty.write_all(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(cmd.data()), cmd.size())));
+  pty.read_until(t_cmd + 6.0);
+  // An epoch already on its way may still carry NMEA: from 1.5 s on, none.
+  const double quiet_from = t_cmd + 1.5;
+  std::size_t nmea_after = 0;
+  double last_nmea = t_cmd;
+  for (const char* type : {"RMC", "VTG", "GGA", "GSA", "GSV", "GLL"})
+    for (double t : pty.nmea_times(type)) {
+      nmea_after += t >= quiet_from ? 1u : 0u;
+      last_nmea = std::max(last_nmea, t);
+    }
+  std::size_t pvt_after = 0, acks = 0;
+  for (const UbxFrame& f : pty.frames()) {
+    pvt_after += f.id == ubx::kNavPvt && f.t_mono >= quiet_from ? 1u : 0u;
+    acks += (f.id == ubx::kAckAck || f.id == ubx::kAckNak) && f.t_mono >= t_cmd ? 1u : 0u;
+  }
+  EXPECT_EQ(nmea_after, 0u) << "NMEA after $PUBX,41 with outProto UBX";
+  EXPECT_GE(pvt_after, 3u) << "UBX goes on";
+  EXPECT_EQ(acks, 0u) << "NMEA input is not acknowledged";
+  std::printf("PUBX,41: last NMEA %.2f s after it; %zu NMEA sentences and %zu NAV-PVT from 1.5 s to 6 s after it\n",
+              last_nmea - t_cmd, nmea_after, pvt_after);
+}
+
 }  // namespace
 }  // namespace navemu::test::clients

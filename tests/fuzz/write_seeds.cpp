@@ -127,6 +127,13 @@ void ubx_seeds(const fs::path& dir) {
   ubx::append_poll(ubx::kMonVer, mixed);
   mixed.resize(mixed.size() - 3);
   write_ubx(dir, "mixed", mixed);
+
+  // The NMEA input the part takes (UBX-13003221 "PUBX Messages", standard polls).
+  std::vector<std::uint8_t> nmea_in;
+  for (const char c : std::string_view("$PUBX,40,GLL,1,0,0,0,0,0*5D\r\n$PUBX,00*33\r\n$PUBX,03*30\r\n"
+                                       "$PUBX,04*37\r\n$EIGPQ,RMC*3A\r\n$PUBX,41,1,0001,0001,38400,0*24\r\n"))
+    nmea_in.push_back(static_cast<std::uint8_t>(c));
+  write_ubx(dir, "nmea-input", nmea_in);
 }
 
 void slcan_seeds(const fs::path& dir) {
