@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "tests/clients/client_support.hpp"
 
 namespace navemu::test::clients {
