@@ -39,8 +39,9 @@ TEST_P(UbxtoolSweep, ShortSweepMeetsItsThresholds) {
   const std::string text = slurp(out);
   EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st) << "\n" << text;
   // The summary, for the log.
-  const auto at = text.find("\nconfigs/");
-  std::printf("%s", at == std::string::npos ? text.c_str() : text.substr(at + 1).c_str());
+  const auto runs = text.find(" ubxtool runs in ");
+  const auto at = runs == std::string::npos ? 0 : text.rfind('\n', runs) + 1;
+  std::printf("%s", text.substr(at).c_str());
 }
 
 INSTANTIATE_TEST_SUITE_P(Profiles, UbxtoolSweep,
