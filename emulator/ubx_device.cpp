@@ -102,7 +102,8 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
       nav_(nav),
       protocol27_(profile.ubx->protver >= "27"),
       keys_{item("CFG-RATE-MEAS"), item("CFG-RATE-NAV"), item("CFG-RATE-TIMEREF")},
-      config_(firmware_of(*profile.ubx), profile_defaults(profile)) {
+      config_(firmware_of(*profile.ubx), profile_defaults(profile)),
+      legacy_(protocol27_) {
   // Room for every satellite: copying and refilling the epoch's lists never allocates.
   last_fix_.satellites.reserve(kDefinedSatellites);
   last_meas_.sats.reserve(kDefinedSatellites);
@@ -281,7 +282,10 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_
     if (p.empty() && output_message(msg, out)) ++counters_.polls;
     return;
   }
-  nak(msg, out);  // a configuration message this receiver does not know
+  // The legacy messages navemu keeps without modelling: a poll is answered with the message
+  // and then acknowledged, a set acknowledged or refused (UBX-13003221 32.5 "UBX Message Flow").
+  if (legacy_.has(msg) && legacy_.handle(msg, p, out)) return ack(msg, out);
+  nak(msg, out);  // a configuration message this receiver does not have, or a form it refuses
 }
 
 void UbxDevice::poll_mon_ver(std::uint8_t, Bytes& out) {
@@ -435,9 +439,18 @@ void UbxDevice::handle_cfg_cfg(Payload p, std::uint8_t, Bytes& out) {
   CfgCfg c;
   if (!decode(p, c)) return nak(kCfgCfg, out);
   const std::uint8_t layers = c.has_device_mask ? static_cast<std::uint8_t>(c.device_mask & 0x03) : 0x03;
-  if (c.clear_mask) config_.clear(layers);
-  if (c.save_mask) config_.save(layers);
-  if (c.load_mask) config_.load();
+  if (c.clear_mask) {
+    config_.clear(layers);
+    legacy_.clear();
+  }
+  if (c.save_mask) {
+    config_.save(layers);
+    legacy_.save();
+  }
+  if (c.load_mask) {
+    config_.load();
+    legacy_.load();
+  }
   ack(kCfgCfg, out);
 }
 
@@ -449,8 +462,10 @@ void UbxDevice::handle_cfg_rst(Payload p, std::uint8_t, Bytes& out) {
   CfgRst r;
   if (!decode(p, r)) return nak(kCfgRst, out);
   if (r.reset_mode == CfgRst::kHardwareReset || r.reset_mode == CfgRst::kControlledSoftwareReset ||
-      r.reset_mode == CfgRst::kHardwareResetAfterShutdown)
+      r.reset_mode == CfgRst::kHardwareResetAfterShutdown) {
     config_.reload();
+    legacy_.load();
+  }
   const double outage_s = r.nav_bbr_mask == CfgRst::kHotStart    ? 1.0
                           : r.nav_bbr_mask == CfgRst::kWarmStart ? 25.0
                                                                  : 26.0;

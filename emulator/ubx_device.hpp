@@ -17,6 +17,7 @@
 #include "emulator/gnss_device.hpp"
 #include "emulator/nmea_output.hpp"
 #include "emulator/ubx_config.hpp"
+#include "emulator/ubx_legacy_cfg.hpp"
 #include "emulator/ubx_outputs.hpp"
 #include "protocols/pubx.hpp"
 #include "protocols/ubx.hpp"
@@ -103,6 +104,7 @@ class UbxDevice final : public GnssDevice {
   std::array<pubx::NmeaInputReader, kReceiverPorts> nmea_in_;
   UbxDeviceCounters counters_;
   UbxConfig config_;
+  UbxLegacyCfg legacy_;
   std::uint64_t seen_generation_ = 0;
   bool stale_ = true;  // refresh() must run even if the database did not change
   std::int64_t period_ns_ = 1'000'000'000;

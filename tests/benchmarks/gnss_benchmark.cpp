@@ -18,6 +18,8 @@
 #include "emulator/gnss_device.hpp"
 #include "emulator/gnss_scene.hpp"
 #include "emulator/nmea_output.hpp"
+#include "protocols/ubx_config_db.hpp"
+#include "protocols/ubx_messages.hpp"
 #include "models/constellation.hpp"
 #include "models/geodesy.hpp"
 #include "models/orbit.hpp"
@@ -240,6 +242,43 @@ void BM_GnssEncodeUbxEpoch(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_GnssEncodeUbxEpoch)->Unit(benchmark::kMicrosecond);
+
+// Command handling off the hot path: a CFG-VALGET of 64 items (the most one message may ask)
+// and a CFG-VALSET of the same items, each answered with its ACK, must fit in one 10 ms service
+// tick with room to spare (issue 21); the epoch encoders above are the same run's baseline.
+std::vector<std::uint8_t> config_frame(bool set) {
+  std::vector<ubx::CfgKeyValue> items;
+  for (const ubx::CfgKey& k : ubx::config_keys())
+    if ((k.firmware & ubx::kFwHpg113) && items.size() < 64) items.push_back({k.id, k.default_raw});
+  std::vector<std::uint8_t> out;
+  if (set) {
+    ubx::CfgValset m;
+    m.values = items;
+    ubx::append(m, out);
+  } else {
+    ubx::CfgValgetRequest m;
+    for (const ubx::CfgKeyValue& kv : items) m.keys.push_back(kv.key_id);
+    ubx::append(m, out);
+  }
+  return out;
+}
+
+void config_exchange(benchmark::State& state, bool set) {
+  const std::unique_ptr<GnssDevice> ubx =
+      make_gnss_device(load_gnss_profile("ublox-f9p"), ReceiverMode::kStandalone, twelve_sats());
+  const std::vector<std::uint8_t> frame = config_frame(set);
+  std::string replies;
+  for (auto _ : state) {
+    replies.clear();
+    ubx->receive(frame, replies);
+    benchmark::DoNotOptimize(replies.data());
+  }
+  state.counters["reply_bytes"] = static_cast<double>(replies.size());
+}
+void BM_UbxValget64Items(benchmark::State& state) { config_exchange(state, false); }
+BENCHMARK(BM_UbxValget64Items)->Unit(benchmark::kMicrosecond);
+void BM_UbxValset64Items(benchmark::State& state) { config_exchange(state, true); }
+BENCHMARK(BM_UbxValset64Items)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace navemu

@@ -52,7 +52,8 @@ fs::path write_profile(const TempDir& dir, const std::string& base, const std::s
 // `capture`: gnss.capture, a mirror of every byte sent (replies included) and, in CAPTURE.in,
 // of every byte received from the clients.
 std::string ubx_config(const fs::path& profile, const fs::path& link, const fs::path& log,
-                       const std::string& start = "now", const fs::path& capture = {}) {
+                       const std::string& start = "now", const fs::path& capture = {},
+                       const std::string& port = "uart1") {
   return fmt::format(
       "scenario: {{status_interval_s: 1, start: '{}'}}\n"
       "truth: {{source: stationary, position: {{lat_deg: {}, lon_deg: {}, h_m: {}}}}}\n"
@@ -60,12 +61,12 @@ std::string ubx_config(const fs::path& profile, const fs::path& link, const fs::
       "  profile: '{}'\n"
       "{}"
       "  outputs:\n"
-      "    - {{type: pty, link: '{}'}}\n"
+      "    - {{type: pty, link: '{}', port: {}}}\n"
       "    - {{type: file, path: '{}'}}\n"
       "imu: {{enabled: false}}\n",
       start, kUbxSite.lat_deg, kUbxSite.lon_deg, kUbxSite.h_m, profile.string(),
       capture.empty() ? std::string{} : fmt::format("  capture: '{}'\n", capture.string()),
-      link.string(), log.string());
+      link.string(), port, log.string());
 }
 
 // ---- UBX frames (tests/clients/ubx_frames.hpp) -------------------------------------------
@@ -766,6 +767,92 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   std::printf("RTKLIB: %zu ephemerides in the navigation file for %zu tracked satellites\n",
               rinex.gps.size(), tracked.size());
 }
+
+// RTKLIB's stock u-blox command files (../shared/clients/rtklib-ubx-cmd, RTKLIB 2.4.3's
+// data/ubx_m8t_*.cmd) sent by `str2str -c FILE` to the shipped M8 profile (no UBX at power-up).
+// Each file's `!UBX CFG-MSG 2 21 0 0 0 1 0 0` / `2 19 ...` sets RXM-RAWX and RXM-SFRBX to 1 per
+// solution on the fourth port slot only, USB (UBX-CFG-MSG rates: DDC, UART1, UART2, USB, SPI,
+// reserved; u-blox 8 interface description UBX-13003221, 32.10.18.3), and the 5 Hz files send
+// `CFG-RATE 200 1 1`. So on a pty configured `port: usb` (a receiver on /dev/ttyACM0) RAWX
+// comes at the file's rate, every epoch, with SFRBX subframes; on UART1 the part sends neither
+// (their UART1 rate stays 0). Counts are taken over the capture's own receiver times (RAWX
+// rcvTow), so a loaded machine does not change them.
+struct RtklibCmdCase {
+  const char* file;
+  double rate_hz;
+};
+
+class UbxRtklibCmd : public ::testing::TestWithParam<RtklibCmdCase> {};
+
+TEST_P(UbxRtklibCmd, UsbPortGivesRawAtTheRequestedRateUart1GivesNone) {
+  NAVEMU_REQUIRE_TOOL(str2str, "str2str", "rtklib");
+  const fs::path cmd = fs::path(NAVEMU_SOURCE_DIR) / ".." / "shared" / "clients" / "rtklib-ubx-cmd" / GetParam().file;
+  if (!fs::exists(cmd)) GTEST_SKIP() << cmd << " not found (../shared/clients/rtklib-ubx-cmd)";
+  const double rate_hz = GetParam().rate_hz;
+  const double capture_s = 12.0;
+  for (const std::string port : {"usb", "uart1"}) {
+    SCOPED_TRACE("port: " + port);
+    TempDir dir("ubx-rtklib-cmd-" + port);
+    const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+    NavemuRun nav(dir, "navemu",
+                  ubx_config(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-m8.yaml", link,
+                             log, "now", {}, port),
+                  capture_s + 20.0);
+    ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+    const fs::path capture = dir / "capture.ubx";
+    Child s2s({str2str, "-in", "serial://.." + link.string() + ":115200#ubx", "-c", cmd.string(), "-out",
+               "file://" + capture.string()},
+              dir / "str2str.out", dir / "str2str.err");
+    sleep_s(capture_s);
+    s2s.signal(SIGINT);
+    const auto s2s_status = s2s.wait_exit(5.0);
+    s2s.stop();
+    nav.stop();
+    EXPECT_TRUE(s2s_status.has_value()) << "str2str ignored SIGINT";
+
+    const std::vector<UbxFrame> frames = fs::exists(capture) ? parse_frames(slurp(capture)) : std::vector<UbxFrame>{};
+    const auto rawx = decode_all<ubx::RxmRawx>(frames, ubx::kRxmRawx);
+    const auto sfrbx = decode_all<ubx::RxmSfrbx>(frames, ubx::kRxmSfrbx);
+    std::size_t acks = 0, naks = 0;
+    for (const UbxFrame& f : frames) {
+      acks += f.id == ubx::kAckAck ? 1u : 0u;
+      naks += f.id == ubx::kAckNak ? 1u : 0u;
+    }
+    if (port == "uart1") {
+      EXPECT_EQ(rawx.size(), 0u) << "the file sets RAWX on USB only";
+      EXPECT_EQ(sfrbx.size(), 0u) << "the file sets SFRBX on USB only";
+      std::printf("RTKLIB %s on UART1: %zu RAWX, %zu SFRBX, %zu ACK, %zu NAK\n", GetParam().file,
+                  rawx.size(), sfrbx.size(), acks, naks);
+      continue;
+    }
+    ASSERT_GE(rawx.size(), 2u) << tail(slurp(dir / "str2str.err")) << nav.diagnostics();
+    // RAWX every epoch at the requested interval, from the first to the last one captured.
+    const double step_s = 1.0 / rate_hz;
+    std::size_t at_rate = 0;
+    for (std::size_t i = 1; i < rawx.size(); ++i)
+      at_rate += std::abs(rawx[i].rcv_tow_s - rawx[i - 1].rcv_tow_s - step_s) < 1e-3 ? 1u : 0u;
+    const double span_s = rawx.back().rcv_tow_s - rawx.front().rcv_tow_s;
+    const double measured_hz = static_cast<double>(rawx.size() - 1) / span_s;
+    EXPECT_EQ(at_rate + 1, rawx.size()) << "consecutive RAWX " << step_s << " s apart";
+    EXPECT_NEAR(measured_hz, rate_hz, 0.01 * rate_hz);
+    // Seconds of RAWX: the capture less str2str's start-up and the rate change (loose bound).
+    EXPECT_GE(span_s, capture_s - 6.0);
+    // Subframes every 6 s per tracked satellite: at least one full 6 s period was captured.
+    EXPECT_GE(sfrbx.size(), 4u) << "RXM-SFRBX";
+    std::printf("RTKLIB %s on USB: %zu RAWX over %.1f s (%.3f Hz, %zu of %zu steps of %.0f ms), %zu SFRBX, "
+                "%zu ACK, %zu NAK\n",
+                GetParam().file, rawx.size(), span_s, measured_hz, at_rate, rawx.size() - 1, step_s * 1e3,
+                sfrbx.size(), acks, naks);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(StockCommandFiles, UbxRtklibCmd,
+                         ::testing::Values(RtklibCmdCase{"ubx_m8t_glo_raw_5hz.cmd", 5.0},
+                                           RtklibCmdCase{"ubx_m8t_bds_raw_1hz.cmd", 1.0}),
+                         [](const ::testing::TestParamInfo<RtklibCmdCase>& p) {
+                           const std::string n = p.param.file;
+                           return n.substr(0, n.find('.'));
+                         });
 
 // ---- faults on the wire ----------------------------------------------------------------------
 

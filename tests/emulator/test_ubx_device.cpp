@@ -255,14 +255,53 @@ TEST_F(UbxDeviceTest, CfgRateSetValidAndInvalid) {
   EXPECT_EQ(d.counters().naks, 3u);
 }
 
-// A configuration message the receiver does not implement (CFG-TP5, time pulse) is refused
-// with ACK-NAK, so a client knows it was not applied.
-TEST_F(UbxDeviceTest, UnknownCfgMessageIsNaked) {
+// Legacy CFG messages (UBX-13003221 32.10): one the part has is polled (the message, then
+// ACK-ACK), set in its documented form and read back, and kept over a reset only after CFG-CFG
+// save; a form of the wrong length and a message the part does not have (CFG-DGNSS on the
+// u-blox 8 standard-precision part, CFG-SBAS on the F9P) are refused with ACK-NAK.
+TEST_F(UbxDeviceTest, LegacyCfgMessagesArePolledSetAndKept) {
   UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
-  const std::vector<std::uint8_t> tp5(32, 0x01);
-  EXPECT_TRUE(only_ack(send(d, raw_frame(ubx::kCfgTp5, tp5)), ubx::kCfgTp5, true));
-  EXPECT_EQ(d.counters().naks, 1u);
-  EXPECT_EQ(d.counters().acks, 0u);
+  const auto poll_tp5 = [&](std::uint8_t idx) -> std::optional<ubx::CfgTp5> {
+    const std::vector<Frame> f = frames_of(send(d, raw_frame(ubx::kCfgTp5, {idx})));
+    ubx::CfgTp5 m;
+    if (f.size() != 2 || !is_ack(f[1], ubx::kCfgTp5) || !ubx::decode(f[0].payload, m)) return std::nullopt;
+    return m;
+  };
+  auto tp = poll_tp5(0);
+  ASSERT_TRUE(tp);
+  EXPECT_EQ(tp->freq_period_hz_or_us, 1'000'000u) << "TIMEPULSE at 1 Hz after power-up";
+  EXPECT_EQ(tp->ant_cable_delay_ns, 50);
+  ubx::CfgTp5 set = *tp;
+  set.tp_idx = 1;
+  set.freq_period_hz_or_us = 10;
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgTp5));
+  EXPECT_EQ(poll_tp5(1)->freq_period_hz_or_us, 10u);
+  EXPECT_EQ(poll_tp5(0)->freq_period_hz_or_us, 1'000'000u) << "TIMEPULSE unchanged";
+
+  ubx::CfgRst hot;  // a hardware reset: what was not saved is gone
+  hot.nav_bbr_mask = ubx::CfgRst::kHotStart;
+  hot.reset_mode = ubx::CfgRst::kHardwareReset;
+  send(d, frame(hot));
+  EXPECT_EQ(poll_tp5(1)->freq_period_hz_or_us, 0u);
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgTp5));
+  ubx::CfgCfg save;
+  save.save_mask = 0xFFFF;
+  EXPECT_TRUE(only_ack(send(d, frame(save)), ubx::kCfgCfg));
+  send(d, frame(hot));
+  EXPECT_EQ(poll_tp5(1)->freq_period_hz_or_us, 10u) << "saved before the reset";
+
+  const std::vector<std::uint8_t> short_tp5(31, 0x01);
+  EXPECT_TRUE(only_ack(send(d, raw_frame(ubx::kCfgTp5, short_tp5)), ubx::kCfgTp5, true));
+  EXPECT_TRUE(only_ack(send(d, poll(ubx::kCfgDgnss)), ubx::kCfgDgnss, true)) << "M8 standard precision";
+  const std::vector<Frame> sbas = frames_of(send(d, poll(ubx::kCfgSbas)));
+  ASSERT_EQ(sbas.size(), 2u);
+  ubx::CfgSbas sb;
+  ASSERT_TRUE(ubx::decode(sbas[0].payload, sb));
+  EXPECT_EQ(sb.mode & 1, 1) << "SBAS on after power-up";
+
+  UbxDevice f9p(f9p_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_TRUE(only_ack(send(f9p, poll(ubx::kCfgSbas)), ubx::kCfgSbas, true)) << "no CFG-SBAS on the F9";
+  EXPECT_EQ(frames_of(send(f9p, poll(ubx::kCfgTmode3))).size(), 2u) << "CFG-TMODE3 on the F9";
 }
 
 // CFG-RST is not acknowledged (UBX-13003221, CFG-RST); the receiver then searches: a cold or

@@ -1,7 +1,8 @@
 // The u-blox device's command side (emulator/ubx_device.hpp): the bytes a client sends (UBX
 // frames, NMEA, noise, in any pieces) go through ubx::Parser and the CFG/poll handlers, and the
-// configuration they leave must still encode an epoch. Byte 0 picks the profile (M8 or F9P) and
-// where the input is cut in two; an epoch is encoded after each piece.
+// configuration they leave must still encode an epoch. Byte 0 picks the profile (bit 0: M8 or
+// F9P), the receiver port the bytes arrive on (bits 1..3) and where the input is cut in two; an
+// epoch is encoded for every port after each piece.
 
 #include <cstdint>
 #include <string>
@@ -35,12 +36,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   navemu::UbxDevice device((data[0] & 1) != 0 ? f9p : m8, navemu::ReceiverMode::kStandalone, nav);
   const auto input = navemu::fuzz::bytes_of(data + 1, size - 1);
   const std::size_t cut = input.empty() ? 0 : data[0] % (input.size() + 1);
+  const auto port = static_cast<navemu::ReceiverPort>((data[0] >> 1 & 7) % navemu::kReceiverPorts);
   std::string out;
-  device.receive(input.first(cut), out);
-  device.encode_epoch(a_fix(0), meas, 0, out);
-  (void)device.take_baud_change();
-  device.receive(input.subspan(cut), out);
-  device.encode_epoch(a_fix(1), meas, 1, out);
+  for (std::int64_t piece = 0; piece < 2; ++piece) {
+    device.receive(piece == 0 ? input.first(cut) : input.subspan(cut), port, out);
+    device.update(a_fix(piece), meas, piece);
+    for (std::size_t p = 0; p < navemu::kReceiverPorts; ++p) {
+      device.encode(static_cast<navemu::ReceiverPort>(p), out);
+      (void)device.take_baud_change(static_cast<navemu::ReceiverPort>(p));
+    }
+  }
   if (device.period_ns() <= 0) navemu::fuzz::fail("the navigation period is not positive");
   return 0;
 }

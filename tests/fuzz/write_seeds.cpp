@@ -120,6 +120,49 @@ void ubx_seeds(const fs::path& dir) {
   ubx::append(valdel, keys);
   write_ubx(dir, "cfg-val", keys);
 
+  // Layers, transactions and wildcards (UBX-18010854 6.2-6.4): a three-part transaction into
+  // BBR and Flash, a group read from the Default layer with paging, a group deleted.
+  std::vector<std::uint8_t> layered;
+  for (const std::uint8_t txn : {std::uint8_t{1}, std::uint8_t{2}, std::uint8_t{3}}) {
+    ubx::CfgValset part;
+    part.version = 1;
+    part.layers = ubx::kLayerMaskRam | ubx::kLayerMaskBbr | ubx::kLayerMaskFlash;
+    part.transaction = txn;
+    part.values = {{key::kRateMeas, 100u * txn}, {0x40050002, 500000}};
+    ubx::append(part, layered);
+  }
+  ubx::CfgValgetRequest group;
+  group.layer = ubx::kLayerDefault;
+  group.position = 64;
+  group.keys = {0x0fffffff, 0x0021ffff};
+  ubx::append(group, layered);
+  ubx::CfgValdel del;
+  del.version = 1;
+  del.layers = ubx::kLayerMaskBbr;
+  del.keys = {0x0021ffff};
+  ubx::append(del, layered);
+  write_ubx(dir, "cfg-layers", layered);
+
+  // Multi-block legacy forms: CFG-PRT for UART1 and USB in one message (PX4's driver), CFG-INF
+  // for both protocols, CFG-TP5 poll by index and set, CFG-NMEA's short form.
+  ubx::CfgPrtPorts ports;
+  ports.ports = {prt, prt};
+  ports.ports[1].port_id = ubx::kPortUsb;
+  std::vector<std::uint8_t> legacy = frame(ports);
+  ubx::CfgInf inf;
+  inf.blocks = {{0, {}, {0, 1, 0, 1, 0, 0}}, {1, {}, {0, 7, 0, 7, 0, 0}}};
+  ubx::append(inf, legacy);
+  ubx::append(ubx::CfgInfPoll{1}, legacy);
+  ubx::CfgTp5 tp5;
+  tp5.tp_idx = 1;
+  tp5.freq_period_hz_or_us = 10;
+  ubx::append(tp5, legacy);
+  ubx::append_frame(ubx::kCfgTp5.cls, ubx::kCfgTp5.id, std::vector<std::uint8_t>{1}, legacy);
+  ubx::append_frame(ubx::kCfgNmea.cls, ubx::kCfgNmea.id, std::vector<std::uint8_t>{0, 0x23, 0, 0}, legacy);
+  for (const ubx::MsgId id : {ubx::kCfgSbas, ubx::kCfgNavx5, ubx::kCfgItfm, ubx::kCfgTmode3, ubx::kCfgGeofence})
+    ubx::append_poll(id, legacy);
+  write_ubx(dir, "cfg-legacy", legacy);
+
   // NMEA commands and noise between frames, and a frame cut short.
   std::vector<std::uint8_t> mixed;
   for (const char c : std::string_view("$PUBX,40,GSV,0,0,0,0,0,0*59\r\n$GPGGA,,*56\r\n\xB5\x62\x06"))
