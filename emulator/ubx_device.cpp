@@ -68,7 +68,8 @@ std::vector<std::pair<std::uint32_t, std::uint64_t>> profile_defaults(const Gnss
   for (std::uint8_t port : {kPortDdc, kPortUart1, kPortUsb, kPortSpi}) {
     const std::string suffix = std::string("_") + kPortNames[port];
     add(proto_item(port, false, "NMEA"), p.ubx->nmea_out ? 1 : 0);
-    for (const auto& [nid, n] : kNmeaIds) {
+    for (const auto& id_name : kNmeaIds) {
+      const char* n = id_name.second;  // a plain name: clang's lambdas take no structured binding
       const auto it =
           std::find_if(p.sentences.begin(), p.sentences.end(), [&](const auto& s) { return s.first == n; });
       add(item(std::string("CFG-MSGOUT-NMEA_ID_") + n + suffix),
