@@ -493,8 +493,8 @@ bool has_message(const std::string& text, const std::string& header, const std::
 // ubxtool on the shipped M8 profile (NMEA only at power-up): MON-VER gives the profile's
 // versions; CFG-MSG,1,7,1 turns NAV-PVT on (ACK-ACK), CFG-MSG,1,7 reads its rate back (the
 // 2-byte poll: reply then ACK); CFG-RATE,100,1 is acknowledged and NAV-PVT then comes at 10 Hz
-// (100 +- 3 in 10 s, iTOW 100 ms apart); an invalid CFG-RATE (10 ms) and an unknown CFG
-// (CFG-TP5) get ACK-NAK and change nothing.
+// (100 +- 3 in 10 s, iTOW 100 ms apart); an invalid CFG-RATE (10 ms) and a CFG message the part
+// does not have (CFG-DGNSS) get ACK-NAK and change nothing; a CFG-TP5 set is acknowledged.
 TEST(UbxTool, M8PollsRateChangeAndRefusals) {
   NAVEMU_REQUIRE_TOOL(ubxtool, "ubxtool", "python3-gps 3.22 (gpsd-clients)");
   TempDir dir("ubxtool-m8");
@@ -524,13 +524,16 @@ TEST(UbxTool, M8PollsRateChangeAndRefusals) {
   out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "CFG-RATE"});
   EXPECT_TRUE(has_message(out, "UBX-CFG-RATE:", "measRate 100 navRate 1")) << out;
 
-  // measRate 10 ms: above any u-blox 8 rate; CFG-TP5 with a 32-byte payload: not emulated.
+  // measRate 10 ms: above any u-blox 8 rate; CFG-DGNSS: a high-precision message the
+  // standard-precision M8 does not have (UBX-13003221 32.10.5); CFG-TP5 with its 32 bytes: kept.
   out = run_ubxtool(ubxtool, dir, link, "18", {"-c", "0x06,0x08,0x0a,0x00,0x01,0x00,0x01,0x00"}, 0.5);
   EXPECT_TRUE(has_message(out, "UBX-ACK-NAK:", "NAK to Class x06 (CFG) ID x08 (RATE)")) << out;
+  out = run_ubxtool(ubxtool, dir, link, "18", {"-c", "0x06,0x70,0x03,0x00,0x00,0x00"}, 0.5);
+  EXPECT_TRUE(has_message(out, "UBX-ACK-NAK:", "NAK to Class x06 (CFG) ID x70 (DGNSS)")) << out;
   std::string tp5 = "0x06,0x31";
   for (int i = 0; i < 32; ++i) tp5 += ",0x00";
   out = run_ubxtool(ubxtool, dir, link, "18", {"-c", tp5}, 0.5);
-  EXPECT_TRUE(has_message(out, "UBX-ACK-NAK:", "NAK to Class x06 (CFG) ID x31 (TP5)")) << out;
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x31 (TP5)")) << out;
   out = run_ubxtool(ubxtool, dir, link, "18", {"-p", "CFG-RATE"}, 0.5);
   EXPECT_TRUE(has_message(out, "UBX-CFG-RATE:", "measRate 100 navRate 1")) << "the NAKed rate changed nothing\n" << out;
   const double ubxtool_s = mono_s() - t0;
