@@ -1000,7 +1000,6 @@ TEST(UbxFaults, GarbageFromTheClientNeverStopsTheOutput) {
               garbage_bytes, bursts, g1 - g0, max_gap(pvt_t), max_gap(rmc_t), *answered_s * 1e3);
 }
 
-
 // ---- NMEA input ------------------------------------------------------------------------------
 
 // $PUBX,41 written to the pty with in/out masks of UBX only (what an autopilot's u-blox driver
