@@ -55,6 +55,8 @@ constexpr std::size_t kTailReserve = 32 * 1024;
 constexpr std::chrono::milliseconds kPushLag{5};
 // How long gpsd may take to answer a removal on its control socket (it answers at once).
 constexpr std::chrono::milliseconds kGpsdTimeout{2000};
+// At close, how long a client that has the slave open gets to read what it has not read yet.
+constexpr std::chrono::milliseconds kDrainTimeout{500};
 
 // Bytes written within the last kPushLag (at least): two consecutive buckets, each at least
 // kPushLag long, the current one younger than kPushLag, so together they cover the window.
@@ -228,8 +230,9 @@ class PtyPort final : public BytePort {
   }
 
   ~PtyPort() override {
-    // gpsd is told first (it closes its end of the pty), then the link goes, then (members) the
-    // pty and, last, the lock.
+    // The clients read what is left first; then gpsd is told (it closes its end of the pty),
+    // the link goes, then (members) the pty and, last, the lock.
+    drain();
     if (!gpsd_socket_.empty()) {
       try {
         gpsd_control(gpsd_socket_, "-" + client_path(), kGpsdTimeout);
@@ -392,7 +395,24 @@ class PtyPort final : public BytePort {
     return false;
   }
 
-  // Drains inotify(7) events: every IN_OPEN is a client opening the slave.
+  // Closing the master hangs the slave up, which flushes its input queue (tty_vhangup): a
+  // client still reading would lose the last bytes written, e.g. a run's last epoch. So while a
+  // client has the slave open, wait (at most kDrainTimeout) until it has read everything,
+  // including bytes the kernel may not show in FIONREAD yet (written within kPushLag).
+  void drain() {
+    const auto until = RecentBytes::Clock::now() + kDrainTimeout;
+    do {
+      count_opens();
+      flush_tail();
+      if (clients_open_ == 0 ||
+          (!tail_pending() && unread_bytes() == 0 && recent_.total(RecentBytes::Clock::now()) == 0))
+        return;
+      ::usleep(2000);
+    } while (RecentBytes::Clock::now() < until);
+  }
+
+  // Drains inotify(7) events: every IN_OPEN is a client opening the slave, every IN_CLOSE one
+  // closing it.
   void count_opens() {
     if (inotify_.fd < 0) return;
     alignas(inotify_event) std::array<char, 1024> buf;
@@ -402,7 +422,11 @@ class PtyPort final : public BytePort {
       for (std::size_t off = 0; off + sizeof(inotify_event) <= static_cast<std::size_t>(n);) {
         inotify_event ev{};
         std::memcpy(&ev, buf.data() + off, sizeof ev);
-        if ((ev.mask & IN_OPEN) != 0) counters_.clients_connected++;
+        if ((ev.mask & IN_OPEN) != 0) {
+          counters_.clients_connected++;
+          clients_open_++;
+        }
+        if ((ev.mask & IN_CLOSE) != 0 && clients_open_ > 0) clients_open_--;
         off += sizeof(inotify_event) + ev.len;
       }
     }
@@ -420,6 +444,7 @@ class PtyPort final : public BytePort {
   RecentBytes recent_;              // written lately, possibly not yet visible to FIONREAD
   std::vector<std::uint8_t> tail_;  // unsent end of the last chunk, reserved once
   std::size_t tail_off_ = 0;
+  std::uint64_t clients_open_ = 0;  // opens of the slave not yet closed (inotify)
 };
 
 }  // namespace

@@ -425,6 +425,29 @@ TEST(Pty, ClientClosesAndReopensMidStream) {
   ::close(c);
 }
 
+// Closing the master hangs the slave up, which flushes what a client has not read yet. The
+// port's close waits (up to 0.5 s) for a client that has the slave open, so a run's last
+// chunk reaches a slow reader; with no client, the close does not wait.
+TEST(Pty, CloseLetsAClientReadTheLastChunk) {
+  auto port = open_pty({});
+  const int c = open_client(pty_slave_path(*port));
+  ASSERT_GE(c, 0);
+  const std::string last = "$GPRMC,last*00\r\n";
+  ASSERT_TRUE(port->write(last));
+  std::thread closer([&] { port.reset(); });
+  std::this_thread::sleep_for(milliseconds(100));  // the client is slow to read
+  const std::string got = read_until(c, [&](const std::string& d) { return d.size() >= last.size(); });
+  closer.join();
+  EXPECT_EQ(got, last);
+  ::close(c);
+
+  auto unread = open_pty({});
+  ASSERT_TRUE(unread->write(last));
+  const auto t0 = Clock::now();
+  unread.reset();
+  EXPECT_LT(Clock::now() - t0, milliseconds(400)) << "waited for a client that never opened the slave";
+}
+
 TEST(Pty, NobodyReadingNeverBlocksAndStaleOutputIsBounded) {
   const std::size_t max_backlog = 4096;
   auto port = open_pty({"", max_backlog});
