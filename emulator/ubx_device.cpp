@@ -112,6 +112,11 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
   lists_.sat.svs.reserve(kDefinedSatellites);
   lists_.rawx.meas.reserve(kDefinedSatellites);
   lists_.rf.blocks.reserve(2);
+  lists_.sig.signals.reserve(2 * kDefinedSatellites);
+  lists_.orb.svs.reserve(255);
+  lists_.comms.ports.reserve(kNumPorts);
+  lists_.io.ports.reserve(kNumPorts);
+  status_.hw_version = profile_.ubx->hw_version;
   // Messages without a CFG-MSGOUT item on this part (u-blox 8 ones): the profile's rates, on
   // the ports profile_defaults() sets.
   const auto keep = [&](MsgId id, int rate) {
@@ -144,6 +149,15 @@ void UbxDevice::refresh() {
                                          std::max<std::uint64_t>(config_.get(keys_.rate_nav), 1)) *
                1'000'000;
   const auto flag = [&](std::uint32_t id, bool fallback) { return id ? config_.get(id) != 0 : fallback; };
+  // The u-blox 8 keeps its legacy CFG-ITFM and CFG-ODO without modelling them: its jamming
+  // monitor reports, its odometer does not count.
+  status_.jamming_monitor = flag(item("CFG-ITFM-ENABLE"), true);
+  status_.odometer = flag(item("CFG-ODO-USE_ODO"), false);
+  status_.gnss_enabled = protocol27_ ? static_cast<std::uint8_t>((flag(item("CFG-SIGNAL-GPS_ENA"), true) ? 0x01 : 0) |
+                                                                 (flag(item("CFG-SIGNAL-GLO_ENA"), true) ? 0x02 : 0) |
+                                                                 (flag(item("CFG-SIGNAL-BDS_ENA"), true) ? 0x04 : 0) |
+                                                                 (flag(item("CFG-SIGNAL-GAL_ENA"), true) ? 0x08 : 0))
+                                     : 0x03;  // the u-blox 8's default GPS + GLONASS (CFG-GNSS kept, not applied)
   for (std::uint8_t p = 0; p < kReceiverPorts; ++p) {
     PortSettings& s = ports_[p];
     s.in_ubx = flag(proto_item(p, true, "UBX"), true);
@@ -218,17 +232,26 @@ void UbxDevice::receive(std::span<const std::uint8_t> bytes, ReceiverPort port, 
   const auto p = static_cast<std::uint8_t>(port);
   scratch_.clear();
   Parser& parser = parsers_[p];
+  UbxPortTraffic& traffic = status_.ports[p];
+  traffic.rx_bytes += static_cast<std::uint32_t>(bytes.size());
   const auto on_ubx = [&](Parser::Result r) {
     if (r != Parser::Result::kFrame) return;
     ++counters_.frames;
+    ++traffic.msgs[0];
+    traffic.parsed_bytes += static_cast<std::uint32_t>(parser.payload().size() + 8);
     if (ports_[p].in_ubx) handle(parser.cls(), parser.id(), parser.payload(), p, scratch_);
     refresh();
   };
   // Byte by byte through both readers, so that commands take effect in the order they came.
   for (const std::uint8_t& b : bytes) {
     parser.feed(std::span<const std::uint8_t>(&b, 1), on_ubx);
-    if (const std::optional<std::string_view> s = nmea_in_[p].feed(b)) receive_nmea(*s, p, scratch_);
+    if (const std::optional<std::string_view> s = nmea_in_[p].feed(b)) {
+      ++traffic.msgs[1];
+      traffic.parsed_bytes += static_cast<std::uint32_t>(s->size());
+      receive_nmea(*s, p, scratch_);
+    }
   }
+  traffic.tx_bytes += static_cast<std::uint32_t>(scratch_.size());
   replies.append(reinterpret_cast<const char*>(scratch_.data()), scratch_.size());
 }
 
@@ -253,6 +276,10 @@ struct UbxDevice::Command {
 
 const UbxDevice::Command UbxDevice::kCommands[] = {
     {kMonVer, false, &UbxDevice::poll_mon_ver, nullptr},
+    {kMonGnss, false, &UbxDevice::poll_mon_gnss, nullptr},
+    {kMonPatch, false, &UbxDevice::poll_mon_patch, nullptr},
+    {kSecUniqid, false, &UbxDevice::poll_sec_uniqid, nullptr},
+    {kNavResetodo, false, nullptr, &UbxDevice::handle_nav_resetodo},
     {kCfgPrt, false, nullptr, &UbxDevice::handle_cfg_prt},
     {kCfgMsg, false, nullptr, &UbxDevice::handle_cfg_msg},
     {kCfgRate, false, &UbxDevice::poll_cfg_rate, &UbxDevice::handle_cfg_rate},
@@ -292,6 +319,38 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_
 void UbxDevice::poll_mon_ver(std::uint8_t, Bytes& out) {
   const UbxSettings& u = *profile_.ubx;
   append(MonVer{u.sw_version, u.hw_version, u.extensions}, out);
+}
+
+// MON-GNSS (M8 32.16.2, F9 5.13.2): GPS, GLONASS, BeiDou and Galileo supported; the defaults of
+// the u-blox 8 (GPS + GLONASS, 3 at once) and of the F9 (all four at once).
+void UbxDevice::poll_mon_gnss(std::uint8_t, Bytes& out) {
+  MonGnss m;
+  m.supported = 0x0F;
+  m.default_gnss = protocol27_ ? 0x0F : 0x03;
+  m.enabled = status_.gnss_enabled;
+  m.simultaneous = protocol27_ ? 4 : 3;
+  append(m, out);
+}
+
+// MON-PATCH (M8 32.16.7, F9 5.13.8): no patches installed.
+void UbxDevice::poll_mon_patch(std::uint8_t, Bytes& out) { append(MonPatch{}, out); }
+
+// SEC-UNIQID (M8 32.19.1, F9 5.16): a 40-bit chip ID, fixed per profile (FNV-1a of its MON-VER
+// strings), so that a client sees the same receiver every run.
+void UbxDevice::poll_sec_uniqid(std::uint8_t, Bytes& out) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const std::string* s : {&profile_.ubx->sw_version, &profile_.ubx->hw_version})
+    for (const char c : *s) h = (h ^ static_cast<std::uint8_t>(c)) * 0x100000001b3ULL;
+  SecUniqid m;
+  for (std::size_t i = 0; i < m.unique_id.size(); ++i) m.unique_id[i] = static_cast<std::uint8_t>(h >> (8 * i));
+  append(m, out);
+}
+
+// NAV-RESETODO (M8 32.17.17, F9 5.14.13): the odometer's distance back to 0, acknowledged.
+void UbxDevice::handle_nav_resetodo(Payload p, std::uint8_t, Bytes& out) {
+  if (!p.empty()) return nak(kNavResetodo, out);
+  status_.odo_distance_m = 0.0;
+  ack(kNavResetodo, out);
 }
 
 
@@ -467,6 +526,7 @@ void UbxDevice::handle_cfg_rst(Payload p, std::uint8_t, Bytes& out) {
     config_.reload();
     legacy_.load();
   }
+  if (r.nav_bbr_mask == CfgRst::kColdStart) status_.odo_distance_m = status_.odo_total_m = 0.0;
   const double outage_s = r.nav_bbr_mask == CfgRst::kHotStart    ? 1.0
                           : r.nav_bbr_mask == CfgRst::kWarmStart ? 25.0
                                                                  : 26.0;
@@ -498,7 +558,7 @@ bool UbxDevice::output_message(MsgId id, Bytes& out) {
   const std::span<const UbxOutput> outs = ubx_outputs();
   for (std::size_t i = 0; i < outs.size(); ++i)
     if (outs[i].id == id && (protocol27_ ? outs[i].f9 : outs[i].m8)) {
-      emit_ubx_outputs(std::uint64_t{1} << i, last_fix_, last_meas_, nav_, mode_, lists_, out);
+      emit_ubx_outputs(std::uint64_t{1} << i, last_fix_, last_meas_, nav_, mode_, status_, lists_, out);
       return true;
     }
   return false;
@@ -512,10 +572,30 @@ void UbxDevice::update(const ReceiverFix& fix, const EpochMeasurements& meas, st
     reset_keeping_storage(last_fix_, &ReceiverFix::satellites).t = fix.t;
     last_meas_.sats.clear();
   }
+  count_distance(last_fix_);
+}
+
+// The odometer (CFG-ODO-USE_ODO; UBX-13003221 "Odometer"): the ground speed integrated over
+// the time between fixes. Speeds below kStill_mps count as standing still, so that a parked
+// receiver's velocity noise (a few cm/s) adds no distance.
+void UbxDevice::count_distance(const ReceiverFix& fix) {
+  constexpr double kStill_mps = 0.2;
+  if (!status_.odometer || fix.fix == FixType::kNone || !fix.v_ned_mps) {
+    odo_last_t_.reset();
+    return;
+  }
+  const double speed_mps = std::hypot(fix.v_ned_mps->x(), fix.v_ned_mps->y());
+  if (odo_last_t_ && speed_mps >= kStill_mps) {
+    const double d_m = speed_mps * std::max(seconds_between(fix.t, *odo_last_t_), 0.0);
+    status_.odo_distance_m += d_m;
+    status_.odo_total_m += d_m;
+  }
+  odo_last_t_ = fix.t;
 }
 
 void UbxDevice::encode(ReceiverPort port, std::string& out) {
   const PortSettings& s = ports_[static_cast<std::size_t>(port)];
+  const std::size_t before = out.size();
   if (s.out_ubx) {
     std::uint64_t due = 0;
     const std::span<const UbxOutput> outs = ubx_outputs();
@@ -524,10 +604,11 @@ void UbxDevice::encode(ReceiverPort port, std::string& out) {
       if (r > 0 && epoch_index_ % r == 0 && (protocol27_ ? outs[i].f9 : outs[i].m8)) due |= std::uint64_t{1} << i;
     }
     scratch_.clear();
-    emit_ubx_outputs(due, last_fix_, last_meas_, nav_, mode_, lists_, scratch_);
+    emit_ubx_outputs(due, last_fix_, last_meas_, nav_, mode_, status_, lists_, scratch_);
     out.append(reinterpret_cast<const char*>(scratch_.data()), scratch_.size());
   }
   if (s.out_nmea) s.nmea->encode(last_fix_, epoch_index_, out);
+  status_.ports[static_cast<std::size_t>(port)].tx_bytes += static_cast<std::uint32_t>(out.size() - before);
 }
 
 // ---- The device of a profile ----------------------------------------------------------------

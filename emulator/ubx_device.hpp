@@ -72,6 +72,10 @@ class UbxDevice final : public GnssDevice {
   void ack(ubx::MsgId msg, Bytes& out);
   void nak(ubx::MsgId msg, Bytes& out);
   void poll_mon_ver(std::uint8_t port, Bytes& out);
+  void poll_mon_gnss(std::uint8_t port, Bytes& out);
+  void poll_mon_patch(std::uint8_t port, Bytes& out);
+  void poll_sec_uniqid(std::uint8_t port, Bytes& out);
+  void handle_nav_resetodo(Payload payload, std::uint8_t port, Bytes& out);
   void poll_cfg_rate(std::uint8_t port, Bytes& out);
   void poll_cfg_nav5(std::uint8_t port, Bytes& out);
   void poll_cfg_gnss(std::uint8_t port, Bytes& out);
@@ -86,6 +90,7 @@ class UbxDevice final : public GnssDevice {
   void handle_valget(Payload payload, std::uint8_t port, Bytes& out);
   void handle_valdel(Payload payload, std::uint8_t port, Bytes& out);
   bool output_message(ubx::MsgId id, Bytes& out);
+  void count_distance(const ReceiverFix& fix);
   // A port's protocol masks (ubx::kProto*) and baud (0: unchanged) as configuration items
   // (CFG-PRT, PUBX,41).
   void port_values(std::uint8_t port, std::uint16_t in_mask, std::uint16_t out_mask, std::uint32_t baud,
@@ -114,6 +119,10 @@ class UbxDevice final : public GnssDevice {
   // messages the receiver does not send but takes a rate for): (class << 8 | id) -> per port.
   std::map<std::uint16_t, std::array<std::uint8_t, ubx::kNumPorts>> other_rates_;
   GpsTime restart_until_{0};
+
+  // What the monitor and odometer messages report (traffic, odometer, switches).
+  UbxDeviceStatus status_;
+  std::optional<GpsTime> odo_last_t_;  // the previous fix the odometer counted from
 
   // The latest epoch, for the output and polled messages and the restart clock.
   ReceiverFix last_fix_;

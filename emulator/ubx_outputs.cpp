@@ -89,12 +89,13 @@ lnav::LnavEphemeris to_lnav(const GpsEphemeris& e) {
 // the quantities several messages share, in wire-ready units.
 struct EpochView {
   EpochView(const ReceiverFix& f, const EpochMeasurements& m, const NavData& n, ReceiverMode md,
-            UbxListScratch& l)
-      : fix(f), meas(m), nav(n), mode(md), lists(l) {}
+            const UbxDeviceStatus& st, UbxListScratch& l)
+      : fix(f), meas(m), nav(n), mode(md), status(st), lists(l) {}
   const ReceiverFix& fix;
   const EpochMeasurements& meas;
   const NavData& nav;
   ReceiverMode mode;
+  const UbxDeviceStatus& status;
   UbxListScratch& lists;
   WeekTow wt = to_week_tow(fix.t);
   std::uint32_t i_tow = static_cast<std::uint32_t>(std::llround(wt.tow_s * 1000.0)) % 604'800'000u;
@@ -410,24 +411,32 @@ void emit_nav_hpposllh(const EpochView& e, std::vector<std::uint8_t>& out) {
 
 // The RF front end as MON-HW (u-blox 8, UBX-13003221 "UBX-MON-HW") and MON-RF (F9, one block per
 // band) report it. navemu models no RF interference yet, so these are an active antenna's
-// quiet-sky readings: antenna OK and powered, no CW jamming indicated (jamInd well below the
-// level the M8 description's "Jamming/interference indicator" section treats as interference),
-// jamming state "ok", noise and AGC mid-range as real receivers in open sky report them.
-struct QuietFrontEnd {
-  std::uint16_t noise_per_ms = 88;
-  std::uint16_t agc_cnt = 5200;  // of 8191
-  std::uint8_t jam_ind = 6;      // of 255
+// open-sky readings, per band as a ZED-F9T reports them in ../shared/data
+// (receiver_logs/nav-solutions/F9T-L2-5min.ubx, MON-RF): antenna OK and powered, CW jamming
+// indicator near 10 of 255, noise and AGC mid-range.
+struct FrontEndReading {
+  std::uint16_t noise_per_ms, agc_cnt;  // agcCnt of 8191
+  std::uint8_t jam_ind;
+  std::int8_t ofs_i;
+  std::uint8_t mag_i;
+  std::int8_t ofs_q;
+  std::uint8_t mag_q;
 };
-constexpr QuietFrontEnd kFrontEnd;
+constexpr FrontEndReading kFrontEnd[2] = {{81, 5265, 11, 11, 171, 1, 167},   // L1
+                                          {54, 4914, 9, 8, 154, 7, 154}};   // L2
 
-void emit_mon_hw(const EpochView&, std::vector<std::uint8_t>& out) {
+// jammingState (MON-HW flags bits 2..3, MON-RF flags bits 0..1): 0 "unknown or feature
+// disabled" unless the jamming/interference monitor is on (CFG-ITFM-ENABLE), then 1 "ok".
+std::uint8_t jamming_state(const EpochView& e) { return e.status.jamming_monitor ? 1 : 0; }
+
+void emit_mon_hw(const EpochView& e, std::vector<std::uint8_t>& out) {
   MonHw m;
   m.a_status = MonHw::kAntOk;
   m.a_power = 1;
-  m.noise_per_ms = kFrontEnd.noise_per_ms;
-  m.agc_cnt = kFrontEnd.agc_cnt;
-  m.jam_ind = kFrontEnd.jam_ind;
-  m.flags = 1 << 2;  // jammingState 1: ok, no significant jamming
+  m.noise_per_ms = kFrontEnd[0].noise_per_ms;
+  m.agc_cnt = kFrontEnd[0].agc_cnt;
+  m.jam_ind = kFrontEnd[0].jam_ind;
+  m.flags = static_cast<std::uint8_t>(jamming_state(e) << 2);
   append(m, out);
 }
 
@@ -436,14 +445,350 @@ void emit_mon_rf(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.blocks.resize(2);  // L1 and L2 front ends of the ZED-F9P
   for (std::uint8_t b = 0; b < 2; ++b) {
     MonRfBlock& k = m.blocks[b];
+    const FrontEndReading& r = kFrontEnd[b];
     k.block_id = b;
-    k.flags = 1;  // jammingState ok
+    k.flags = jamming_state(e);
     k.ant_status = MonHw::kAntOk;
     k.ant_power = 1;
-    k.noise_per_ms = kFrontEnd.noise_per_ms;
-    k.agc_cnt = kFrontEnd.agc_cnt;
-    k.jam_ind = kFrontEnd.jam_ind;
+    k.noise_per_ms = r.noise_per_ms;
+    k.agc_cnt = r.agc_cnt;
+    k.jam_ind = r.jam_ind;
+    k.ofs_i = r.ofs_i;
+    k.mag_i = r.mag_i;
+    k.ofs_q = r.ofs_q;
+    k.mag_q = r.mag_q;
   }
+  append(m, out);
+}
+
+// MON-HW2 (M8 32.16.3, F9 5.13.4): the L1 front end's I/Q offsets and magnitudes as MON-RF's
+// first block, configuration from ROM (u-blox 8 "ROM CORE" firmware) or the flash image (F9
+// firmware runs from flash), power-on self test passed.
+void emit_mon_hw2(const EpochView& e, std::vector<std::uint8_t>& out) {
+  MonHw2 m;
+  m.ofs_i = kFrontEnd[0].ofs_i;
+  m.mag_i = kFrontEnd[0].mag_i;
+  m.ofs_q = kFrontEnd[0].ofs_q;
+  m.mag_q = kFrontEnd[0].mag_q;
+  m.cfg_source = e.status.hw_version.starts_with("0008") ? 114 : 102;
+  append(m, out);
+}
+
+// MON-HW3 (F9 5.13.5): the hardware version as MON-VER's, RTC calibrated; no pins reported.
+void emit_mon_hw3(const EpochView& e, std::vector<std::uint8_t>& out) {
+  MonHw3 m;
+  m.flags = 0x01;  // rtcCalib
+  m.hw_version = std::string(e.status.hw_version);
+  append(m, out);
+}
+
+// MON-IO (M8 32.16.5, F9 5.13.6): bytes received and sent per port, 6 blocks as on u-blox 8;
+// no UART errors on a pty.
+void emit_mon_io(const EpochView& e, std::vector<std::uint8_t>& out) {
+  MonIo& m = e.lists.io;
+  m.ports.resize(kNumPorts);
+  for (std::size_t p = 0; p < kNumPorts; ++p)
+    m.ports[p] = MonIoPort{e.status.ports[p].rx_bytes, e.status.ports[p].tx_bytes};
+  append(m, out);
+}
+
+// MON-MSGPP (M8 32.16.6, F9 5.13.7): messages read per protocol and bytes skipped (received
+// but part of no message read) per port.
+void emit_mon_msgpp(const EpochView& e, std::vector<std::uint8_t>& out) {
+  MonMsgpp m;
+  std::array<std::uint16_t, 8>* msgs[kNumPorts] = {&m.msg1, &m.msg2, &m.msg3, &m.msg4, &m.msg5, &m.msg6};
+  for (std::size_t p = 0; p < kNumPorts; ++p) {
+    const UbxPortTraffic& t = e.status.ports[p];
+    *msgs[p] = t.msgs;
+    m.skipped_bytes[p] = t.rx_bytes - std::min(t.parsed_bytes, t.rx_bytes);
+  }
+  append(m, out);
+}
+
+// MON-RXBUF and MON-TXBUF (M8 32.16.8/32.16.11, F9 5.13.10/5.13.12): navemu hands every byte to
+// the port at once, so nothing is pending in a receiver buffer.
+void emit_mon_rxbuf(const EpochView&, std::vector<std::uint8_t>& out) { append(MonRxbuf{}, out); }
+void emit_mon_txbuf(const EpochView&, std::vector<std::uint8_t>& out) { append(MonTxbuf{}, out); }
+
+// MON-COMMS (F9 5.13.1): one block per port of the ZED-F9P with D_SEL open (I2C, UART1, UART2,
+// USB; SPI replaces UART1 and I2C only with D_SEL low: ZED-F9P integration manual, "Interfaces").
+// portId as the description numbers them (port type in the high byte, instance in the low).
+void emit_mon_comms(const EpochView& e, std::vector<std::uint8_t>& out) {
+  constexpr std::pair<std::uint8_t, std::uint16_t> kPorts[] = {
+      {kPortDdc, 0x0000}, {kPortUart1, 0x0100}, {kPortUart2, 0x0201}, {kPortUsb, 0x0300}};
+  constexpr std::uint8_t kProtocols[4] = {0, 1, 5, 0xFF};  // UBX, NMEA, RTCM3, none
+  MonComms& m = e.lists.comms;
+  m.prot_ids = {kProtocols[0], kProtocols[1], kProtocols[2], kProtocols[3]};
+  m.ports.resize(std::size(kPorts));
+  for (std::size_t i = 0; i < std::size(kPorts); ++i) {
+    const UbxPortTraffic& t = e.status.ports[kPorts[i].first];
+    MonCommsPort& c = m.ports[i];
+    c = MonCommsPort{};
+    c.port_id = kPorts[i].second;
+    c.tx_bytes = t.tx_bytes;
+    c.rx_bytes = t.rx_bytes;
+    for (std::size_t k = 0; k < 3; ++k) c.msgs[k] = t.msgs[kProtocols[k]];
+    c.skipped_bytes = t.rx_bytes - std::min(t.parsed_bytes, t.rx_bytes);
+  }
+  append(m, out);
+}
+
+// NAV-HPPOSECEF (M8 32.17.8, F9 5.14.5): the ECEF position in cm and the remainder in 0.1 mm.
+void emit_nav_hpposecef(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavHpposecef m;
+  m.i_tow_ms = e.i_tow;
+  m.flags = e.valid ? 0 : NavHpposecef::kInvalidEcef;
+  const auto split = [](double v_m, std::int32_t& cm, std::int8_t& hp) {
+    const double hp_units = std::round(v_m * 1e4);  // 0.1 mm
+    cm = clamp_cast<std::int32_t>(std::trunc(hp_units / 100.0));
+    hp = static_cast<std::int8_t>(hp_units - static_cast<double>(cm) * 100.0);
+  };
+  split(e.fix.p_ecef_m.x(), m.ecef_x_cm, m.ecef_x_hp_0p1mm);
+  split(e.fix.p_ecef_m.y(), m.ecef_y_cm, m.ecef_y_hp_0p1mm);
+  split(e.fix.p_ecef_m.z(), m.ecef_z_cm, m.ecef_z_hp_0p1mm);
+  m.p_acc_0p1mm = clamp_cast<std::uint32_t>(e.acc.p_m * 1e4);
+  append(m, out);
+}
+
+// NAV-COV (F9 protocol 27.1x): the solution's north, east and down position variances and the
+// speed accuracy as velocity variances; without the solver's full covariance the off-diagonal
+// terms are 0.
+void emit_nav_cov(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavCov m;
+  m.i_tow_ms = e.i_tow;
+  m.pos_cov_valid = m.vel_cov_valid = e.valid ? 1 : 0;
+  m.pos_cov_nn_m2 = static_cast<float>(e.fix.sigma_n_m * e.fix.sigma_n_m);
+  m.pos_cov_ee_m2 = static_cast<float>(e.fix.sigma_e_m * e.fix.sigma_e_m);
+  m.pos_cov_dd_m2 = static_cast<float>(e.acc.v_m * e.acc.v_m);
+  const auto s2 = static_cast<float>(e.acc.s_mps * e.acc.s_mps);
+  m.vel_cov_nn_m2ps2 = m.vel_cov_ee_m2ps2 = m.vel_cov_dd_m2ps2 = s2;
+  append(m, out);
+}
+
+// NAV-SIG (F9 5.14.15): one block per tracked signal of the ZED-F9P's bands (L1, L2). Flags as
+// a ZED-F9T reports them in ../shared/data (F9T-L2-5min.ubx): health 1 (healthy); a signal the
+// solution uses has prUsed and doUsed, and its ionosphere model (1 Klobuchar, 8 dual
+// frequency); differential corrections (DGPS, RTK: RTCM 3 OSR, corrSource 4) add prCorrUsed,
+// and carrier-phase solutions crUsed. The pseudorange residual is not kept by the solver and
+// is sent as 0.
+void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavSig& m = reset_keeping_storage(e.lists.sig, &NavSig::signals);
+  m.i_tow_ms = e.i_tow;
+  const bool corrected = e.mode == ReceiverMode::kDgps || e.mode == ReceiverMode::kRtkFixed;
+  for (const SatMeasurement& s : e.meas.sats) {
+    const auto it = std::find_if(e.fix.satellites.begin(), e.fix.satellites.end(),
+                                 [&](const ReceiverSatellite& r) { return r.sat == s.sat; });
+    const bool sat_used = it != e.fix.satellites.end() && it->used;
+    for (std::size_t b = 0; b < 2 && m.signals.size() < 255; ++b) {
+      if (!s.signals[b]) continue;
+      const std::optional<int> sig = ubx_sig_id(s.sat, kBandSignals[b]);
+      if (!sig) continue;
+      // The single-frequency solution uses L1; the dual-frequency one both bands.
+      const bool used = sat_used && (b == 0 || e.mode == ReceiverMode::kDualFrequency);
+      NavSigSignal g;
+      g.gnss_id = s.sat.ubx_gnss_id();
+      g.sv_id = s.sat.ubx_sv_id();
+      g.sig_id = static_cast<std::uint8_t>(*sig);
+      g.cno_dbhz = clamp_cast<std::uint8_t>(s.signals[b]->cn0_dbhz);
+      g.quality_ind = 7;  // code and carrier locked, as NAV-SAT
+      unsigned flags = 1;  // healthy
+      if (used) {
+        flags |= NavSigSignal::kPrUsed | NavSigSignal::kDoUsed;
+        if (e.mode == ReceiverMode::kRtkFixed) flags |= NavSigSignal::kCrUsed | NavSigSignal::kCrCorrUsed;
+        if (corrected) {
+          flags |= NavSigSignal::kPrCorrUsed;
+          g.corr_source = 4;  // RTCM 3 OSR
+        } else {
+          g.iono_model = e.mode == ReceiverMode::kDualFrequency ? 8 : 1;
+        }
+      }
+      g.sig_flags = static_cast<std::uint16_t>(flags);
+      m.signals.push_back(g);
+    }
+  }
+  append(m, out);
+}
+
+// NAV-TIMELS (M8 32.17.29, F9 5.14.22): the leap second from GPS (source 2), and the leap second
+// event that the GPS navigation message the receiver sends (RXM-SFRBX, subframe 4 page 18)
+// announces: no change, at the end of day 1 of the current week.
+void emit_nav_timels(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavTimels m;
+  m.i_tow_ms = e.i_tow;
+  m.src_of_curr_ls = 2;
+  m.curr_ls_s = static_cast<std::int8_t>(e.leap_s);
+  m.src_of_ls_change = 2;
+  m.ls_change_s = 0;
+  const GpsTime event = from_week_tow(e.wt.week, 1.0 * kSecondsPerDay);
+  m.time_to_ls_event_s = clamp_cast<std::int32_t>(std::floor(seconds_between(event, e.fix.t)));
+  m.date_of_ls_gps_wn = static_cast<std::uint16_t>(e.wt.week);
+  m.date_of_ls_gps_dn = 1;
+  m.valid = NavTimels::kValidCurrLs | NavTimels::kValidTimeToLsEvent;
+  append(m, out);
+}
+
+// Whether the receiver tracks a satellite of a system (UBX gnssId): the time of a system is
+// known from its own signals.
+bool tracks(const EpochView& e, std::uint8_t gnss_id) {
+  return std::any_of(e.meas.sats.begin(), e.meas.sats.end(),
+                     [&](const SatMeasurement& s) { return s.sat.ubx_gnss_id() == gnss_id; });
+}
+
+// A system time as whole seconds of week (rounded) and the remainder in ns (-5e8..5e8).
+struct SystemTow {
+  int week;
+  std::uint32_t tow_s;
+  std::int32_t f_tow_ns;
+};
+SystemTow system_tow(GpsTime t, int week_offset) {
+  const WeekTow wt = to_week_tow(t);
+  double whole = std::round(wt.tow_s);
+  int week = wt.week - week_offset;
+  const auto f = clamp_cast<std::int32_t>((wt.tow_s - whole) * 1e9);
+  if (whole >= static_cast<double>(kSecondsPerWeek)) {
+    whole -= static_cast<double>(kSecondsPerWeek);
+    ++week;
+  }
+  return {week, static_cast<std::uint32_t>(whole), f};
+}
+
+// NAV-TIMEBDS (M8 32.17.25, F9 5.14.18): BDT = GPST - 14 s, BDS week 0 = GPS week 1356 (BDS
+// ICD 2.0, 4.3.2 and 5.2.4.5); BDS - UTC = (GPS - UTC) - 14 s.
+void emit_nav_timebds(const EpochView& e, std::vector<std::uint8_t>& out) {
+  const SystemTow st = system_tow(e.fix.t.plus_s(-14.0), 1356);
+  NavTimebds m;
+  m.i_tow_ms = e.i_tow;
+  m.sow_s = st.tow_s;
+  m.f_sow_ns = st.f_tow_ns;
+  m.week = static_cast<std::int16_t>(st.week);
+  m.leap_s = static_cast<std::int8_t>(e.leap_s - 14);
+  m.valid = tracks(e, 3) ? 0x07 : 0;
+  m.t_acc_ns = 20;
+  append(m, out);
+}
+
+// NAV-TIMEGAL (M8 32.17.26, F9 5.14.19): GST as GPS time (the GGTO is not modelled), Galileo week
+// 0 = GPS week 1024 (Galileo OS SIS ICD 5.1.2); Galileo - UTC = GPS - UTC.
+void emit_nav_timegal(const EpochView& e, std::vector<std::uint8_t>& out) {
+  const SystemTow st = system_tow(e.fix.t, 1024);
+  NavTimegal m;
+  m.i_tow_ms = e.i_tow;
+  m.gal_tow_s = st.tow_s;
+  m.f_gal_tow_ns = st.f_tow_ns;
+  m.gal_wno = static_cast<std::int16_t>(st.week);
+  m.leap_s = static_cast<std::int8_t>(e.leap_s);
+  m.valid = tracks(e, 2) ? 0x07 : 0;
+  m.t_acc_ns = 20;
+  append(m, out);
+}
+
+// NAV-TIMEGLO (M8 32.17.27, F9 5.14.20): GLONASS time = UTC(SU) + 3 h (GLONASS ICD 5.1, 3.3.3),
+// as time of day, day in the four-year interval (1..1461) and the interval from 1996 (1).
+void emit_nav_timeglo(const EpochView& e, std::vector<std::uint8_t>& out) {
+  const GpsTime moscow = e.fix.t.plus_s(3.0 * 3600.0 - e.leap_s);  // read as a calendar time
+  const double since_1996_s = seconds_between(moscow, gps_from_calendar({1996, 1, 1, 0, 0, 0.0}));
+  const auto day = static_cast<std::int64_t>(std::floor(since_1996_s / kSecondsPerDay));
+  const double tod_s = since_1996_s - static_cast<double>(day * kSecondsPerDay);
+  double whole = std::round(tod_s);
+  NavTimeglo m;
+  m.i_tow_ms = e.i_tow;
+  m.f_tod_ns = clamp_cast<std::int32_t>((tod_s - whole) * 1e9);
+  std::int64_t d = day;
+  if (whole >= static_cast<double>(kSecondsPerDay)) {
+    whole -= static_cast<double>(kSecondsPerDay);
+    ++d;
+  }
+  m.tod_s = static_cast<std::uint32_t>(whole);
+  m.nt_days = static_cast<std::uint16_t>(d % 1461 + 1);
+  m.n4 = static_cast<std::uint8_t>(d / 1461 + 1);
+  m.valid = tracks(e, 6) ? 0x03 : 0;
+  m.t_acc_ns = 20;
+  append(m, out);
+}
+
+// NAV-ORB (M8 32.17.12, F9 5.14.8): the orbit database, one block per satellite navemu has
+// broadcast data for. svFlag: health (bits 0..1: 1 healthy, 2 unhealthy), visibility (bits
+// 2..3: 3 above the elevation mask, i.e. tracked; 0 unknown otherwise). eph: usability (bits
+// 0..4: 0 unusable, n in 1..29 usable (n-1)*15 to n*15 more minutes, 30 more than 450
+// minutes) and source (bits 5..7: 1 GNSS transmission), for the record a tracked satellite
+// broadcasts (until toe + half its fit interval); no almanac.
+void emit_nav_orb(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavOrb& m = reset_keeping_storage(e.lists.orb, &NavOrb::svs);
+  m.i_tow_ms = e.i_tow;
+  for (const GpsEphemeris& r : e.nav.gps) {
+    const SatId sat = r.sat;
+    const bool listed = std::any_of(m.svs.begin(), m.svs.end(), [&](const NavOrbSv& v) {
+      return v.gnss_id == sat.ubx_gnss_id() && v.sv_id == sat.ubx_sv_id();
+    });
+    if (listed || m.svs.size() == 255) continue;
+    NavOrbSv v;
+    v.gnss_id = sat.ubx_gnss_id();
+    v.sv_id = sat.ubx_sv_id();
+    const auto meas = std::find_if(e.meas.sats.begin(), e.meas.sats.end(),
+                                   [&](const SatMeasurement& s) { return s.sat == sat; });
+    const GpsEphemeris* eph = meas != e.meas.sats.end() ? meas->eph : nullptr;
+    v.sv_flag = static_cast<std::uint8_t>(eph ? ((eph->health == 0 ? 1 : 2) | 3 << 2) : 0);
+    if (eph) {
+      const double left_min =
+          seconds_between(eph->toe.plus_s(eph->fit_interval_h * 1800.0), e.fix.t) / 60.0;
+      const int n = left_min <= 0.0 ? 0 : std::min(30, static_cast<int>(left_min / 15.0) + 1);
+      v.eph = static_cast<std::uint8_t>(n | 1 << 5);
+    }
+    m.svs.push_back(v);
+  }
+  append(m, out);
+}
+
+// NAV-ODO (M8 32.17.11, F9 5.14.7): the odometer's ground distance (CFG-ODO-USE_ODO); its
+// 1-sigma accuracy taken as 1 % of the distance.
+void emit_nav_odo(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavOdo m;
+  m.i_tow_ms = e.i_tow;
+  m.distance_m = clamp_cast<std::uint32_t>(e.status.odo_distance_m);
+  m.total_distance_m = clamp_cast<std::uint32_t>(e.status.odo_total_m);
+  m.distance_std_m = clamp_cast<std::uint32_t>(0.01 * e.status.odo_distance_m);
+  append(m, out);
+}
+
+// NAV-SVIN (M8 32.17.24, F9 5.14.17): no survey-in (time mode off, CFG-TMODE-MODE 0).
+void emit_nav_svin(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavSvin m;
+  m.i_tow_ms = e.i_tow;
+  append(m, out);
+}
+
+// NAV-RELPOSNED (F9 5.14.12, version 1 from protocol 27.1x): a rover without a reference
+// station's corrections: gnssFixOK as the fix, no relative position.
+void emit_nav_relposned(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavRelposned m;
+  m.i_tow_ms = e.i_tow;
+  m.flags = e.valid ? NavRelposned::kGnssFixOk : 0;
+  append(m, out);
+}
+
+// NAV-GEOFENCE (M8 32.17.7, F9 5.14.4): no geofence configured: status 0 "not available".
+void emit_nav_geofence(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavGeofence m;
+  m.i_tow_ms = e.i_tow;
+  append(m, out);
+}
+
+// TIM-TP (M8 32.20, F9 5.17.2): the time pulse at the next whole GPS second (time base GNSS,
+// time reference GPS, UTC available; utcStandard 3, USNO as GPS disseminates it).
+void emit_tim_tp(const EpochView& e, std::vector<std::uint8_t>& out) {
+  const WeekTow next = to_week_tow(from_week_tow(e.wt.week, std::floor(e.wt.tow_s) + 1.0));
+  TimTp m;
+  m.tow_ms = static_cast<std::uint32_t>(std::llround(next.tow_s * 1000.0));
+  m.week = static_cast<std::uint16_t>(next.week);
+  m.flags = 0x02;  // timeBase GNSS, utc available
+  m.ref_info = 3 << 4;
+  append(m, out);
+}
+
+// TIM-TM2 (M8 32.20, F9 5.17.1): navemu has no EXTINT input: no time mark, count 0.
+void emit_tim_tm2(const EpochView&, std::vector<std::uint8_t>& out) {
+  TimTm2 m;
+  m.flags = 1 << 3 | 1 << 5;  // timeBase GNSS, UTC available
   append(m, out);
 }
 
@@ -452,8 +797,11 @@ void emit_mon_rf(const EpochView& e, std::vector<std::uint8_t>& out) {
 namespace {
 
 // Every UBX output message the device can produce, in the order of one epoch's output: raw
-// measurement data first (it is measured before the solution), the navigation messages, the
-// monitor messages, and NAV-EOE closing the epoch (u-blox interface description, "NAV-EOE").
+// measurement data first (it is measured before the solution), the navigation and timing
+// messages, the monitor messages, and NAV-EOE closing the epoch (u-blox interface description,
+// "NAV-EOE"). Which generation has a message: the message lists of UBX-13003221 (the
+// standard-precision u-blox 8, protocol 18: no high-precision, RTK or survey-in messages) and
+// of the F9 HPG descriptions (CFG-MSGOUT items).
 // Names (profiles' `ubx: messages`) are those of the message descriptions (ubx::find_message).
 constexpr UbxOutput kOutputs[] = {
     {kRxmRawx, "UBX_RXM_RAWX", true, true, &emit_rxm_rawx},
@@ -471,9 +819,30 @@ constexpr UbxOutput kOutputs[] = {
     {kNavClock, "UBX_NAV_CLOCK", true, true, &emit_nav_clock},
     {kNavSvinfo, "", true, false, &emit_nav_svinfo},
     {kNavSat, "UBX_NAV_SAT", true, true, &emit_nav_sat},
+    {kNavSig, "UBX_NAV_SIG", false, true, &emit_nav_sig},
+    {kNavHpposecef, "UBX_NAV_HPPOSECEF", false, true, &emit_nav_hpposecef},
     {kNavHpposllh, "UBX_NAV_HPPOSLLH", false, true, &emit_nav_hpposllh},
+    {kNavCov, "UBX_NAV_COV", false, true, &emit_nav_cov},
+    {kNavRelposned, "UBX_NAV_RELPOSNED", false, true, &emit_nav_relposned},
+    {kNavSvin, "UBX_NAV_SVIN", false, true, &emit_nav_svin},
+    {kNavTimels, "UBX_NAV_TIMELS", true, true, &emit_nav_timels},
+    {kNavTimebds, "UBX_NAV_TIMEBDS", true, true, &emit_nav_timebds},
+    {kNavTimegal, "UBX_NAV_TIMEGAL", true, true, &emit_nav_timegal},
+    {kNavTimeglo, "UBX_NAV_TIMEGLO", true, true, &emit_nav_timeglo},
+    {kNavOrb, "UBX_NAV_ORB", true, true, &emit_nav_orb},
+    {kNavOdo, "UBX_NAV_ODO", true, true, &emit_nav_odo},
+    {kNavGeofence, "UBX_NAV_GEOFENCE", true, true, &emit_nav_geofence},
+    {kTimTp, "UBX_TIM_TP", true, true, &emit_tim_tp},
+    {kTimTm2, "UBX_TIM_TM2", true, true, &emit_tim_tm2},
     {kMonHw, "UBX_MON_HW", true, true, &emit_mon_hw},
+    {kMonHw2, "UBX_MON_HW2", true, true, &emit_mon_hw2},
+    {kMonHw3, "UBX_MON_HW3", false, true, &emit_mon_hw3},
     {kMonRf, "UBX_MON_RF", false, true, &emit_mon_rf},
+    {kMonComms, "UBX_MON_COMMS", false, true, &emit_mon_comms},
+    {kMonIo, "UBX_MON_IO", true, true, &emit_mon_io},
+    {kMonMsgpp, "UBX_MON_MSGPP", true, true, &emit_mon_msgpp},
+    {kMonRxbuf, "UBX_MON_RXBUF", true, true, &emit_mon_rxbuf},
+    {kMonTxbuf, "UBX_MON_TXBUF", true, true, &emit_mon_txbuf},
     {kNavEoe, "UBX_NAV_EOE", true, true, &emit_nav_eoe},
 };
 
@@ -488,10 +857,10 @@ const UbxOutput* find_ubx_output(MsgId id) {
 }
 
 void emit_ubx_outputs(std::uint64_t due, const ReceiverFix& fix, const EpochMeasurements& meas,
-                      const NavData& nav, ReceiverMode mode, UbxListScratch& lists,
-                      std::vector<std::uint8_t>& out) {
+                      const NavData& nav, ReceiverMode mode, const UbxDeviceStatus& status,
+                      UbxListScratch& lists, std::vector<std::uint8_t>& out) {
   static_assert(std::size(kOutputs) <= 64, "one bit per output message");
-  const EpochView view(fix, meas, nav, mode, lists);
+  const EpochView view(fix, meas, nav, mode, status, lists);
   for (std::size_t i = 0; i < std::size(kOutputs); ++i)
     if (due >> i & 1u) kOutputs[i].emit(view, out);
 }

@@ -4,6 +4,7 @@
 // receiver model: which messages the part has, the CFG-MSGOUT items that set their rates, and
 // how each is filled.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -24,6 +25,26 @@ struct UbxListScratch {
   ubx::RxmRawx rawx;
   ubx::RxmSfrbx sfrbx;
   ubx::MonRf rf;
+  ubx::NavSig sig;
+  ubx::NavOrb orb;
+  ubx::MonComms comms;
+  ubx::MonIo io;
+};
+
+// What the device knows beyond one epoch, for the messages that report it.
+struct UbxPortTraffic {
+  std::uint32_t rx_bytes = 0, tx_bytes = 0;
+  std::uint32_t parsed_bytes = 0;       // received bytes that were part of a message read
+  std::array<std::uint16_t, 8> msgs{};  // messages read, by protocol (CFG-PRT mask bit: UBX 0, NMEA 1, RTCM3 5)
+};
+struct UbxDeviceStatus {
+  std::array<UbxPortTraffic, ubx::kNumPorts> ports{};  // by u-blox port ID
+  bool jamming_monitor = false;  // CFG-ITFM-ENABLE: jammingState reported (MON-HW, MON-RF)
+  bool odometer = false;         // CFG-ODO-USE_ODO
+  double odo_distance_m = 0.0;   // since the last NAV-RESETODO
+  double odo_total_m = 0.0;      // since the last cold start
+  std::uint8_t gnss_enabled = 0x01;  // MON-GNSS bits: GPS 0, GLONASS 1, BeiDou 2, Galileo 3
+  std::string_view hw_version;   // MON-VER's, for MON-HW3
 };
 
 struct EpochView;
@@ -45,7 +66,7 @@ const UbxOutput* find_ubx_output(ubx::MsgId id);
 // Appends, for the epoch of `fix` and `meas`, the output messages whose bit (their index in
 // ubx_outputs()) is set in `due`, in the order of ubx_outputs().
 void emit_ubx_outputs(std::uint64_t due, const ReceiverFix& fix, const EpochMeasurements& meas,
-                      const NavData& nav, ReceiverMode mode, UbxListScratch& lists,
-                      std::vector<std::uint8_t>& out);
+                      const NavData& nav, ReceiverMode mode, const UbxDeviceStatus& status,
+                      UbxListScratch& lists, std::vector<std::uint8_t>& out);
 
 }  // namespace navemu

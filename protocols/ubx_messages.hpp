@@ -539,7 +539,8 @@ struct NavCov {
 struct NavSigSignal {
   // sigFlags: health bits 0..1, prSmoothed 2, prUsed 3, crUsed 4, doUsed 5, prCorrUsed 6,
   // crCorrUsed 7, doCorrUsed 8.
-  static constexpr std::uint16_t kPrUsed = 0x08, kCrUsed = 0x10, kDoUsed = 0x20;
+  static constexpr std::uint16_t kPrUsed = 0x08, kCrUsed = 0x10, kDoUsed = 0x20, kPrCorrUsed = 0x40,
+                                 kCrCorrUsed = 0x80;
   std::uint8_t gnss_id = 0, sv_id = 0, sig_id = 0;
   std::uint8_t freq_id = 0;    // GLONASS frequency slot + 7
   std::int16_t pr_res_dm = 0;  // pseudorange residual, 0.1 m

@@ -740,7 +740,7 @@ TEST_F(UbxDeviceTest, EachPortKeepsItsOwnRatesAndProtocols) {
 
 // NAV-HPPOSLLH (F9 HPG 1.13 description): the standard-precision part and the remainder
 // (1e-9 deg, 0.1 mm) add up to the position; MON-RF has the L1 and L2 front ends with the
-// antenna OK and no jamming. Both by their CFG-MSGOUT items, on the F9P only.
+// antenna OK and no jamming indicated. Both by their CFG-MSGOUT items, on the F9P only.
 TEST_F(UbxDeviceTest, HighPrecisionPositionAndRfMonitor) {
   UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
   ubx::CfgValset set;
@@ -769,7 +769,7 @@ TEST_F(UbxDeviceTest, HighPrecisionPositionAndRfMonitor) {
   ASSERT_EQ(r.blocks.size(), 2u);
   for (const ubx::MonRfBlock& b : r.blocks) {
     EXPECT_EQ(b.ant_status, ubx::MonHw::kAntOk);
-    EXPECT_EQ(b.flags & ubx::MonRfBlock::kJammingStateMask, 1);
+    EXPECT_EQ(b.flags & ubx::MonRfBlock::kJammingStateMask, 0) << "interference monitor off";
     EXPECT_GT(b.noise_per_ms, 0);
     EXPECT_LT(b.jam_ind, 25);
   }
@@ -779,6 +779,238 @@ TEST_F(UbxDeviceTest, HighPrecisionPositionAndRfMonitor) {
   EXPECT_EQ(of_type(frames_of(send(m8, poll(ubx::kMonHw))), ubx::kMonHw).size(), 1u);
 }
 
+
+// ---- Output messages beyond the fix (emulator/ubx_outputs.cpp) --------------------------------
+
+// Sets configuration items by name in the RAM layer (CFG-VALSET), expecting ACK-ACK.
+void set_items(UbxDevice& d, std::initializer_list<std::pair<const char*, std::uint64_t>> items) {
+  ubx::CfgValset set;
+  for (const auto& [name, value] : items) {
+    const ubx::CfgKey* k = ubx::find_config_key(name);
+    ASSERT_NE(k, nullptr) << name;
+    set.values.push_back({k->id, value});
+  }
+  ASSERT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgValset));
+}
+
+// Whether a payload is one of the described forms of its message: it decodes, and encodes
+// again (as a frame: 6 bytes of header, 2 of checksum) to the same bytes.
+bool well_formed(const Frame& f) {
+  for (const ubx::MessageInfo& m : ubx::messages()) {
+    std::vector<std::uint8_t> again;
+    if (m.id == f.id && m.reencode(f.payload, again) && again.size() == f.payload.size() + 8 &&
+        std::equal(f.payload.begin(), f.payload.end(), again.begin() + 6))
+      return true;
+  }
+  return false;
+}
+
+// Every output message of the part answers a poll with one well-formed message (UBX-13003221
+// 32.2 "a message is polled by sending it with no payload"); a message of the other generation
+// gets no answer, as on the part. MON-GNSS, MON-PATCH and SEC-UNIQID are answered by both,
+// NAV-RESETODO is acknowledged.
+TEST_F(UbxDeviceTest, EveryOutputMessageOfThePartAnswersAPoll) {
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    SCOPED_TRACE(p->name);
+    const bool f9 = p == &f9p_;
+    UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
+    std::string out;
+    d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
+    for (const UbxOutput& o : ubx_outputs()) {
+      if (o.id == ubx::kRxmSfrbx) continue;  // subframes only at a subframe's end, with ephemerides
+      const std::vector<Frame> f = frames_of(send(d, poll(o.id)));
+      SCOPED_TRACE(ubx::find_message(o.id) ? ubx::find_message(o.id)->name : "?");
+      if (f9 ? o.f9 : o.m8) {
+        ASSERT_EQ(f.size(), 1u);
+        EXPECT_TRUE(f[0].id == o.id);
+        EXPECT_TRUE(well_formed(f[0]));
+      } else {
+        EXPECT_TRUE(f.empty());
+      }
+    }
+    for (ubx::MsgId id : {ubx::kMonGnss, ubx::kMonPatch, ubx::kSecUniqid}) {
+      const std::vector<Frame> f = frames_of(send(d, poll(id)));
+      ASSERT_EQ(f.size(), 1u);
+      EXPECT_TRUE(f[0].id == id && well_formed(f[0]));
+    }
+    EXPECT_TRUE(only_ack(send(d, poll(ubx::kNavResetodo)), ubx::kNavResetodo));
+  }
+}
+
+// NAV-SIG of a dual-frequency F9P: one block per tracked L1 C/A and L2 CL signal (sigId 0 and
+// 3, as the ZED-F9T in ../shared/data numbers them); the signals of satellites the solution
+// uses carry prUsed and doUsed (0x29 with health "healthy", as in that log) and the dual-frequency
+// ionosphere model (8), the others health only.
+TEST_F(UbxDeviceTest, NavSigListsEveryTrackedSignalAndItsUse) {
+  const NavData nav = nominal_constellation(kT0);
+  ReceiverParams rp;
+  rp.measurement.mode = ReceiverMode::kDualFrequency;
+  Receiver rx(nav, rp);
+  UbxDevice d(f9p_, ReceiverMode::kDualFrequency, nav);
+  set_items(d, {{"CFG-MSGOUT-UBX_NAV_SIG_UART1", 1}});
+  ImuTruth truth;
+  truth.position = Geodetic{32.3, -90.9, 60.0};
+  truth.t = kT0;
+  const ReceiverFix fix = rx.update(kT0, &truth);
+  const EpochMeasurements& meas = rx.measurements();
+  std::string out;
+  d.encode_epoch(fix, meas, 0, out);
+  const std::vector<Frame> f = of_type(frames_of(out), ubx::kNavSig);
+  ASSERT_EQ(f.size(), 1u);
+  ubx::NavSig m;
+  ASSERT_TRUE(ubx::decode(f[0].payload, m));
+  std::size_t expected = 0;
+  for (const SatMeasurement& s : meas.sats) expected += (s.signals[0] ? 1u : 0u) + (s.signals[1] ? 1u : 0u);
+  ASSERT_GT(expected, 8u);
+  EXPECT_EQ(m.signals.size(), expected);
+  int used = 0;
+  for (const ubx::NavSigSignal& g : m.signals) {
+    SCOPED_TRACE(::testing::Message() << "G" << int{g.sv_id} << " sig " << int{g.sig_id});
+    EXPECT_EQ(g.gnss_id, 0);
+    EXPECT_TRUE(g.sig_id == 0 || g.sig_id == 3);
+    const auto it = std::find_if(fix.satellites.begin(), fix.satellites.end(),
+                                 [&](const ReceiverSatellite& r) { return r.sat.ubx_sv_id() == g.sv_id; });
+    ASSERT_NE(it, fix.satellites.end());
+    EXPECT_EQ(g.sig_flags, it->used ? 0x29 : 0x01);
+    EXPECT_EQ(g.iono_model, it->used ? 8 : 0);
+    EXPECT_GT(g.cno_dbhz, 0);
+    used += it->used ? 1 : 0;
+  }
+  EXPECT_EQ(used, 2 * fix.num_used) << "both bands of every used satellite";
+}
+
+// The other systems' times of NAV-TIMEBDS/GAL/GLO and NAV-TIMELS at 2010-11-17 13:00:00 UTC
+// (GPS - UTC = 15 s, GPS week 1610, Wednesday), worked by hand from the system definitions:
+// BDT = GPST - 14 s, BDS week = GPS week - 1356 (BDS ICD 2.0 5.2.4.5); Galileo week = GPS week -
+// 1024 (Galileo OS SIS ICD 5.1.2); GLONASS time = UTC + 3 h, day 1052 of the four-year
+// interval 4 that began 1 January 2008 (366 + 365 + 321). Without satellites of a system the
+// time is sent, not flagged valid.
+TEST_F(UbxDeviceTest, TimeMessagesOfEverySystem) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  std::string epoch;
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, epoch);
+  const auto polled = [&](ubx::MsgId id) {
+    const std::vector<Frame> f = frames_of(send(d, poll(id)));
+    EXPECT_EQ(f.size(), 1u);
+    return f.empty() ? std::vector<std::uint8_t>{} : f[0].payload;
+  };
+  const std::uint32_t gps_tow_s = 3 * 86400 + 13 * 3600 + 15;
+  ubx::NavTimebds bds;
+  ASSERT_TRUE(ubx::decode(polled(ubx::kNavTimebds), bds));
+  EXPECT_EQ(bds.week, 1610 - 1356);
+  EXPECT_EQ(bds.sow_s, gps_tow_s - 14);
+  EXPECT_EQ(bds.f_sow_ns, 0);
+  EXPECT_EQ(bds.leap_s, 1);
+  EXPECT_EQ(bds.valid, 0);
+  ubx::NavTimegal gal;
+  ASSERT_TRUE(ubx::decode(polled(ubx::kNavTimegal), gal));
+  EXPECT_EQ(gal.gal_wno, 1610 - 1024);
+  EXPECT_EQ(gal.gal_tow_s, gps_tow_s);
+  EXPECT_EQ(gal.leap_s, 15);
+  ubx::NavTimeglo glo;
+  ASSERT_TRUE(ubx::decode(polled(ubx::kNavTimeglo), glo));
+  EXPECT_EQ(glo.tod_s, 16u * 3600u);
+  EXPECT_EQ(glo.n4, 4);
+  EXPECT_EQ(glo.nt_days, 1052);
+  ubx::NavTimels ls;
+  ASSERT_TRUE(ubx::decode(polled(ubx::kNavTimels), ls));
+  EXPECT_EQ(ls.curr_ls_s, 15);
+  EXPECT_EQ(ls.src_of_curr_ls, 2) << "GPS";
+  EXPECT_EQ(ls.valid & ubx::NavTimels::kValidCurrLs, ubx::NavTimels::kValidCurrLs);
+  EXPECT_EQ(ls.date_of_ls_gps_wn, 1610);
+  EXPECT_EQ(ls.time_to_ls_event_s, -static_cast<std::int32_t>(gps_tow_s - 86400)) << "end of day 1, passed";
+}
+
+// MON-MSGPP and MON-IO count what a port received and sent: UBX frames and NMEA sentences read,
+// bytes that were part of neither, bytes of the replies.
+TEST_F(UbxDeviceTest, MonitorMessagesCountEachPortsTraffic) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  const std::vector<std::uint8_t> ver = poll(ubx::kMonVer);
+  const std::string junk = "xyz";
+  const std::string sentence = "$PUBX,00*33\r\n";
+  std::vector<std::uint8_t> in = ver;
+  in.insert(in.end(), junk.begin(), junk.end());
+  in.insert(in.end(), sentence.begin(), sentence.end());
+  const std::string replies = send(d, in);
+  const std::vector<Frame> f = frames_of(send(d, poll(ubx::kMonMsgpp)));
+  ASSERT_EQ(f.size(), 1u);
+  ubx::MonMsgpp pp;
+  ASSERT_TRUE(ubx::decode(f[0].payload, pp));
+  EXPECT_EQ(pp.msg2[0], 2) << "UART1 UBX: the MON-VER poll and this one";
+  EXPECT_EQ(pp.msg2[1], 1) << "UART1 NMEA";
+  EXPECT_EQ(pp.skipped_bytes[1], junk.size());
+  EXPECT_EQ(pp.msg4[0], 0) << "nothing on USB";
+
+  const std::vector<std::uint8_t> io_poll = poll(ubx::kMonIo);
+  const std::vector<Frame> io_f = frames_of(send(d, io_poll));
+  ASSERT_EQ(io_f.size(), 1u);
+  ubx::MonIo io;
+  ASSERT_TRUE(ubx::decode(io_f[0].payload, io));
+  ASSERT_EQ(io.ports.size(), ubx::kNumPorts);
+  EXPECT_EQ(io.ports[1].rx_bytes, in.size() + 2 * ver.size());
+  EXPECT_GT(io.ports[1].tx_bytes, replies.size());
+  EXPECT_EQ(io.ports[3].rx_bytes, 0u);
+}
+
+// NAV-ODO: with the odometer on (CFG-ODO-USE_ODO), 10 s at 5 m/s ground speed count 50 m, a
+// parked receiver's velocity noise nothing; NAV-RESETODO clears the distance, not the total.
+TEST_F(UbxDeviceTest, OdometerCountsGroundDistance) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  set_items(d, {{"CFG-MSGOUT-UBX_NAV_ODO_UART1", 1}});
+  const auto run = [&](int seconds, Vec3 v_ned, std::int64_t& k) {
+    ubx::NavOdo m;
+    for (int i = 0; i <= seconds; ++i, ++k) {
+      ReceiverFix fix = a_fix(kT0.plus_s(static_cast<double>(k)));
+      fix.v_ned_mps = v_ned;
+      std::string out;
+      d.encode_epoch(fix, EpochMeasurements{}, k, out);
+      const std::vector<Frame> f = of_type(frames_of(out), ubx::kNavOdo);
+      EXPECT_EQ(f.size(), 1u);
+      if (!f.empty()) {
+        EXPECT_TRUE(ubx::decode(f[0].payload, m));
+      }
+    }
+    return m;
+  };
+  std::int64_t k = 0;
+  EXPECT_EQ(run(10, Vec3(3.0, 4.0, 0.0), k).distance_m, 0u) << "the odometer is off by default";
+  set_items(d, {{"CFG-ODO-USE_ODO", 1}});
+  EXPECT_EQ(run(10, Vec3(3.0, 4.0, 0.0), k).distance_m, 50u);
+  EXPECT_EQ(run(10, Vec3(0.03, -0.04, 0.02), k).distance_m, 50u) << "parked";
+  EXPECT_TRUE(only_ack(send(d, poll(ubx::kNavResetodo)), ubx::kNavResetodo));
+  const ubx::NavOdo after = run(0, Vec3::Zero(), k);
+  EXPECT_EQ(after.distance_m, 0u);
+  EXPECT_EQ(after.total_distance_m, 50u);
+}
+
+// The jamming state of MON-RF is "unknown or disabled" (0) with the interference monitor off,
+// its default, as a ZED-F9T reports it in ../shared/data; "ok" (1) once CFG-ITFM-ENABLE is set.
+// MON-GNSS reports the constellations CFG-SIGNAL enables.
+TEST_F(UbxDeviceTest, MonitorsFollowTheirConfiguration) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  std::string out;
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
+  const auto jamming = [&] {
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kMonRf)));
+    ubx::MonRf r;
+    EXPECT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, r) && r.blocks.size() == 2);
+    return r.blocks.empty() ? -1 : r.blocks[0].flags & ubx::MonRfBlock::kJammingStateMask;
+  };
+  EXPECT_EQ(jamming(), 0);
+  set_items(d, {{"CFG-ITFM-ENABLE", 1}});
+  EXPECT_EQ(jamming(), 1);
+
+  const auto gnss = [&] {
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kMonGnss)));
+    ubx::MonGnss g;
+    EXPECT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, g));
+    return g;
+  };
+  EXPECT_EQ(gnss().enabled, 0x0F);
+  set_items(d, {{"CFG-SIGNAL-GLO_ENA", 0}});
+  EXPECT_EQ(gnss().enabled, 0x0D);
+  EXPECT_EQ(gnss().supported, 0x0F);
+}
 
 // ---- NMEA input (emulator/ubx_nmea_input.cpp) ------------------------------------------------
 // Sentences from the u-blox 8 receiver description (UBX-13003221) "PUBX Messages" and the F9
