@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "emulator/imu_profile.hpp"
+#include "emulator/ubx_outputs.hpp"
 #include "emulator/yaml_reader.hpp"
 #include "core/errors.hpp"
 
@@ -247,10 +248,12 @@ const std::vector<std::string>& known_nmea_sentences() {
 }
 
 const std::vector<std::string>& known_ubx_outputs() {
-  static const std::vector<std::string> k = {
-      "NAV-PVT",   "NAV-POSLLH", "NAV-POSECEF", "NAV-VELNED", "NAV-VELECEF",
-      "NAV-STATUS", "NAV-SOL",   "NAV-SVINFO",  "NAV-DOP",    "NAV-SAT",
-      "NAV-TIMEGPS", "NAV-TIMEUTC", "NAV-CLOCK", "NAV-EOE",   "RXM-RAWX", "RXM-SFRBX"};
+  static const std::vector<std::string> k = [] {
+    std::vector<std::string> names;
+    for (const UbxOutput& o : ubx_outputs())
+      if (const ubx::MessageInfo* m = ubx::find_message(o.id)) names.emplace_back(m->name);
+    return names;
+  }();
   return k;
 }
 
