@@ -149,8 +149,9 @@ void UbxDevice::refresh() {
                                          std::max<std::uint64_t>(config_.get(keys_.rate_nav), 1)) *
                1'000'000;
   const auto flag = [&](std::uint32_t id, bool fallback) { return id ? config_.get(id) != 0 : fallback; };
-  // The u-blox 8 keeps its legacy CFG-ITFM and CFG-ODO without modelling them: its jamming
-  // monitor reports, its odometer does not count.
+  // Switches the outputs follow. The u-blox 8 has none of these items (it has the legacy
+  // CFG-ITFM and CFG-ODO, which are kept, not applied), so it keeps their defaults: jamming
+  // monitor and odometer off.
   status_.jamming_monitor = flag(item("CFG-ITFM-ENABLE"), true);
   status_.odometer = flag(item("CFG-ODO-USE_ODO"), false);
   status_.gnss_enabled = protocol27_ ? static_cast<std::uint8_t>((flag(item("CFG-SIGNAL-GPS_ENA"), true) ? 0x01 : 0) |
