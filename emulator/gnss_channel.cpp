@@ -68,6 +68,7 @@ void GnssChannel::skip_event() {
 bool GnssChannel::run_event(EventContext& ctx) {
   const GpsTime te{k_ * period_ns_};
   const std::optional<ImuTruth> tr = ctx.truth.at(te);
+  if (const NavEngineSettings* engine = device_->engine_settings()) receiver_->set_engine(*engine);
   const ReceiverFix& fix = receiver_->update(te, tr ? &*tr : nullptr);
   device_->update(fix, receiver_->measurements(), k_);
   const GpsTime deadline{te.ns + latency_ns_};

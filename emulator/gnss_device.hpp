@@ -54,6 +54,9 @@ class GnssDevice {
     return std::nullopt;
   }
   std::optional<int> take_baud_change() { return take_baud_change(ReceiverPort::kUart1); }
+  // The position engine's settings as the client configured them (u-blox CFG-NAVSPG,
+  // CFG-NAV5), applied from the next epoch; none: the receiver keeps the run profile's.
+  virtual const NavEngineSettings* engine_settings() const { return nullptr; }
   // True until a client-requested restart has produced its first fix again.
   virtual bool restarting(GpsTime t) const {
     (void)t;

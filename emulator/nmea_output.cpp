@@ -10,7 +10,7 @@ namespace navemu {
 namespace {
 }
 
-NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode)
+NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optional<int> nmea_version)
     : profile_(profile),
       format_(profile.style == "garmin" ? nmea::Format::garmin() : nmea::Format::ublox()) {
   // GGA quality and the mode indicator by receiver mode (NMEA 0183 4.10, GGA and RMC).
@@ -21,6 +21,13 @@ NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode)
     case ReceiverMode::kRtkFixed: quality_ = 4; mode_ = 'R'; break;
   }
   if (profile.time_decimals) format_.time_decimals = *profile.time_decimals;
+  // The fields each version has (u-blox 8 receiver description UBX-13003221, "NMEA protocol
+  // configuration"): the mode indicator from 2.3 on; the navigational status of RMC and the
+  // system and signal IDs of GSA and GSV from 4.10 on.
+  if (nmea_version) {
+    format_.mode_indicator = *nmea_version >= 23;
+    format_.nav_status = format_.system_signal_ids = *nmea_version >= 41;
+  }
   numbering_ = format_.system_signal_ids ? NmeaNumbering::kV411 : NmeaNumbering::kV410Extended;
   gsv_.reserve(64);
   gsa_.sat_ids.reserve(64);

@@ -3,6 +3,7 @@
 // fix (models/receiver.hpp) turned into the encoders' fields (protocols/nmea.hpp).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,9 @@ namespace navemu {
 
 class NmeaOutput {
  public:
-  NmeaOutput(const GnssProfile& profile, ReceiverMode mode);
+  // `nmea_version`: the NMEA version a client chose (u-blox CFG-NMEA-PROTVER: 21, 23, 40, 41,
+  // 42 for 2.1 ... 4.11); none: the profile style's.
+  NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optional<int> nmea_version = {});
   // Appends the sentences due at this epoch (those whose divisor divides epoch_index) to `out`.
   void encode(const ReceiverFix& fix, std::int64_t epoch_index, std::string& out);
 

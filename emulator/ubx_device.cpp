@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "core/sat_table.hpp"
 #include "models/reuse.hpp"
@@ -87,6 +89,53 @@ std::vector<std::pair<std::uint32_t, std::uint64_t>> profile_defaults(const Gnss
   return d;
 }
 
+// The dynamic platform models' sanity limits (ZED-F9P integration manual UBX-18010802, 3.1.7.1,
+// "Dynamic platform model details", the same in the u-blox 8 description): maximum altitude,
+// horizontal and vertical speed; the airborne models check the altitude only and give no 2D
+// fix ("Dynamic platform models"). The bike model (10) has no row there: unchecked.
+struct PlatformLimits {
+  std::uint8_t dyn_model;
+  double max_alt_m, max_h_mps, max_v_mps;
+  bool airborne;
+};
+constexpr PlatformLimits kPlatformLimits[] = {
+    {CfgNav5::kDynPortable, 12000, 310, 50, false},  {CfgNav5::kDynStationary, 9000, 10, 6, false},
+    {CfgNav5::kDynPedestrian, 9000, 30, 20, false},  {CfgNav5::kDynAutomotive, 6000, 100, 15, false},
+    {CfgNav5::kDynSea, 500, 25, 5, false},           {CfgNav5::kDynAirborne1g, 50000, 100, 100, true},
+    {CfgNav5::kDynAirborne2g, 50000, 250, 100, true}, {CfgNav5::kDynAirborne4g, 50000, 500, 100, true},
+    {CfgNav5::kDynWrist, 9000, 30, 20, false}};
+
+// The position engine's settings from its CFG-NAVSPG items (integration manual 3.1.7 "Navigation
+// configuration": platform, input filters; the u-blox 8's CFG-NAV5 sets the same items).
+NavEngineSettings engine_settings_of(const UbxConfig& c) {
+  const auto raw = [&](const char* name) { return c.get(item(name)); };
+  NavEngineSettings s;
+  s.elevation_mask_deg = static_cast<std::int8_t>(raw("CFG-NAVSPG-INFIL_MINELEV"));
+  s.min_cn0_dbhz = static_cast<double>(raw("CFG-NAVSPG-INFIL_MINCNO"));
+  s.cn0_threshold_sats = static_cast<int>(raw("CFG-NAVSPG-INFIL_NCNOTHRS"));
+  s.cn0_threshold_dbhz = static_cast<double>(raw("CFG-NAVSPG-INFIL_CNOTHRS"));
+  s.fixed_height_msl_m =
+      0.01 * static_cast<std::int32_t>(static_cast<std::uint32_t>(raw("CFG-NAVSPG-CONSTR_ALT")));
+  switch (raw("CFG-NAVSPG-FIXMODE")) {
+    case 1: s.fix_mode = SolverFixMode::k2DOnly; break;
+    case 2: s.fix_mode = SolverFixMode::k3DOnly; break;
+    default: s.fix_mode = SolverFixMode::kAuto; break;
+  }
+  const auto dyn = static_cast<std::uint8_t>(raw("CFG-NAVSPG-DYNMODEL"));
+  for (const PlatformLimits& p : kPlatformLimits) {
+    if (p.dyn_model != dyn) continue;
+    s.max_height_msl_m = p.max_alt_m;
+    if (!p.airborne) {
+      s.max_h_speed_mps = p.max_h_mps;
+      s.max_v_speed_mps = p.max_v_mps;
+    } else if (s.fix_mode == SolverFixMode::kAuto) {
+      s.fix_mode = SolverFixMode::k3DOnly;
+    }
+  }
+  s.zero_velocity = dyn == CfgNav5::kDynStationary;  // "velocity restricted to 0 m/s"
+  return s;
+}
+
 // Which configuration items the part has: those of its firmware, as MON-VER's FWVER extension
 // names it (F9 HPG 1.13 UBX-21023318 for HPG 1.1x, F9 HPG 1.32 UBX-22008968 for HPG 1.3x).
 std::uint8_t firmware_of(const UbxSettings& u) {
@@ -149,16 +198,34 @@ void UbxDevice::refresh() {
                                          std::max<std::uint64_t>(config_.get(keys_.rate_nav), 1)) *
                1'000'000;
   const auto flag = [&](std::uint32_t id, bool fallback) { return id ? config_.get(id) != 0 : fallback; };
-  // Switches the outputs follow. The u-blox 8 has none of these items (it has the legacy
-  // CFG-ITFM and CFG-ODO, which are kept, not applied), so it keeps their defaults: jamming
-  // monitor and odometer off.
-  status_.jamming_monitor = flag(item("CFG-ITFM-ENABLE"), true);
-  status_.odometer = flag(item("CFG-ODO-USE_ODO"), false);
+  engine_ = engine_settings_of(config_);
+  // Switches the outputs follow: configuration items on the F9, the legacy CFG-ITFM (config
+  // bit 31 "enable") and CFG-ODO (flags bit 0 "useODO") on the u-blox 8 (UBX-13003221).
+  if (protocol27_) {
+    status_.jamming_monitor = flag(item("CFG-ITFM-ENABLE"), true);
+    status_.odometer = flag(item("CFG-ODO-USE_ODO"), false);
+  } else {
+    CfgItfm itfm;
+    CfgOdo odo;
+    status_.jamming_monitor = decode(legacy_.current(kCfgItfm), itfm) && (itfm.config & CfgItfm::kEnable);
+    status_.odometer = decode(legacy_.current(kCfgOdo), odo) && (odo.flags & CfgOdo::kUseOdo);
+  }
   status_.gnss_enabled = protocol27_ ? static_cast<std::uint8_t>((flag(item("CFG-SIGNAL-GPS_ENA"), true) ? 0x01 : 0) |
                                                                  (flag(item("CFG-SIGNAL-GLO_ENA"), true) ? 0x02 : 0) |
                                                                  (flag(item("CFG-SIGNAL-BDS_ENA"), true) ? 0x04 : 0) |
                                                                  (flag(item("CFG-SIGNAL-GAL_ENA"), true) ? 0x08 : 0))
                                      : 0x03;  // the u-blox 8's default GPS + GLONASS (CFG-GNSS kept, not applied)
+  // NMEA version and main talker ID (F9 interface description CFG-NMEA-PROTVER, -MAINTALKERID:
+  // 0 as the GNSS configuration says, 1 GP, 2 GL, 3 GN, 4 GA, 5 GB, 7 GQ). The u-blox 8 keeps
+  // its legacy CFG-NMEA, not applied: the profile's.
+  talker_ = profile_.talker;
+  nmea_version_.reset();
+  if (protocol27_) {
+    nmea_version_ = static_cast<int>(config_.get(item("CFG-NMEA-PROTVER")));
+    static constexpr const char* kTalkers[] = {"", "GP", "GL", "GN", "GA", "GB", "", "GQ"};
+    const std::uint64_t t = config_.get(item("CFG-NMEA-MAINTALKERID"));
+    if (t < std::size(kTalkers) && *kTalkers[t] != '\0') talker_ = kTalkers[t];
+  }
   for (std::uint8_t p = 0; p < kReceiverPorts; ++p) {
     PortSettings& s = ports_[p];
     s.in_ubx = flag(proto_item(p, true, "UBX"), true);
@@ -172,6 +239,7 @@ void UbxDevice::refresh() {
     for (std::size_t i = 0; i < outs.size(); ++i)
       s.ubx_rates[i] = static_cast<std::uint8_t>(rate(outs[i].id, p));
     GnssProfile np = profile_;
+    np.talker = talker_;
     np.sentences.clear();
     // The profile's order of sentences, then any other one a client switched on.
     for (const auto& [nid, n] : kNmeaIds)
@@ -184,7 +252,7 @@ void UbxDevice::refresh() {
       };
       return rank(a.first) < rank(b.first);
     });
-    s.nmea = std::make_unique<NmeaOutput>(np, mode_);
+    s.nmea = std::make_unique<NmeaOutput>(np, mode_, nmea_version_);
   }
 }
 
@@ -313,8 +381,34 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_
   }
   // The legacy messages navemu keeps without modelling: a poll is answered with the message
   // and then acknowledged, a set acknowledged or refused (UBX-13003221 32.5 "UBX Message Flow").
-  if (legacy_.has(msg) && legacy_.handle(msg, p, out)) return ack(msg, out);
+  if (legacy_.has(msg) && legacy_.handle(msg, p, out)) {
+    stale_ = true;  // the u-blox 8's switches are legacy settings (refresh())
+    return ack(msg, out);
+  }
   nak(msg, out);  // a configuration message this receiver does not have, or a form it refuses
+}
+
+// INF-* as UBX and as NMEA TXT, each where the port's INF mask for that protocol has the type's
+// bit and the port outputs the protocol (F9 interface description CFG-INFMSG-UBX_/NMEA_<port>;
+// u-blox 8: CFG-INF, the protocol 0 and 1 blocks' infMsgMask by port ID).
+void UbxDevice::inform(std::uint8_t port, std::uint8_t type, std::string_view text, Bytes& out) {
+  const auto mask = [&](bool nmea_protocol) -> unsigned {
+    if (protocol27_)
+      return static_cast<unsigned>(config_.get(item(std::string("CFG-INFMSG-") + (nmea_protocol ? "NMEA_" : "UBX_") +
+                                                     kPortNames[port])));
+    CfgInf m;
+    return decode(legacy_.current(kCfgInf, static_cast<std::uint8_t>(nmea_protocol ? 1 : 0)), m) && !m.blocks.empty()
+               ? m.blocks[0].inf_msg_mask[port]
+               : 0u;
+  };
+  const unsigned bit = 1u << type;
+  if (ports_[port].out_ubx && (mask(false) & bit))
+    append_frame(kClassInf, type, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, out);
+  if (ports_[port].out_nmea && (mask(true) & bit)) {
+    std::string line;
+    nmea::encode(nmea::TxtFields{talker_, 1, 1, type, text}, nmea::Format::ublox(), line);
+    out.insert(out.end(), line.begin(), line.end());
+  }
 }
 
 void UbxDevice::poll_mon_ver(std::uint8_t, Bytes& out) {
@@ -456,12 +550,45 @@ void UbxDevice::handle_cfg_rate(Payload p, std::uint8_t, Bytes& out) {
   ack(kCfgRate, out);
 }
 
+// CFG-NAV5's fields are configuration items (F9 interface description, "Legacy UBX-CFG message
+// fields reference"); the mask bit that applies each is the u-blox 8's (UBX-13003221 CFG-NAV5).
+namespace {
+struct Nav5Field {
+  std::uint16_t mask_bit;
+  const char* key_name;
+  std::uint64_t (*get)(const CfgNav5&);  // the field as the item's raw value
+  void (*set)(CfgNav5&, std::uint64_t);
+};
+template <auto Member>
+constexpr Nav5Field nav5_field(std::uint16_t bit, const char* key_name) {
+  using T = std::remove_reference_t<decltype(std::declval<CfgNav5&>().*Member)>;
+  using U = std::make_unsigned_t<T>;  // signed fields are held as their two's complement
+  return {bit, key_name, [](const CfgNav5& n) -> std::uint64_t { return static_cast<U>(n.*Member); },
+          [](CfgNav5& n, std::uint64_t v) { n.*Member = static_cast<T>(static_cast<U>(v)); }};
+}
+constexpr Nav5Field kNav5Fields[] = {
+    nav5_field<&CfgNav5::dyn_model>(CfgNav5::kMaskDyn, "CFG-NAVSPG-DYNMODEL"),
+    nav5_field<&CfgNav5::min_elev_deg>(CfgNav5::kMaskMinEl, "CFG-NAVSPG-INFIL_MINELEV"),
+    nav5_field<&CfgNav5::fix_mode>(CfgNav5::kMaskPosFixMode, "CFG-NAVSPG-FIXMODE"),
+    nav5_field<&CfgNav5::fixed_alt_cm>(CfgNav5::kMaskPosFixMode, "CFG-NAVSPG-CONSTR_ALT"),
+    nav5_field<&CfgNav5::fixed_alt_var_1e4m2>(CfgNav5::kMaskPosFixMode, "CFG-NAVSPG-CONSTR_ALTVAR"),
+    nav5_field<&CfgNav5::p_dop_0p1>(CfgNav5::kMaskPosMask, "CFG-NAVSPG-OUTFIL_PDOP"),
+    nav5_field<&CfgNav5::p_acc_m>(CfgNav5::kMaskPosMask, "CFG-NAVSPG-OUTFIL_PACC"),
+    nav5_field<&CfgNav5::t_dop_0p1>(CfgNav5::kMaskTimeMask, "CFG-NAVSPG-OUTFIL_TDOP"),
+    nav5_field<&CfgNav5::t_acc_m>(CfgNav5::kMaskTimeMask, "CFG-NAVSPG-OUTFIL_TACC"),
+    nav5_field<&CfgNav5::static_hold_thresh_cmps>(CfgNav5::kMaskStaticHoldMask, "CFG-MOT-GNSSSPEED_THRS"),
+    nav5_field<&CfgNav5::static_hold_max_dist_m>(CfgNav5::kMaskStaticHoldMask, "CFG-MOT-GNSSDIST_THRS"),
+    nav5_field<&CfgNav5::dgnss_timeout_s>(CfgNav5::kMaskDgpsMask, "CFG-NAVSPG-CONSTR_DGNSSTO"),
+    nav5_field<&CfgNav5::cno_thresh_num_svs>(CfgNav5::kMaskCnoThreshold, "CFG-NAVSPG-INFIL_NCNOTHRS"),
+    nav5_field<&CfgNav5::cno_thresh_dbhz>(CfgNav5::kMaskCnoThreshold, "CFG-NAVSPG-INFIL_CNOTHRS"),
+    nav5_field<&CfgNav5::utc_standard>(CfgNav5::kMaskUtc, "CFG-NAVSPG-UTCSTANDARD"),
+};
+}  // namespace
+
 void UbxDevice::poll_cfg_nav5(std::uint8_t, Bytes& out) {
   CfgNav5 n;
   n.mask = 0xFFFF;
-  n.dyn_model = static_cast<std::uint8_t>(config_.get(item("CFG-NAVSPG-DYNMODEL")));
-  n.fix_mode = static_cast<std::uint8_t>(config_.get(item("CFG-NAVSPG-FIXMODE")));
-  n.min_elev_deg = static_cast<std::int8_t>(config_.get(item("CFG-NAVSPG-INFIL_MINELEV")));
+  for (const Nav5Field& f : kNav5Fields) f.set(n, config_.get(item(f.key_name)));
   append(n, out);
   ack(kCfgNav5, out);
 }
@@ -470,12 +597,8 @@ void UbxDevice::handle_cfg_nav5(Payload p, std::uint8_t, Bytes& out) {
   CfgNav5 n;
   if (!decode(p, n)) return nak(kCfgNav5, out);
   std::vector<CfgKeyValue> v;
-  const auto put = [&](std::uint16_t bit, const char* name, std::uint64_t value) {
-    if ((n.mask & bit) && item(name)) v.push_back({item(name), value});
-  };
-  put(CfgNav5::kMaskDyn, "CFG-NAVSPG-DYNMODEL", n.dyn_model);
-  put(CfgNav5::kMaskMinEl, "CFG-NAVSPG-INFIL_MINELEV", static_cast<std::uint8_t>(n.min_elev_deg));
-  put(CfgNav5::kMaskPosFixMode, "CFG-NAVSPG-FIXMODE", n.fix_mode);
+  for (const Nav5Field& f : kNav5Fields)
+    if (const std::uint32_t id = item(f.key_name); (n.mask & f.mask_bit) && id) v.push_back({id, f.get(n)});
   if (!config_.set_ram(v)) return nak(kCfgNav5, out);
   ack(kCfgNav5, out);
 }
@@ -511,6 +634,7 @@ void UbxDevice::handle_cfg_cfg(Payload p, std::uint8_t, Bytes& out) {
   if (c.load_mask) {
     config_.load();
     legacy_.load();
+    stale_ = true;
   }
   ack(kCfgCfg, out);
 }
@@ -526,6 +650,7 @@ void UbxDevice::handle_cfg_rst(Payload p, std::uint8_t, Bytes& out) {
       r.reset_mode == CfgRst::kHardwareResetAfterShutdown) {
     config_.reload();
     legacy_.load();
+    stale_ = true;
   }
   if (r.nav_bbr_mask == CfgRst::kColdStart) status_.odo_distance_m = status_.odo_total_m = 0.0;
   const double outage_s = r.nav_bbr_mask == CfgRst::kHotStart    ? 1.0

@@ -12,6 +12,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "emulator/gnss_device.hpp"
@@ -45,6 +47,7 @@ class UbxDevice final : public GnssDevice {
   std::int64_t period_ns() const override { return period_ns_; }
   std::optional<int> take_baud_change(ReceiverPort port) override;
   bool restarting(GpsTime t) const override { return t < restart_until_; }
+  const NavEngineSettings* engine_settings() const override { return &engine_; }
 
   UbxDeviceCounters counters() const;
   // The rate (every n-th solution, 0 off) of a message on a port (u-blox port ID).
@@ -97,6 +100,8 @@ class UbxDevice final : public GnssDevice {
                    std::vector<ubx::CfgKeyValue>& values) const;
   // An NMEA sentence received on `port` (emulator/ubx_nmea_input.cpp).
   void receive_nmea(std::string_view sentence, std::uint8_t port, Bytes& out);
+  // An information message of `type` (0 error, 1 warning, 2 notice, 3 test, 4 debug) on `port`.
+  void inform(std::uint8_t port, std::uint8_t type, std::string_view text, Bytes& out);
 
   GnssProfile profile_;
   ReceiverMode mode_;
@@ -120,6 +125,9 @@ class UbxDevice final : public GnssDevice {
   std::map<std::uint16_t, std::array<std::uint8_t, ubx::kNumPorts>> other_rates_;
   GpsTime restart_until_{0};
 
+  NavEngineSettings engine_;  // from CFG-NAVSPG
+  std::string talker_;        // the NMEA talker ID the output uses (CFG-NMEA-MAINTALKERID)
+  std::optional<int> nmea_version_;  // CFG-NMEA-PROTVER on the F9; none: the profile's
   // What the monitor and odometer messages report (traffic, odometer, switches).
   UbxDeviceStatus status_;
   std::optional<GpsTime> odo_last_t_;  // the previous fix the odometer counted from

@@ -143,9 +143,14 @@ bool UbxLegacyCfg::has(MsgId id) const {
                      [&](const auto& e) { return e.id == id && (protocol27_ ? e.f9 : e.m8); });
 }
 
+Bytes UbxLegacyCfg::current(MsgId id, std::uint8_t index) const {
+  const auto it = ram_.find({key_of(id), index});
+  return it != ram_.end() ? it->second : power_up(id, index, protocol27_);
+}
+
 bool UbxLegacyCfg::handle(MsgId id, Payload p, Bytes& out) {
   const auto* e = std::find_if(std::begin(kEntries), std::end(kEntries), [&](const auto& x) { return x.id == id; });
-  if (e == std::end(kEntries) || !has(id)) return false;
+  if (e == std::end(kEntries) || !(protocol27_ ? e->f9 : e->m8)) return false;
   // The poll forms: empty, or one index byte (CFG-INF protocol 0 UBX / 1 NMEA; CFG-TP5 time
   // pulse 0 / 1). CFG-INF has no empty poll.
   const bool indexed = id == kCfgInf || id == kCfgTp5;
@@ -153,8 +158,7 @@ bool UbxLegacyCfg::handle(MsgId id, Payload p, Bytes& out) {
   if (poll) {
     const std::uint8_t index = p.empty() ? 0 : p[0];
     if (indexed && index > 1) return false;
-    const auto it = ram_.find({key_of(id), index});
-    append_frame(id.cls, id.id, it != ram_.end() ? it->second : power_up(id, index, protocol27_), out);
+    append_frame(id.cls, id.id, current(id, index), out);
     return true;
   }
   if (!e->valid(p)) return false;

@@ -28,6 +28,8 @@ class UbxLegacyCfg {
   // index) appends the answer frame to `out` and returns true; a set is kept when it decodes in
   // one of the message's forms (true) or refused (false).
   bool handle(ubx::MsgId id, std::span<const std::uint8_t> payload, std::vector<std::uint8_t>& out);
+  // The setting as the part has it now (set-form payload): what was set, or the power-up value.
+  std::vector<std::uint8_t> current(ubx::MsgId id, std::uint8_t index = 0) const;
 
   // CFG-CFG: keep what was set over a reset, forget it, or go back to what was kept.
   void save() { saved_ = ram_; }

@@ -13,7 +13,8 @@
 // NMEA input is never acknowledged (it has no ACK), so a PUBX,41 baud change applies at once
 // after the sentence, through the same pending change as CFG-PRT's (after its ACK there). A
 // poll is answered on the port it came from with the sentence of the latest epoch. Malformed
-// sentences and ones the part does not take get no reply; they are counted
+// sentences and ones the part does not take get no reply, but for other makers' proprietary
+// sentences, which get an "inv format" warning (INF, see receive_nmea); all are counted
 // (UbxDeviceCounters::nmea_ignored).
 
 #include <algorithm>
@@ -145,17 +146,26 @@ void UbxDevice::receive_nmea(std::string_view sentence, std::uint8_t port, Bytes
       } else {
         pubx::encode(time_fields(last_fix_, last_meas_, nav_), format_of(profile_), reply);
       }
-    } else if (const auto* s = std::get_if<pubx::PollStandard>(&c);
-               s && s->listener.view() == profile_.talker) {
+    } else if (const auto* s = std::get_if<pubx::PollStandard>(&c); s && s->listener.view() == talker_) {
       // The sentence as the port's output would have it, whatever its rate.
       GnssProfile one = profile_;
+      one.talker = talker_;
       one.sentences = {{std::string(s->msg_id.view()), 1}};
-      NmeaOutput(one, mode_).encode(last_fix_, 0, reply);
+      NmeaOutput(one, mode_, nmea_version_).encode(last_fix_, 0, reply);
       taken = !reply.empty();  // a message the device does not send
     }
+  } else if (parsed.reason == pubx::Reason::kNotInput && ports_[port].in_nmea && sentence.size() > 5 &&
+             sentence[1] == 'P' && !sentence.starts_with("$PUBX")) {
+    // Another maker's proprietary sentence (gpsd probes with $PMTK605, $PASHQ,RID ...): a
+    // warning "<first four characters of the address> inv format", as the u-blox 8 parts of
+    // ../shared/data/receiver_logs/gpsd answer ($GNTXT,01,01,01,PMTK inv format*20).
+    const std::string text = std::string(sentence.substr(1, 4)) + " inv format";
+    Bytes warning;
+    inform(port, 1, text, warning);
+    reply.assign(warning.begin(), warning.end());
   }
   ++(taken ? counters_.nmea_commands : counters_.nmea_ignored);
-  if (!reply.empty()) ++counters_.polls;
+  if (taken && !reply.empty()) ++counters_.polls;
   out.insert(out.end(), reply.begin(), reply.end());
   refresh();
 }

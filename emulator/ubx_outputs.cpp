@@ -299,6 +299,7 @@ void emit_nav_svinfo(const EpochView& e, std::vector<std::uint8_t>& out) {
     c.cno_dbhz = clamp_cast<std::uint8_t>(s.cn0_dbhz);
     c.elev_deg = clamp_cast<std::int8_t>(s.el_deg);
     c.azim_deg = clamp_cast<std::int16_t>(s.az_deg);
+    c.pr_res_cm = clamp_cast<std::int32_t>(s.residual_m * 100.0);
     m.channels.push_back(c);
   }
   append(m, out);
@@ -314,6 +315,7 @@ void emit_nav_sat(const EpochView& e, std::vector<std::uint8_t>& out) {
     v.cno_dbhz = clamp_cast<std::uint8_t>(s.cn0_dbhz);
     v.elev_deg = clamp_cast<std::int8_t>(s.el_deg);
     v.azim_deg = clamp_cast<std::int16_t>(s.az_deg);
+    v.pr_res_dm = clamp_cast<std::int16_t>(s.residual_m * 10.0);
     v.flags = 7u | (s.used ? NavSatSv::kSvUsed : 0u) | (1u << NavSatSv::kHealthShift) |
               (1u << NavSatSv::kOrbitSourceShift) | NavSatSv::kEphAvail;
     m.svs.push_back(v);
@@ -390,20 +392,24 @@ void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
 // High-precision geodetic position (F9 HPG 1.13 description, UBX-NAV-HPPOSLLH): the 1e-7 deg
 // and mm parts as NAV-POSLLH has them, the remainders in 1e-9 deg (-99..99) and 0.1 mm (-9..9),
 // accuracies in 0.1 mm.
+// A value counted in high-precision units as the standard field, whole multiples of
+// `hp_per_unit` truncated toward zero, and the high-precision remainder, which has the value's
+// sign (NAV-HPPOSLLH, NAV-HPPOSECEF: value = field + hp / hp_per_unit).
+void split_high_precision(double hp_units, double hp_per_unit, std::int32_t& whole, std::int8_t& hp) {
+  const double rounded = std::round(hp_units);
+  whole = clamp_cast<std::int32_t>(std::trunc(rounded / hp_per_unit));
+  hp = static_cast<std::int8_t>(rounded - static_cast<double>(whole) * hp_per_unit);
+}
+
 void emit_nav_hpposllh(const EpochView& e, std::vector<std::uint8_t>& out) {
   const Geodetic& p = e.fix.position;
   NavHpposllh m;
   m.flags = e.valid ? 0 : NavHpposllh::kInvalidLlh;
   m.i_tow_ms = e.i_tow;
-  const auto split = [](double v, double unit_per_hp, auto& whole, auto& hp) {
-    const double hp_units = std::round(v);
-    whole = clamp_cast<std::int32_t>(std::trunc(hp_units / unit_per_hp));
-    hp = static_cast<std::int8_t>(hp_units - static_cast<double>(whole) * unit_per_hp);
-  };
-  split(p.lon_deg * 1e9, 100.0, m.lon_1e7deg, m.lon_hp_1e9deg);
-  split(p.lat_deg * 1e9, 100.0, m.lat_1e7deg, m.lat_hp_1e9deg);
-  split(p.h_m * 1e4, 10.0, m.height_mm, m.height_hp_0p1mm);
-  split((p.h_m - e.separation_m) * 1e4, 10.0, m.h_msl_mm, m.h_msl_hp_0p1mm);
+  split_high_precision(p.lon_deg * 1e9, 100.0, m.lon_1e7deg, m.lon_hp_1e9deg);
+  split_high_precision(p.lat_deg * 1e9, 100.0, m.lat_1e7deg, m.lat_hp_1e9deg);
+  split_high_precision(p.h_m * 1e4, 10.0, m.height_mm, m.height_hp_0p1mm);
+  split_high_precision((p.h_m - e.separation_m) * 1e4, 10.0, m.h_msl_mm, m.h_msl_hp_0p1mm);
   m.h_acc_0p1mm = clamp_cast<std::uint32_t>(e.acc.h_m * 1e4);
   m.v_acc_0p1mm = clamp_cast<std::uint32_t>(e.acc.v_m * 1e4);
   append(m, out);
@@ -538,14 +544,9 @@ void emit_nav_hpposecef(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavHpposecef m;
   m.i_tow_ms = e.i_tow;
   m.flags = e.valid ? 0 : NavHpposecef::kInvalidEcef;
-  const auto split = [](double v_m, std::int32_t& cm, std::int8_t& hp) {
-    const double hp_units = std::round(v_m * 1e4);  // 0.1 mm
-    cm = clamp_cast<std::int32_t>(std::trunc(hp_units / 100.0));
-    hp = static_cast<std::int8_t>(hp_units - static_cast<double>(cm) * 100.0);
-  };
-  split(e.fix.p_ecef_m.x(), m.ecef_x_cm, m.ecef_x_hp_0p1mm);
-  split(e.fix.p_ecef_m.y(), m.ecef_y_cm, m.ecef_y_hp_0p1mm);
-  split(e.fix.p_ecef_m.z(), m.ecef_z_cm, m.ecef_z_hp_0p1mm);
+  split_high_precision(e.fix.p_ecef_m.x() * 1e4, 100.0, m.ecef_x_cm, m.ecef_x_hp_0p1mm);
+  split_high_precision(e.fix.p_ecef_m.y() * 1e4, 100.0, m.ecef_y_cm, m.ecef_y_hp_0p1mm);
+  split_high_precision(e.fix.p_ecef_m.z() * 1e4, 100.0, m.ecef_z_cm, m.ecef_z_hp_0p1mm);
   m.p_acc_0p1mm = clamp_cast<std::uint32_t>(e.acc.p_m * 1e4);
   append(m, out);
 }
@@ -569,8 +570,8 @@ void emit_nav_cov(const EpochView& e, std::vector<std::uint8_t>& out) {
 // a ZED-F9T reports them in ../shared/data (F9T-L2-5min.ubx): health 1 (healthy); a signal the
 // solution uses has prUsed and doUsed, and its ionosphere model (1 Klobuchar, 8 dual
 // frequency); differential corrections (DGPS, RTK: RTCM 3 OSR, corrSource 4) add prCorrUsed,
-// and carrier-phase solutions crUsed. The pseudorange residual is not kept by the solver and
-// is sent as 0.
+// and carrier-phase solutions crUsed. A used signal carries its satellite's pseudorange
+// residual in the fix (the engine's, of the combination it used).
 void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavSig& m = reset_keeping_storage(e.lists.sig, &NavSig::signals);
   m.i_tow_ms = e.i_tow;
@@ -579,6 +580,7 @@ void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
     const auto it = std::find_if(e.fix.satellites.begin(), e.fix.satellites.end(),
                                  [&](const ReceiverSatellite& r) { return r.sat == s.sat; });
     const bool sat_used = it != e.fix.satellites.end() && it->used;
+    const double residual_m = sat_used ? it->residual_m : 0.0;
     for (std::size_t b = 0; b < 2 && m.signals.size() < 255; ++b) {
       if (!s.signals[b]) continue;
       const std::optional<int> sig = ubx_sig_id(s.sat, kBandSignals[b]);
@@ -593,6 +595,7 @@ void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
       g.quality_ind = 7;  // code and carrier locked, as NAV-SAT
       unsigned flags = 1;  // healthy
       if (used) {
+        g.pr_res_dm = clamp_cast<std::int16_t>(residual_m * 10.0);
         flags |= NavSigSignal::kPrUsed | NavSigSignal::kDoUsed;
         if (e.mode == ReceiverMode::kRtkFixed) flags |= NavSigSignal::kCrUsed | NavSigSignal::kCrCorrUsed;
         if (corrected) {
@@ -640,16 +643,25 @@ struct SystemTow {
   std::uint32_t tow_s;
   std::int32_t f_tow_ns;
 };
+// Seconds into a period (a week, a day) as whole seconds, rounded, the remainder in ns
+// (-5e8..5e8), and the carry into the next period when they round up to its end.
+struct RoundedSeconds {
+  int carry;
+  std::uint32_t whole_s;
+  std::int32_t frac_ns;
+};
+RoundedSeconds round_in_period(double t_s, std::int64_t period_s) {
+  double whole = std::round(t_s);
+  const auto frac_ns = clamp_cast<std::int32_t>((t_s - whole) * 1e9);
+  const bool carry = whole >= static_cast<double>(period_s);
+  if (carry) whole -= static_cast<double>(period_s);
+  return {carry ? 1 : 0, static_cast<std::uint32_t>(whole), frac_ns};
+}
+
 SystemTow system_tow(GpsTime t, int week_offset) {
   const WeekTow wt = to_week_tow(t);
-  double whole = std::round(wt.tow_s);
-  int week = wt.week - week_offset;
-  const auto f = clamp_cast<std::int32_t>((wt.tow_s - whole) * 1e9);
-  if (whole >= static_cast<double>(kSecondsPerWeek)) {
-    whole -= static_cast<double>(kSecondsPerWeek);
-    ++week;
-  }
-  return {week, static_cast<std::uint32_t>(whole), f};
+  const RoundedSeconds r = round_in_period(wt.tow_s, kSecondsPerWeek);
+  return {wt.week - week_offset + r.carry, r.whole_s, r.frac_ns};
 }
 
 // NAV-TIMEBDS (M8 32.17.25, F9 5.14.18): BDT = GPST - 14 s, BDS week 0 = GPS week 1356 (BDS
@@ -689,16 +701,12 @@ void emit_nav_timeglo(const EpochView& e, std::vector<std::uint8_t>& out) {
   const double since_1996_s = seconds_between(moscow, gps_from_calendar({1996, 1, 1, 0, 0, 0.0}));
   const auto day = static_cast<std::int64_t>(std::floor(since_1996_s / kSecondsPerDay));
   const double tod_s = since_1996_s - static_cast<double>(day * kSecondsPerDay);
-  double whole = std::round(tod_s);
+  const RoundedSeconds r = round_in_period(tod_s, kSecondsPerDay);
   NavTimeglo m;
   m.i_tow_ms = e.i_tow;
-  m.f_tod_ns = clamp_cast<std::int32_t>((tod_s - whole) * 1e9);
-  std::int64_t d = day;
-  if (whole >= static_cast<double>(kSecondsPerDay)) {
-    whole -= static_cast<double>(kSecondsPerDay);
-    ++d;
-  }
-  m.tod_s = static_cast<std::uint32_t>(whole);
+  m.f_tod_ns = r.frac_ns;
+  m.tod_s = r.whole_s;
+  const std::int64_t d = day + r.carry;
   m.nt_days = static_cast<std::uint16_t>(d % 1461 + 1);
   m.n4 = static_cast<std::uint8_t>(d / 1461 + 1);
   m.valid = tracks(e, 6) ? 0x03 : 0;

@@ -12,10 +12,13 @@ namespace {
 double separation_m(const GeoidGrid* geoid, const Geodetic& p) {
   return geoid ? geoid->separation_m(p.lat_deg, p.lon_deg) : 0.0;
 }
+
+double l1_cn0_dbhz(const SatMeasurement& m) { return m.signals[0] ? m.signals[0]->cn0_dbhz : 0.0; }
 }  // namespace
 
 Receiver::Receiver(const NavData& nav, const ReceiverParams& p)
     : p_(p), gen_(nav, p.measurement), ideal_rng_(p.measurement.seed, stream_id("ideal_fix")) {
+  engine_.elevation_mask_deg = p.measurement.elevation_mask_deg;
   // Room for every satellite: one rising never makes an epoch allocate.
   meas_.sats.reserve(kDefinedSatellites);
   solver_input_.reserve(kDefinedSatellites);
@@ -47,11 +50,38 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
               [](const SatMeasurement& a, const SatMeasurement& b) { return a.sat < b.sat; });
   }
 
+  // The engine's input filters (F9P integration manual 3.1.7.2 "Navigation input filters"):
+  // satellites below the elevation or C/N0 mask are not used, and a fix is attempted only with
+  // enough strong satellites.
+  const NavEngineSettings& eng = engine_;
   SolverOptions opt = gen_.solver_options();
   opt.initial_p_ecef_m = last_fix_ecef_m_;
-  gen_.solver_input(e, solver_input_);
+  opt.elevation_mask_deg = eng.elevation_mask_deg;
+  opt.fix_mode = eng.fix_mode;
+  if (eng.fix_mode == SolverFixMode::k2DOnly)  // the fixed height is above mean sea level
+    opt.fixed_height_m = eng.fixed_height_msl_m +
+                         (last_fix_ecef_m_.isZero() ? 0.0 : separation_m(p_.geoid, geodetic_from_ecef(last_fix_ecef_m_)));
+  gen_.solver_input(e, solver_input_);  // one per tracked satellite, in the same order
+  int strong = 0;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < e.sats.size(); ++i) {
+    const double cn0 = l1_cn0_dbhz(e.sats[i]);
+    if (cn0 >= eng.cn0_threshold_dbhz) ++strong;
+    if (cn0 >= eng.min_cn0_dbhz) solver_input_[kept++] = solver_input_[i];
+  }
+  solver_input_.resize(kept);
+  if (strong < eng.cn0_threshold_sats) solver_input_.clear();
   solve(solver_input_, e.t_receiver, opt, solution_);
-  const Solution& sol = solution_;
+  Solution& sol = solution_;
+  // The dynamic platform model's sanity check (3.1.7.1 "Dynamic platform model details"): a
+  // solution beyond its altitude or velocity limits is invalid.
+  if (sol.fix != FixType::kNone) {
+    const Geodetic g = geodetic_from_ecef(sol.p_ecef_m);
+    const Vec3 v_ned = sol.v_ecef_mps ? Vec3(R_ned_from_ecef(g) * *sol.v_ecef_mps) : Vec3(Vec3::Zero());
+    if (g.h_m - separation_m(p_.geoid, g) > eng.max_height_msl_m ||
+        std::hypot(v_ned.x(), v_ned.y()) > eng.max_h_speed_mps || std::abs(v_ned.z()) > eng.max_v_speed_mps)
+      sol.fix = FixType::kNone;
+  }
 
   double sum_sq = 0.0;
   for (const SatMeasurement& m : e.sats) {
@@ -59,10 +89,11 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
     s.sat = m.sat;
     s.az_deg = m.dir.az_rad * kRadToDeg;
     s.el_deg = m.dir.el_rad * kRadToDeg;
-    s.cn0_dbhz = m.signals[0] ? m.signals[0]->cn0_dbhz : 0.0;
+    s.cn0_dbhz = l1_cn0_dbhz(m);
     for (const SatResidual& r : sol.sats)
       if (r.sat == m.sat && r.used && sol.fix != FixType::kNone) {
         s.used = true;
+        s.residual_m = r.residual_m;
         sum_sq += r.residual_m * r.residual_m;
       }
     out.satellites.push_back(s);
@@ -87,7 +118,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   out.p_ecef_m = sol.p_ecef_m;
   out.position = geodetic_from_ecef(sol.p_ecef_m);
   const Mat3 r = R_ned_from_ecef(out.position);
-  if (sol.v_ecef_mps) out.v_ned_mps = r * *sol.v_ecef_mps;
+  if (sol.v_ecef_mps) out.v_ned_mps = eng.zero_velocity ? Vec3(Vec3::Zero()) : Vec3(r * *sol.v_ecef_mps);
   out.dops = sol.dops;
   out.num_used = sol.num_used;
   const Mat3 cov_ned = r * sol.cov_ecef_m2 * r.transpose();

@@ -4,6 +4,7 @@
 // receiver reports: fix type, satellites in view and used, DOPs and accuracy estimates.
 // Time is passed in; nothing here reads a clock or does I/O.
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -27,10 +28,30 @@ struct ReceiverParams {
   const GeoidGrid* geoid = nullptr;
 };
 
+// The position engine's settings a client may change while running (u-blox CFG-NAVSPG-* and
+// CFG-NAV5; ZED-F9P integration manual UBX-18010802, 3.1.7 "Navigation configuration"): which
+// satellites it uses, when it attempts a fix, which fixes it reports.
+struct NavEngineSettings {
+  double elevation_mask_deg = 5.0;  // satellites lower are not used
+  double min_cn0_dbhz = 0.0;        // satellites weaker (L1) are not used
+  // A fix is attempted only with at least cn0_threshold_sats satellites at cn0_threshold_dbhz
+  // or stronger (0: always).
+  int cn0_threshold_sats = 0;
+  double cn0_threshold_dbhz = 0.0;
+  SolverFixMode fix_mode = SolverFixMode::kAuto;
+  double fixed_height_msl_m = 0.0;  // the height 2D-only fixes hold, above mean sea level
+  // The dynamic platform model's sanity limits: a fix beyond one is invalid (no fix).
+  double max_height_msl_m = std::numeric_limits<double>::infinity();
+  double max_h_speed_mps = std::numeric_limits<double>::infinity();
+  double max_v_speed_mps = std::numeric_limits<double>::infinity();
+  bool zero_velocity = false;  // a stationary platform: velocity reported as 0
+};
+
 struct ReceiverSatellite {
   SatId sat;
   double az_deg = 0.0, el_deg = 0.0, cn0_dbhz = 0.0;
   bool used = false;
+  double residual_m = 0.0;  // pseudorange residual of the fix (used satellites), else 0
 };
 
 struct ReceiverFix {
@@ -61,11 +82,16 @@ class Receiver {
   // nothing per epoch.
   const ReceiverFix& update(GpsTime t, const ImuTruth* truth);
   const ReceiverParams& params() const { return p_; }
+  // Applies from the next update. Until set: the elevation mask of ReceiverParams, no other
+  // filter or limit.
+  void set_engine(const NavEngineSettings& s) { engine_ = s; }
+  const NavEngineSettings& engine() const { return engine_; }
   // The raw measurements of the last update (tracked satellites), for raw-data output.
   const EpochMeasurements& measurements() const { return meas_; }
 
  private:
   ReceiverParams p_;
+  NavEngineSettings engine_;
   MeasurementGenerator gen_;
   std::optional<GpsTime> last_t_;
   Vec3 last_fix_ecef_m_ = Vec3::Zero();

@@ -119,7 +119,9 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
     }
     return geo_of_p;
   };
-  const double h_hold_m = prior_known ? geodetic_of(p).h_m : 0.0;
+  const double h_hold_m = opt.fix_mode == SolverFixMode::k2DOnly ? opt.fixed_height_m
+                         : prior_known                           ? geodetic_of(p).h_m
+                                                                 : 0.0;
   const double tow_s = to_week_tow(t).tow_s;  // for the Klobuchar model
   const double mask_rad = opt.elevation_mask_deg * kDegToRad;
   const double sa2 = opt.sigma_a_m * opt.sigma_a_m;
@@ -193,7 +195,11 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
       row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i};
     }
 
-    hold_height = n_sat_rows == 3 && opt.allow_2d && prior_known;
+    switch (opt.fix_mode) {
+      case SolverFixMode::kAuto: hold_height = n_sat_rows == 3 && prior_known; break;
+      case SolverFixMode::k3DOnly: hold_height = false; break;
+      case SolverFixMode::k2DOnly: hold_height = settled; break;
+    }
     const std::size_t n_rows = n_sat_rows + (hold_height ? 1 : 0);
     if (n_sat_rows < 3 || n_rows < 4) break;
 
@@ -225,7 +231,8 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
     clk += dx(3);
     settled = settled || dx.head<3>().norm() < 1e4;
     sol.iterations = iter + 1;
-    if (dx.norm() < opt.convergence_m) {
+    // A 2D-only fix converges only with the height held.
+    if (dx.norm() < opt.convergence_m && (hold_height || opt.fix_mode != SolverFixMode::k2DOnly)) {
       converged = true;
       break;
     }

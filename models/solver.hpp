@@ -30,6 +30,7 @@ struct RangeMeasurement {
 };
 
 enum class FixType { kNone = 0, kDeadReckoning = 1, k2D = 2, k3D = 3 };
+enum class SolverFixMode { k2DOnly, k3DOnly, kAuto };
 
 struct Dops {
   double gdop = 0.0, pdop = 0.0, hdop = 0.0, vdop = 0.0, tdop = 0.0;
@@ -48,9 +49,12 @@ struct SolverOptions {
   double sigma_a_m = 0.3;
   double sigma_b_m = 0.3;
   Vec3 initial_p_ecef_m = Vec3::Zero();  // zero: start at the Earth's centre
-  // With exactly three usable satellites and a known initial position, solve a 2D fix with
-  // the height held at the initial position's height.
-  bool allow_2d = true;
+  // Fix mode (u-blox CFG-NAVSPG-FIXMODE; F9P integration manual, "Navigation input filters"):
+  // kAuto solves a 2D fix with exactly three usable satellites and a known initial position,
+  // the height held at the initial position's; k3DOnly never solves 2D; k2DOnly always holds
+  // the height, at fixed_height_m (ellipsoidal), once the estimate is near the Earth's surface.
+  SolverFixMode fix_mode = SolverFixMode::kAuto;
+  double fixed_height_m = 0.0;
 };
 
 struct SatResidual {

@@ -462,6 +462,17 @@ void encode(const ZdaFields& f, const Format& fmt, std::string& out) {
   });
 }
 
+// TXT: "$--TXT,xx,xx,xx," is 16 characters, so 61 of text leave room for "*hh" CR LF.
+void encode(const TxtFields& f, const Format&, std::string& out) {
+  Line l(f.talker, "TXT");
+  l.format(",{:02d},{:02d},{:02d},", std::clamp(f.total, 1, 99), std::clamp(f.number, 1, 99),
+           std::clamp(f.text_id, 0, 99));
+  constexpr std::string_view kReserved = "$*,!\\^~";
+  for (const char c : f.text.substr(0, 61))
+    l.put(c < 0x20 || c > 0x7E || kReserved.find(c) != std::string_view::npos ? ' ' : c);
+  l.finish(out);
+}
+
 // PGRME: HPE, M, VPE, M, EPE, M (Garmin GPS 15x Technical Specifications). Longest: 6 + 3 x 10
 // (",99999.9,M") + 5 = 41.
 void encode(const PgrmeFields& f, const Format&, std::string& out) {

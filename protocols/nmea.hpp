@@ -182,6 +182,16 @@ struct ZdaFields {
   int local_zone_hours = 0, local_zone_minutes = 0;  // [-13, 13], [0, 59]
 };
 
+// TXT, text transmission (NMEA 0183 4.10): the number of sentences and this one's number
+// [1, 99], the text identifier [0, 99] (u-blox: 00 error, 01 warning, 02 notice, 07 user) and the
+// text, cut to the 61 characters that fit in 82; a character the standard reserves or does not
+// allow in text ($ * , ! \ ^ ~, control characters) is sent as a space.
+struct TxtFields {
+  std::string_view talker = "GP";
+  int total = 1, number = 1, text_id = 2;
+  std::string_view text;
+};
+
 // Garmin proprietary PGRME, estimated position error (horizontal, vertical, spherical), metres
 // with one decimal [0, 99999.9].
 struct PgrmeFields {
@@ -197,6 +207,7 @@ void encode(const GllFields& f, const Format& fmt, std::string& out);
 void encode(const GstFields& f, const Format& fmt, std::string& out);
 void encode(const ZdaFields& f, const Format& fmt, std::string& out);
 void encode(const PgrmeFields& f, const Format& fmt, std::string& out);
+void encode(const TxtFields& f, const Format& fmt, std::string& out);
 
 // The checksum of a sentence body (the characters between '$' and '*'): XOR of the bytes.
 std::uint8_t checksum(std::string_view body);

@@ -1251,6 +1251,7 @@ struct CfgDgnss {
 struct CfgOdo {
   static constexpr MsgId kMsg = kCfgOdo;
   static constexpr std::size_t kPayloadSize = 20;
+  static constexpr std::uint8_t kUseOdo = 0x01;  // flags
   std::uint8_t version = 0;
   std::array<std::uint8_t, 3> reserved1{};
   std::uint8_t flags = 0, odo_cfg = 0;

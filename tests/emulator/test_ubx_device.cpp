@@ -1012,6 +1012,243 @@ TEST_F(UbxDeviceTest, MonitorsFollowTheirConfiguration) {
   EXPECT_EQ(gnss().supported, 0x0F);
 }
 
+// ---- The navigation engine's configuration (CFG-NAVSPG, CFG-NAV5) ----------------------------
+
+// The items as the engine takes them (ZED-F9P integration manual UBX-18010802, 3.1.7): masks,
+// fix mode and fixed altitude, and the dynamic platform's limits from its table ("Dynamic
+// platform model details"); the airborne models give no 2D fix.
+TEST_F(UbxDeviceTest, NavigationEngineSettingsFollowNavspgItems) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  const NavEngineSettings* e = d.engine_settings();
+  ASSERT_NE(e, nullptr);
+  EXPECT_EQ(e->elevation_mask_deg, f9p_.elevation_mask_deg) << "the profile's mask is the default";
+  EXPECT_EQ(e->min_cn0_dbhz, 6.0);
+  EXPECT_EQ(e->cn0_threshold_sats, 0);
+  EXPECT_EQ(e->fix_mode, SolverFixMode::kAuto);
+  EXPECT_EQ(e->max_height_msl_m, 12000.0) << "portable";
+  EXPECT_EQ(e->max_h_speed_mps, 310.0);
+  EXPECT_EQ(e->max_v_speed_mps, 50.0);
+  EXPECT_FALSE(e->zero_velocity);
+
+  set_items(d, {{"CFG-NAVSPG-INFIL_MINELEV", 0xF6},  // I1 -10
+                {"CFG-NAVSPG-INFIL_MINCNO", 30},
+                {"CFG-NAVSPG-INFIL_NCNOTHRS", 4},
+                {"CFG-NAVSPG-INFIL_CNOTHRS", 35},
+                {"CFG-NAVSPG-FIXMODE", 1},
+                {"CFG-NAVSPG-CONSTR_ALT", 0xFFFFFC18},  // I4 -1000 cm
+                {"CFG-NAVSPG-DYNMODEL", 2}});
+  e = d.engine_settings();
+  EXPECT_EQ(e->elevation_mask_deg, -10.0);
+  EXPECT_EQ(e->min_cn0_dbhz, 30.0);
+  EXPECT_EQ(e->cn0_threshold_sats, 4);
+  EXPECT_EQ(e->cn0_threshold_dbhz, 35.0);
+  EXPECT_EQ(e->fix_mode, SolverFixMode::k2DOnly);
+  EXPECT_DOUBLE_EQ(e->fixed_height_msl_m, -10.0);
+  EXPECT_EQ(e->max_h_speed_mps, 10.0) << "stationary";
+  EXPECT_EQ(e->max_v_speed_mps, 6.0);
+  EXPECT_TRUE(e->zero_velocity);
+
+  set_items(d, {{"CFG-NAVSPG-DYNMODEL", 7}, {"CFG-NAVSPG-FIXMODE", 3}});  // airborne < 2g, auto
+  EXPECT_EQ(d.engine_settings()->fix_mode, SolverFixMode::k3DOnly);
+  EXPECT_EQ(d.engine_settings()->max_height_msl_m, 50000.0);
+  EXPECT_TRUE(std::isinf(d.engine_settings()->max_h_speed_mps)) << "altitude checked only";
+  EXPECT_FALSE(d.engine_settings()->zero_velocity);
+}
+
+// The u-blox 8's CFG-NAV5 sets the same items, each group only where its mask bit says so
+// (UBX-13003221 CFG-NAV5), and the poll reads every field back.
+TEST_F(UbxDeviceTest, CfgNav5SetsTheMaskedFieldsAndPollsThemAll) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  const auto poll_nav5 = [&] {
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgNav5)));
+    ubx::CfgNav5 n;
+    EXPECT_TRUE(f.size() == 2 && is_ack(f[1], ubx::kCfgNav5) && ubx::decode(f[0].payload, n));
+    return n;
+  };
+  const ubx::CfgNav5 before = poll_nav5();
+  EXPECT_EQ(before.fix_mode, 3);
+  EXPECT_EQ(before.p_dop_0p1, 250);
+  EXPECT_EQ(before.p_acc_m, 100);
+
+  ubx::CfgNav5 set;
+  set.mask = ubx::CfgNav5::kMaskDyn | ubx::CfgNav5::kMaskMinEl | ubx::CfgNav5::kMaskPosFixMode |
+             ubx::CfgNav5::kMaskCnoThreshold;
+  set.dyn_model = ubx::CfgNav5::kDynPedestrian;
+  set.min_elev_deg = -5;
+  set.fix_mode = 2;
+  set.fixed_alt_cm = -1000;
+  set.fixed_alt_var_1e4m2 = 20000;
+  set.cno_thresh_num_svs = 5;
+  set.cno_thresh_dbhz = 33;
+  set.p_dop_0p1 = 50;  // not masked: stays
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgNav5));
+  const ubx::CfgNav5 after = poll_nav5();
+  EXPECT_EQ(after.dyn_model, ubx::CfgNav5::kDynPedestrian);
+  EXPECT_EQ(after.min_elev_deg, -5);
+  EXPECT_EQ(after.fix_mode, 2);
+  EXPECT_EQ(after.fixed_alt_cm, -1000);
+  EXPECT_EQ(after.fixed_alt_var_1e4m2, 20000u);
+  EXPECT_EQ(after.cno_thresh_num_svs, 5);
+  EXPECT_EQ(after.cno_thresh_dbhz, 33);
+  EXPECT_EQ(after.p_dop_0p1, 250);
+  const NavEngineSettings& e = *d.engine_settings();
+  EXPECT_EQ(e.elevation_mask_deg, -5.0);
+  EXPECT_EQ(e.fix_mode, SolverFixMode::k3DOnly);
+  EXPECT_EQ(e.cn0_threshold_sats, 5);
+  EXPECT_EQ(e.max_h_speed_mps, 30.0) << "pedestrian";
+
+  set.mask = ubx::CfgNav5::kMaskPosFixMode;
+  set.fix_mode = 0;  // not a fix mode
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgNav5, true));
+  EXPECT_EQ(poll_nav5().fix_mode, 2);
+}
+
+// The settings acting on the receiver's fix over the nominal constellation: the masks choose the
+// satellites used, too few strong satellites give no fix, 2D-only holds the fixed altitude, the
+// platform's speed limit invalidates a fix, the stationary platform reports no velocity; NAV-SAT
+// carries the residual of each used satellite.
+TEST_F(UbxDeviceTest, NavigationEngineSettingsActOnTheFix) {
+  const NavData nav = nominal_constellation(kT0);
+  ReceiverParams rp;
+  rp.measurement.elevation_mask_deg = f9p_.elevation_mask_deg;
+  Receiver rx(nav, rp);
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, nav);
+  set_items(d, {{"CFG-MSGOUT-UBX_NAV_SAT_UART1", 1}});
+  ImuTruth truth;
+  truth.position = Geodetic{32.3, -90.9, 60.0};
+  double t_s = 0.0;
+  const auto epoch = [&](const Vec3& v_ned_mps = Vec3::Zero()) {
+    t_s += 1.0;
+    truth.t = kT0.plus_s(t_s);
+    truth.v_ned_mps = v_ned_mps;
+    rx.set_engine(*d.engine_settings());
+    return rx.update(truth.t, &truth);
+  };
+  const auto used_count = [](const ReceiverFix& f) {
+    return std::count_if(f.satellites.begin(), f.satellites.end(), [](const ReceiverSatellite& s) { return s.used; });
+  };
+
+  ReceiverFix fix = epoch();
+  ASSERT_EQ(fix.fix, FixType::k3D);
+  const auto all_used = used_count(fix);
+  ASSERT_GE(all_used, 6);
+  double sum_sq = 0.0;
+  for (const ReceiverSatellite& s : fix.satellites) {
+    if (s.used) {
+      EXPECT_GE(s.el_deg, f9p_.elevation_mask_deg);
+      EXPECT_NE(s.residual_m, 0.0);
+    }
+    sum_sq += s.residual_m * s.residual_m;
+  }
+  EXPECT_NEAR(std::sqrt(sum_sq / static_cast<double>(all_used)), fix.range_rms_m, 1e-9);
+  std::string out;
+  d.encode_epoch(fix, rx.measurements(), 1, out);
+  const std::vector<Frame> sat = of_type(frames_of(out), ubx::kNavSat);
+  ASSERT_EQ(sat.size(), 1u);
+  ubx::NavSat ns;
+  ASSERT_TRUE(ubx::decode(sat[0].payload, ns));
+  ASSERT_EQ(ns.svs.size(), fix.satellites.size());
+  for (std::size_t i = 0; i < ns.svs.size(); ++i)
+    EXPECT_EQ(ns.svs[i].pr_res_dm, std::lround(fix.satellites[i].residual_m * 10.0)) << i;
+
+  set_items(d, {{"CFG-NAVSPG-INFIL_MINELEV", 30}});
+  fix = epoch();
+  ASSERT_EQ(fix.fix, FixType::k3D);
+  EXPECT_LT(used_count(fix), all_used);
+  for (const ReceiverSatellite& s : fix.satellites) EXPECT_EQ(s.used, s.el_deg >= 30.0) << s.el_deg;
+
+  // A C/N0 mask between the weakest and the strongest satellite.
+  set_items(d, {{"CFG-NAVSPG-INFIL_MINELEV", 10}});
+  fix = epoch();
+  double lo = 1e9, hi = 0.0;
+  for (const ReceiverSatellite& s : fix.satellites) {
+    if (!s.used) continue;
+    lo = std::min(lo, s.cn0_dbhz);
+    hi = std::max(hi, s.cn0_dbhz);
+  }
+  const auto mask_dbhz = static_cast<std::uint64_t>(std::ceil((lo + hi) / 2.0));
+  set_items(d, {{"CFG-NAVSPG-INFIL_MINCNO", mask_dbhz}});
+  fix = epoch();
+  EXPECT_LT(used_count(fix), all_used);
+  for (const ReceiverSatellite& s : fix.satellites) {
+    if (s.el_deg >= 10.0) {
+      EXPECT_EQ(s.used, s.cn0_dbhz >= static_cast<double>(mask_dbhz)) << s.cn0_dbhz;
+    }
+  }
+
+  // More strong satellites asked for than there are: no fix attempted.
+  set_items(d, {{"CFG-NAVSPG-INFIL_MINCNO", 6}, {"CFG-NAVSPG-INFIL_NCNOTHRS", 40}, {"CFG-NAVSPG-INFIL_CNOTHRS", 10}});
+  EXPECT_EQ(epoch().fix, FixType::kNone);
+  set_items(d, {{"CFG-NAVSPG-INFIL_NCNOTHRS", 4}});
+  EXPECT_EQ(epoch().fix, FixType::k3D);
+
+  // 2D only: the height is the fixed altitude (no geoid here: MSL = ellipsoidal).
+  set_items(d, {{"CFG-NAVSPG-FIXMODE", 1}, {"CFG-NAVSPG-CONSTR_ALT", 10000}});
+  fix = epoch();
+  ASSERT_EQ(fix.fix, FixType::k2D);
+  EXPECT_NEAR(fix.position.h_m, 100.0, 0.5) << "the truth is at 60 m";
+  set_items(d, {{"CFG-NAVSPG-FIXMODE", 3}});
+
+  // Pedestrian: 30 m/s at most (horizontal).
+  set_items(d, {{"CFG-NAVSPG-DYNMODEL", 3}});
+  EXPECT_EQ(epoch(Vec3(20.0, 0.0, 0.0)).fix, FixType::k3D);
+  EXPECT_EQ(epoch(Vec3(40.0, 0.0, 0.0)).fix, FixType::kNone);
+  EXPECT_EQ(epoch(Vec3(0.0, 0.0, -25.0)).fix, FixType::kNone) << "20 m/s vertical at most";
+
+  // Stationary: the velocity is restricted to 0.
+  set_items(d, {{"CFG-NAVSPG-DYNMODEL", 2}});
+  fix = epoch(Vec3(3.0, 4.0, 0.0));
+  ASSERT_EQ(fix.fix, FixType::k3D);
+  ASSERT_TRUE(fix.v_ned_mps);
+  EXPECT_EQ(fix.v_ned_mps->norm(), 0.0);
+}
+
+// The u-blox 8's switches are legacy messages (UBX-13003221): CFG-ITFM with config bit 31 turns
+// the jamming monitor on (MON-HW jammingState 1 "ok"), CFG-ODO with flags bit 0 the odometer;
+// both off at power-up, both kept over a reset only when saved.
+TEST_F(UbxDeviceTest, U8MonitorsFollowLegacyCfgItfmAndOdo) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  ASSERT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{ubx::kNavOdo.cls, ubx::kNavOdo.id, 1})), ubx::kCfgMsg));
+  std::int64_t k = 0;
+  const auto epoch = [&] {  // 5 m/s north for one second
+    ReceiverFix fix = a_fix(kT0.plus_s(static_cast<double>(k)));
+    fix.v_ned_mps = Vec3(5.0, 0.0, 0.0);
+    std::string out;
+    d.encode_epoch(fix, EpochMeasurements{}, k++, out);
+    const std::vector<Frame> f = of_type(frames_of(out), ubx::kNavOdo);
+    ubx::NavOdo m;
+    EXPECT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, m));
+    return m.distance_m;
+  };
+  const auto jamming = [&] {
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kMonHw)));
+    ubx::MonHw m;
+    EXPECT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, m));
+    return (m.flags >> 2) & 0x03;
+  };
+  epoch();
+  EXPECT_EQ(jamming(), 0);
+  EXPECT_EQ(epoch(), 0u);
+
+  ubx::CfgItfm itfm;
+  itfm.config = ubx::CfgItfm::kEnable | 0x16B156;  // the description's recommended thresholds
+  itfm.config2 = 0x31E;
+  EXPECT_TRUE(only_ack(send(d, frame(itfm)), ubx::kCfgItfm));
+  EXPECT_EQ(jamming(), 1);
+  ubx::CfgOdo odo;
+  odo.flags = ubx::CfgOdo::kUseOdo;
+  EXPECT_TRUE(only_ack(send(d, frame(odo)), ubx::kCfgOdo));
+  epoch();
+  EXPECT_EQ(epoch(), 5u);
+  EXPECT_EQ(epoch(), 10u);
+
+  ubx::CfgRst hot;  // not saved: gone after a hardware reset
+  hot.nav_bbr_mask = ubx::CfgRst::kHotStart;
+  hot.reset_mode = ubx::CfgRst::kHardwareReset;
+  send(d, frame(hot));
+  EXPECT_EQ(jamming(), 0);
+}
+
 // ---- NMEA input (emulator/ubx_nmea_input.cpp) ------------------------------------------------
 // Sentences from the u-blox 8 receiver description (UBX-13003221) "PUBX Messages" and the F9
 // interface descriptions' polls ($PUBX,00*33, $PUBX,04*37, $EIGPQ,RMC*3A); others with their
@@ -1221,6 +1458,58 @@ TEST_F(UbxDeviceTest, MalformedNmeaInputIsIgnoredAndCounted) {
   EXPECT_EQ(of_type(frames_of(both), ubx::kMonVer).size(), 1u);
   EXPECT_TRUE(both.substr(both.find('$')).starts_with("$PUBX,00,")) << "the PUBX,00 after the MON-VER";
   EXPECT_EQ(both[0], static_cast<char>(ubx::kSync1));
+}
+
+// Another maker's proprietary sentence gets the warning a u-blox 8 gives gpsd's probes
+// (../shared/data/receiver_logs/gpsd/ublox8-uniqid-monhw.log: "$GNTXT,01,01,01,PMTK inv
+// format*20"), as NMEA TXT with the receiver's talker on the port it came from; as UBX
+// INF-WARNING where CFG-INFMSG says so; nothing where the warning bit is off.
+TEST_F(UbxDeviceTest, OtherMakersSentencesGetAnInvalidFormatWarning) {
+  UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_EQ(send_nmea(m8, "$PMTK605*31\r\n"), "$GPTXT,01,01,01,PMTK inv format*3E\r\n");
+  EXPECT_EQ(send_nmea(m8, "$PASHQ,RID*28\r\n"), "$GPTXT,01,01,01,PASH inv format*36\r\n");
+  EXPECT_EQ(m8.counters().nmea_commands, 0u);
+  EXPECT_EQ(m8.counters().polls, 0u);
+
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  set_items(d, {{"CFG-NMEA-MAINTALKERID", 3}});
+  EXPECT_EQ(send_nmea(d, "$PMTK605*31\r\n"), "$GNTXT,01,01,01,PMTK inv format*20\r\n") << "the part's bytes";
+  set_items(d, {{"CFG-INFMSG-NMEA_UART1", 0x05}, {"CFG-INFMSG-UBX_UART1", 0x02}});  // warnings as UBX
+  const std::string r = send_nmea(d, "$PMTK605*31\r\n");
+  EXPECT_EQ(r.find('$'), std::string::npos) << r;
+  const std::vector<Frame> f = of_type(frames_of(r), ubx::kInfWarning);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(std::string(f[0].payload.begin(), f[0].payload.end()), "PMTK inv format");
+  set_items(d, {{"CFG-INFMSG-UBX_UART1", 0}});
+  EXPECT_EQ(send_nmea(d, "$PMTK605*31\r\n"), "");
+  EXPECT_EQ(send_nmea(d, "$PUBX,99*00\r\n"), "") << "u-blox's own, malformed: ignored";
+}
+
+// CFG-NMEA-PROTVER and -MAINTALKERID act on the next epoch's sentences (u-blox 8 receiver
+// description, "NMEA protocol configuration"): RMC has 14 fields in NMEA 4.10 (mode indicator
+// and navigational status), 13 in 2.3, 12 in 2.1; GSA ends with the system ID only from 4.10 on.
+TEST_F(UbxDeviceTest, NmeaVersionAndTalkerFollowTheirItems) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  std::int64_t k = 0;
+  const auto sentence = [&](const std::string& type) {
+    const std::string out = epoch_output(d, k++);
+    const std::size_t at = out.find(type + ",");
+    if (at == std::string::npos || at < 3) return std::vector<std::string>{};
+    return fields_of(out.substr(at - 3, out.find("\r\n", at) - (at - 3)));
+  };
+  std::vector<std::string> rmc = sentence("RMC");
+  ASSERT_EQ(rmc.size(), 14u);
+  EXPECT_EQ(rmc[0], "GPRMC");
+  EXPECT_EQ(sentence("GSA").size(), 19u) << "NMEA 4.10: the system ID";
+
+  set_items(d, {{"CFG-NMEA-PROTVER", 23}});
+  EXPECT_EQ(sentence("RMC").size(), 13u);
+  EXPECT_EQ(sentence("GSA").size(), 18u);
+  set_items(d, {{"CFG-NMEA-PROTVER", 21}, {"CFG-NMEA-MAINTALKERID", 3}});
+  rmc = sentence("RMC");
+  EXPECT_EQ(rmc.size(), 12u);
+  EXPECT_EQ(rmc[0], "GNRMC");
+  EXPECT_EQ(sentence("GGA")[0], "GNGGA");
 }
 
 }  // namespace

@@ -127,6 +127,45 @@ TEST(SolverFixType, ThreeSatellitesGiveTwoDWithHeightHeldFewerGiveNone) {
   EXPECT_EQ(solve(meas, s.t_tag, opt).fix, FixType::kNone);
 }
 
+// CFG-NAVSPG-FIXMODE (F9P integration manual, "Navigation input filters"): 3D only never gives
+// a 2D fix; 2D only holds the height at the fixed one whatever the satellites are.
+TEST(SolverFixType, FixModesThreeDOnlyAndTwoDOnly) {
+  const Scenario s;
+  auto meas = exact_measurements(s, 10.0);
+  ASSERT_GE(meas.size(), 5u);
+  SolverOptions opt;
+  opt.elevation_mask_deg = 10.0;
+  Geodetic prior = s.rx;
+  prior.lat_deg += 0.001;
+  opt.initial_p_ecef_m = ecef_from_geodetic(prior);
+
+  opt.fix_mode = SolverFixMode::k3DOnly;
+  EXPECT_EQ(solve(meas, s.t_tag, opt).fix, FixType::k3D);
+  auto three = meas;
+  three.resize(3);
+  EXPECT_EQ(solve(three, s.t_tag, opt).fix, FixType::kNone);
+
+  opt.fix_mode = SolverFixMode::k2DOnly;
+  opt.fixed_height_m = s.rx.h_m;  // the true height: the exact position
+  Solution sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k2D);
+  EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 0.01);
+  EXPECT_EQ(solve(three, s.t_tag, opt).fix, FixType::k2D);
+
+  opt.fixed_height_m = s.rx.h_m + 50.0;  // a wrong height is held all the same
+  sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k2D);
+  EXPECT_NEAR(geodetic_from_ecef(sol.p_ecef_m).h_m, s.rx.h_m + 50.0, 0.5);
+
+  // Without a prior the estimate first comes down from the Earth's centre in 3D (four
+  // satellites at least), then holds the height.
+  opt.initial_p_ecef_m = Vec3::Zero();
+  opt.fixed_height_m = s.rx.h_m;
+  sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k2D);
+  EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 0.01);
+}
+
 TEST(SolverRealDoppler, StaticStationVelocityIsNearZero) {
   NAVEMU_REQUIRE_SHARED();
   // ESBC is a static IGS station: velocities from its L1 C/A Doppler (D1C) must be ~0.
