@@ -1157,18 +1157,18 @@ TEST_F(UbxDeviceTest, NavigationEngineSettingsActOnTheFix) {
   EXPECT_LT(used_count(fix), all_used);
   for (const ReceiverSatellite& s : fix.satellites) EXPECT_EQ(s.used, s.el_deg >= 30.0) << s.el_deg;
 
-  // A C/N0 mask between the weakest and the strongest satellite.
+  // A C/N0 mask that leaves the five strongest satellites (a fix needs four), whole dB-Hz.
   set_items(d, {{"CFG-NAVSPG-INFIL_MINELEV", 10}});
   fix = epoch();
-  double lo = 1e9, hi = 0.0;
-  for (const ReceiverSatellite& s : fix.satellites) {
-    if (!s.used) continue;
-    lo = std::min(lo, s.cn0_dbhz);
-    hi = std::max(hi, s.cn0_dbhz);
-  }
-  const auto mask_dbhz = static_cast<std::uint64_t>(std::ceil((lo + hi) / 2.0));
+  std::vector<double> cn0;
+  for (const ReceiverSatellite& s : fix.satellites)
+    if (s.used) cn0.push_back(s.cn0_dbhz);
+  std::sort(cn0.rbegin(), cn0.rend());
+  ASSERT_GE(cn0.size(), 6u);
+  const auto mask_dbhz = static_cast<std::uint64_t>(std::floor(cn0[4]));
   set_items(d, {{"CFG-NAVSPG-INFIL_MINCNO", mask_dbhz}});
   fix = epoch();
+  ASSERT_EQ(fix.fix, FixType::k3D);
   EXPECT_LT(used_count(fix), all_used);
   for (const ReceiverSatellite& s : fix.satellites) {
     if (s.el_deg >= 10.0) {
