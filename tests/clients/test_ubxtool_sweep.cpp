@@ -2,9 +2,11 @@
 // profile on a pty configured `port: usb`. A shortened sweep (the first 40 presets of ubxtool's
 // table that apply to the profile's protocol version and the first 160 of its keys, about 30 s
 // per profile) must meet the thresholds below, and every value set must read back and survive
-// (or not) a CFG-CFG save and a cold start as on the part. The thresholds are the floor measured
-// on this sweep, so that anything the device stops answering fails; the full sweep
-// (`tools/ubxtool-sweep --profile ...` without --subset) reports what it still lacks.
+// (or not) a CFG-CFG save and a cold start as on the part. Each preset's answer is compared with
+// the one the part gives by its interface description (the sweep's PART_MESSAGES): the floor is
+// what this sweep measures, so that anything the device stops answering, or answers where the
+// part does not, fails. The full sweep (`tools/ubxtool-sweep --profile ...` without --subset)
+// reports what it still lacks.
 
 #include <gtest/gtest.h>
 
@@ -18,6 +20,7 @@ namespace {
 struct SweepCase {
   const char* profile;
   double min_presets_pct;  // of the presets swept, answered (the polled message or ACK-ACK)
+  double min_as_part_pct;  // of the presets swept, answered as the part answers them
   double min_valget_pct;   // of ubxtool's keys the F9P has, answered by CFG-VALGET
 };
 
@@ -32,7 +35,8 @@ TEST_P(UbxtoolSweep, ShortSweepMeetsItsThresholds) {
   Child sweep({"/usr/bin/python3", (fs::path(NAVEMU_SOURCE_DIR) / "tools" / "ubxtool-sweep").string(), "--profile",
                (fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / c.profile).string(), "--navemu",
                navemu_binary().string(), "--subset", "40", "--min-presets", fmt::format("{}", c.min_presets_pct),
-               "--min-valget", fmt::format("{}", c.min_valget_pct), "--require-checks"},
+               "--min-as-part", fmt::format("{}", c.min_as_part_pct), "--min-valget",
+               fmt::format("{}", c.min_valget_pct), "--require-checks"},
               out, out);
   const auto st = sweep.wait_exit(120.0);
   sweep.stop();
@@ -45,8 +49,10 @@ TEST_P(UbxtoolSweep, ShortSweepMeetsItsThresholds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Profiles, UbxtoolSweep,
-                         ::testing::Values(SweepCase{"ublox-m8.yaml", 15.0, 0}, SweepCase{"ublox-f9p.yaml", 15.0, 95.0},
-                                           SweepCase{"ublox-f9p-hpg132.yaml", 15.0, 95.0}),
+                         // M8: the five AID polls of the first 40 presets are not answered yet.
+                         ::testing::Values(SweepCase{"ublox-m8.yaml", 50.0, 87.5, 0},
+                                           SweepCase{"ublox-f9p.yaml", 50.0, 100.0, 95.0},
+                                           SweepCase{"ublox-f9p-hpg132.yaml", 50.0, 100.0, 95.0}),
                          [](const ::testing::TestParamInfo<SweepCase>& p) {
                            std::string n = p.param.profile;
                            n = n.substr(0, n.find('.'));
