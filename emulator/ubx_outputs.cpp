@@ -781,6 +781,49 @@ void emit_nav_geofence(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
+// NAV-SBAS (M8 32.17.19; the F9P's CFG-MSGOUT-UBX_NAV_SBAS): SBAS on, as both parts are at
+// power-up, and no SBAS satellite tracked (navemu has none): no GEO, system unknown, no blocks.
+void emit_nav_sbas(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavSbas m;
+  m.i_tow_ms = e.i_tow;
+  m.mode = 1;  // enabled integrity
+  append(m, out);
+}
+
+// NAV-SLAS (F9 HPG "UBX-NAV-SLAS"): no QZSS L1S signal tracked, so no ground monitoring station
+// and no corrections.
+void emit_nav_slas(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavSlas m;
+  m.i_tow_ms = e.i_tow;
+  append(m, out);
+}
+
+// NAV-DGPS (M8 32.17.5): PR + PRR corrections in DGPS mode, none otherwise. The corrections
+// themselves are not modelled (ReceiverMode::kDgps removes the errors they would), so no
+// per-satellite blocks.
+void emit_nav_dgps(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavDgps m;
+  m.i_tow_ms = e.i_tow;
+  m.status = e.mode == ReceiverMode::kDgps ? 1 : 0;
+  append(m, out);
+}
+
+// NAV-AOPSTATUS (M8 32.17.2): AssistNow Autonomous off (CFG-NAVX5 aopCfg's power-up value), idle.
+void emit_nav_aopstatus(const EpochView& e, std::vector<std::uint8_t>& out) {
+  NavAopstatus m;
+  m.i_tow_ms = e.i_tow;
+  append(m, out);
+}
+
+// TIM-VRFY (M8 32.20, F9 "UBX-TIM-VRFY"): navemu takes no time aiding (src 0), so the sourced
+// time is the navigation time of this epoch and the difference 0.
+void emit_tim_vrfy(const EpochView& e, std::vector<std::uint8_t>& out) {
+  TimVrfy m;
+  m.i_tow_ms = static_cast<std::int32_t>(e.i_tow);
+  m.wno = static_cast<std::uint16_t>(e.wt.week);
+  append(m, out);
+}
+
 // TIM-TP (M8 32.20, F9 5.17.2): the time pulse at the next whole GPS second (time base GNSS,
 // time reference GPS, UTC available; utcStandard 3, USNO as GPS disseminates it).
 void emit_tim_tp(const EpochView& e, std::vector<std::uint8_t>& out) {
@@ -828,6 +871,10 @@ constexpr UbxOutput kOutputs[] = {
     {kNavSvinfo, "", true, false, &emit_nav_svinfo},
     {kNavSat, "UBX_NAV_SAT", true, true, &emit_nav_sat},
     {kNavSig, "UBX_NAV_SIG", false, true, &emit_nav_sig},
+    {kNavSbas, "UBX_NAV_SBAS", true, true, &emit_nav_sbas},
+    {kNavSlas, "UBX_NAV_SLAS", false, true, &emit_nav_slas},
+    {kNavDgps, "", true, false, &emit_nav_dgps},
+    {kNavAopstatus, "", true, false, &emit_nav_aopstatus},
     {kNavHpposecef, "UBX_NAV_HPPOSECEF", false, true, &emit_nav_hpposecef},
     {kNavHpposllh, "UBX_NAV_HPPOSLLH", false, true, &emit_nav_hpposllh},
     {kNavCov, "UBX_NAV_COV", false, true, &emit_nav_cov},
@@ -842,6 +889,7 @@ constexpr UbxOutput kOutputs[] = {
     {kNavGeofence, "UBX_NAV_GEOFENCE", true, true, &emit_nav_geofence},
     {kTimTp, "UBX_TIM_TP", true, true, &emit_tim_tp},
     {kTimTm2, "UBX_TIM_TM2", true, true, &emit_tim_tm2},
+    {kTimVrfy, "UBX_TIM_VRFY", true, true, &emit_tim_vrfy},
     {kMonHw, "UBX_MON_HW", true, true, &emit_mon_hw},
     {kMonHw2, "UBX_MON_HW2", true, true, &emit_mon_hw2},
     {kMonHw3, "UBX_MON_HW3", false, true, &emit_mon_hw3},

@@ -78,6 +78,7 @@ inline constexpr MsgId kNavTimebds{kClassNav, 0x24};
 inline constexpr MsgId kNavTimegal{kClassNav, 0x25};
 inline constexpr MsgId kNavTimels{kClassNav, 0x26};
 inline constexpr MsgId kNavSvinfo{kClassNav, 0x30};
+inline constexpr MsgId kNavDgps{kClassNav, 0x31};
 inline constexpr MsgId kNavSbas{kClassNav, 0x32};
 inline constexpr MsgId kNavOrb{kClassNav, 0x34};
 inline constexpr MsgId kNavSat{kClassNav, 0x35};
@@ -85,7 +86,9 @@ inline constexpr MsgId kNavCov{kClassNav, 0x36};
 inline constexpr MsgId kNavGeofence{kClassNav, 0x39};
 inline constexpr MsgId kNavSvin{kClassNav, 0x3B};
 inline constexpr MsgId kNavRelposned{kClassNav, 0x3C};
+inline constexpr MsgId kNavSlas{kClassNav, 0x42};
 inline constexpr MsgId kNavSig{kClassNav, 0x43};
+inline constexpr MsgId kNavAopstatus{kClassNav, 0x60};
 inline constexpr MsgId kNavEoe{kClassNav, 0x61};
 
 inline constexpr MsgId kRxmSfrbx{kClassRxm, 0x13};
@@ -147,6 +150,7 @@ inline constexpr MsgId kMonRf{kClassMon, 0x38};
 
 inline constexpr MsgId kTimTp{kClassTim, 0x01};
 inline constexpr MsgId kTimTm2{kClassTim, 0x03};
+inline constexpr MsgId kTimVrfy{kClassTim, 0x06};
 inline constexpr MsgId kSecUniqid{kClassSec, 0x03};
 
 // A poll request: the message's class and ID with an empty payload (UBX-13003221 section 32.5
@@ -559,7 +563,8 @@ struct NavSig {
   std::vector<NavSigSignal> signals;  // numSigs = signals.size() (at most 255)
 };
 
-// UBX-NAV-SBAS (0x01 0x32), 12 + 12 * cnt bytes (M8 32.17.19; not in F9 R04): SBAS status.
+// UBX-NAV-SBAS (0x01 0x32), 12 + 12 * cnt bytes (M8 32.17.19; not in F9 R04, but the F9P has its
+// CFG-MSGOUT-UBX_NAV_SBAS items and answers it): SBAS status.
 struct NavSbasSv {
   std::uint8_t svid = 0, flags = 0, udre = 0, sv_sys = 0, sv_service = 0, reserved2 = 0;
   std::int16_t prc_cm = 0;  // pseudorange correction
@@ -576,6 +581,54 @@ struct NavSbas {
   std::uint8_t service = 0;
   std::array<std::uint8_t, 3> reserved1{};
   std::vector<NavSbasSv> svs;  // cnt = svs.size() (at most 255)
+};
+
+// UBX-NAV-SLAS (0x01 0x42), 20 + 8 * cnt bytes (u-blox 8 protocol 19.2+, F9 HPG "UBX-NAV-SLAS"):
+// QZSS L1S SLAS status, the ground monitoring station and a correction per satellite.
+struct NavSlasSv {
+  std::uint8_t gnss_id = 0, sv_id = 0, reserved2 = 0;
+  std::array<std::uint8_t, 3> reserved3{};
+  std::int16_t prc_cm = 0;  // pseudorange correction
+};
+struct NavSlas {
+  static constexpr MsgId kMsg = kNavSlas;
+  static constexpr std::size_t kHeaderSize = 20, kBlockSize = 8;
+  std::uint32_t i_tow_ms = 0;
+  std::uint8_t version = 0;
+  std::array<std::uint8_t, 3> reserved1{};
+  std::int32_t gms_lon_1e3deg = 0, gms_lat_1e3deg = 0;
+  std::uint8_t gms_code = 0, qzss_sv_id = 0;
+  std::uint8_t service_flags = 0;  // gmsAvailable bit 0, qzssSvAvailable 1, testMode 2
+  std::vector<NavSlasSv> svs;      // cnt = svs.size() (at most 255)
+};
+
+// UBX-NAV-DGPS (0x01 0x31), 16 + 12 * numCh bytes (M8 32.17.5; not on protocol 27+): the
+// differential corrections the solution uses.
+struct NavDgpsCh {
+  std::uint8_t svid = 0;
+  std::uint8_t flags = 0;  // channel bits 0..3, dgpsUsed bit 4
+  std::uint16_t age_c_ms = 0;
+  float prc_m = 0.0f, prrc_mps = 0.0f;
+};
+struct NavDgps {
+  static constexpr MsgId kMsg = kNavDgps;
+  static constexpr std::size_t kHeaderSize = 16, kBlockSize = 12;
+  std::uint32_t i_tow_ms = 0;
+  std::int32_t age_ms = 0;
+  std::int16_t base_id = 0, base_health = 0;
+  std::uint8_t status = 0;  // 0 none, 1 PR + PRR correction
+  std::array<std::uint8_t, 2> reserved1{};
+  std::vector<NavDgpsCh> channels;  // numCh = channels.size() (at most 255)
+};
+
+// UBX-NAV-AOPSTATUS (0x01 0x60), 16 bytes (M8 32.17.2): AssistNow Autonomous.
+struct NavAopstatus {
+  static constexpr MsgId kMsg = kNavAopstatus;
+  static constexpr std::size_t kPayloadSize = 16;
+  std::uint32_t i_tow_ms = 0;
+  std::uint8_t aop_cfg = 0;  // useAOP bit 0
+  std::uint8_t status = 0;   // 0 idle, otherwise running
+  std::array<std::uint8_t, 10> reserved1{};
 };
 
 // UBX-NAV-TIMELS (0x01 0x26), 24 bytes (M8 32.17.29, F9 5.14.22): leap second event.
@@ -952,6 +1005,18 @@ struct TimTm2 {
   std::uint16_t count = 0, wn_r = 0, wn_f = 0;
   std::uint32_t tow_ms_r = 0, tow_sub_ms_r_ns = 0, tow_ms_f = 0, tow_sub_ms_f_ns = 0;
   std::uint32_t acc_est_ns = 0;
+};
+
+// UBX-TIM-VRFY (0x0D 0x06), 20 bytes (M8 32.20, F9 "UBX-TIM-VRFY"): the time last received
+// from assistance data or the RTC, against the navigation time.
+struct TimVrfy {
+  static constexpr MsgId kMsg = kTimVrfy;
+  static constexpr std::size_t kPayloadSize = 20;
+  std::int32_t i_tow_ms = 0, frac_ns = 0;      // the sourced time of week
+  std::int32_t delta_ms = 0, delta_ns = 0;     // sourced time - navigation time
+  std::uint16_t wno = 0;
+  std::uint8_t flags = 0;  // src bits 0..2: 0 no time aiding done, 2 RTC, 3 AID-INI
+  std::uint8_t reserved1 = 0;
 };
 
 // ---- CFG -----------------------------------------------------------------------------------
@@ -1833,6 +1898,24 @@ struct Descriptions : Describing {
                 u1(&NavSbasSv::sv_service, "svService"), u1(&NavSbasSv::reserved2, "reserved2"),
                 i2(&NavSbasSv::prc_cm, "prc", 1e-2), u1(&NavSbasSv::reserved3, "reserved3"),
                 i2(&NavSbasSv::ic_cm, "ic", 1e-2))),
+      describe<NavSlas>(kNavSlas, "NAV-SLAS", Length::kExact,
+          u4(&NavSlas::i_tow_ms, "iTOW", 1e-3), u1(&NavSlas::version, "version"),
+          u1(&NavSlas::reserved1, "reserved1"), i4(&NavSlas::gms_lon_1e3deg, "gmsLon", 1e-3),
+          i4(&NavSlas::gms_lat_1e3deg, "gmsLat", 1e-3), u1(&NavSlas::gms_code, "gmsCode"),
+          u1(&NavSlas::qzss_sv_id, "qzssSvId"), x1(&NavSlas::service_flags, "serviceFlags"), count("cnt"),
+          block(&NavSlas::svs, u1(&NavSlasSv::gnss_id, "gnssId"), u1(&NavSlasSv::sv_id, "svId"),
+                u1(&NavSlasSv::reserved2, "reserved2"), u1(&NavSlasSv::reserved3, "reserved3"),
+                i2(&NavSlasSv::prc_cm, "prc", 1e-2))),
+      describe<NavDgps>(kNavDgps, "NAV-DGPS", Length::kExact,
+          u4(&NavDgps::i_tow_ms, "iTOW", 1e-3), i4(&NavDgps::age_ms, "age", 1e-3),
+          i2(&NavDgps::base_id, "baseId"), i2(&NavDgps::base_health, "baseHealth"), count("numCh"),
+          u1(&NavDgps::status, "status"), u1(&NavDgps::reserved1, "reserved1"),
+          block(&NavDgps::channels, u1(&NavDgpsCh::svid, "svid"), x1(&NavDgpsCh::flags, "flags"),
+                u2(&NavDgpsCh::age_c_ms, "ageC", 1e-3), r4(&NavDgpsCh::prc_m, "prc"),
+                r4(&NavDgpsCh::prrc_mps, "prrc"))),
+      describe<NavAopstatus>(kNavAopstatus, "NAV-AOPSTATUS", Length::kAtLeast,
+          u4(&NavAopstatus::i_tow_ms, "iTOW", 1e-3), x1(&NavAopstatus::aop_cfg, "aopCfg"),
+          u1(&NavAopstatus::status, "status"), u1(&NavAopstatus::reserved1, "reserved1")),
       describe<NavTimels>(kNavTimels, "NAV-TIMELS", Length::kAtLeast,
           u4(&NavTimels::i_tow_ms, "iTOW", 1e-3), u1(&NavTimels::version, "version"),
           u1(&NavTimels::reserved1, "reserved1"), u1(&NavTimels::src_of_curr_ls, "srcOfCurrLs"),
@@ -1945,6 +2028,10 @@ struct Descriptions : Describing {
           u2(&TimTm2::wn_r, "wnR"), u2(&TimTm2::wn_f, "wnF"), u4(&TimTm2::tow_ms_r, "towMsR", 1e-3),
           u4(&TimTm2::tow_sub_ms_r_ns, "towSubMsR", 1e-9), u4(&TimTm2::tow_ms_f, "towMsF", 1e-3),
           u4(&TimTm2::tow_sub_ms_f_ns, "towSubMsF", 1e-9), u4(&TimTm2::acc_est_ns, "accEst", 1e-9)),
+      describe<TimVrfy>(kTimVrfy, "TIM-VRFY", Length::kAtLeast,
+          i4(&TimVrfy::i_tow_ms, "itow", 1e-3), i4(&TimVrfy::frac_ns, "frac", 1e-9),
+          i4(&TimVrfy::delta_ms, "deltaMs", 1e-3), i4(&TimVrfy::delta_ns, "deltaNs", 1e-9),
+          u2(&TimVrfy::wno, "wno"), x1(&TimVrfy::flags, "flags"), u1(&TimVrfy::reserved1, "reserved1")),
       // ---- CFG, the rest of the legacy messages ----
       describe<CfgInfPoll>(kCfgInf, "CFG-INF", Length::kExact,
           u1(&CfgInfPoll::protocol_id, "protocolID")),

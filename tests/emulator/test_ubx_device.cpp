@@ -879,6 +879,45 @@ TEST_F(UbxDeviceTest, NavSigListsEveryTrackedSignalAndItsUse) {
   EXPECT_EQ(used, 2 * fix.num_used) << "both bands of every used satellite";
 }
 
+// The status messages of what navemu does not model say so as the part would: NAV-SBAS with SBAS
+// on and no GEO (mode 1, system -1, no blocks) on both parts; NAV-DGPS (M8) reports PR + PRR
+// corrections only in DGPS mode; TIM-VRFY has no time aiding (src 0) and carries the epoch's
+// GPS week and time of week, the ones NAV-TIMEGPS reports.
+TEST_F(UbxDeviceTest, SbasDgpsAndTimeVerificationStatus) {
+  const auto polled = [](UbxDevice& d, ubx::MsgId id) {
+    const std::vector<Frame> f = frames_of(send(d, poll(id)));
+    EXPECT_EQ(f.size(), 1u);
+    return f.empty() ? std::vector<std::uint8_t>{} : f[0].payload;
+  };
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    SCOPED_TRACE(p->name);
+    UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
+    std::string epoch;
+    d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, epoch);
+    ubx::NavSbas sbas;
+    ASSERT_TRUE(ubx::decode(polled(d, ubx::kNavSbas), sbas));
+    EXPECT_EQ(sbas.mode, 1);
+    EXPECT_EQ(sbas.sys, -1);
+    EXPECT_TRUE(sbas.svs.empty());
+    ubx::TimVrfy vrfy;
+    ubx::NavTimegps tg;
+    ASSERT_TRUE(ubx::decode(polled(d, ubx::kTimVrfy), vrfy));
+    ASSERT_TRUE(ubx::decode(polled(d, ubx::kNavTimegps), tg));
+    EXPECT_EQ(vrfy.flags & 0x07, 0);
+    EXPECT_EQ(vrfy.wno, static_cast<std::uint16_t>(tg.week));
+    EXPECT_EQ(static_cast<std::uint32_t>(vrfy.i_tow_ms), tg.i_tow_ms);
+    EXPECT_EQ(vrfy.delta_ms, 0);
+  }
+  for (ReceiverMode mode : {ReceiverMode::kStandalone, ReceiverMode::kDgps}) {
+    UbxDevice d(m8_, mode, empty_nav());
+    std::string epoch;
+    d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, epoch);
+    ubx::NavDgps dgps;
+    ASSERT_TRUE(ubx::decode(polled(d, ubx::kNavDgps), dgps));
+    EXPECT_EQ(dgps.status, mode == ReceiverMode::kDgps ? 1 : 0);
+  }
+}
+
 // The other systems' times of NAV-TIMEBDS/GAL/GLO and NAV-TIMELS at 2010-11-17 13:00:00 UTC
 // (GPS - UTC = 15 s, GPS week 1610, Wednesday), worked by hand from the system definitions:
 // BDT = GPST - 14 s, BDS week = GPS week - 1356 (BDS ICD 2.0 5.2.4.5); Galileo week = GPS week -
