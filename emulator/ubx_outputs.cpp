@@ -758,13 +758,6 @@ void emit_nav_odo(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
-// NAV-SVIN (M8 32.17.24, F9 5.14.17): no survey-in (time mode off, CFG-TMODE-MODE 0).
-void emit_nav_svin(const EpochView& e, std::vector<std::uint8_t>& out) {
-  NavSvin m;
-  m.i_tow_ms = e.i_tow;
-  append(m, out);
-}
-
 // NAV-RELPOSNED (F9 5.14.12, version 1 from protocol 27.1x): a rover without a reference
 // station's corrections: gnssFixOK as the fix, no relative position.
 void emit_nav_relposned(const EpochView& e, std::vector<std::uint8_t>& out) {
@@ -774,9 +767,11 @@ void emit_nav_relposned(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
-// NAV-GEOFENCE (M8 32.17.7, F9 5.14.4): no geofence configured: status 0 "not available".
-void emit_nav_geofence(const EpochView& e, std::vector<std::uint8_t>& out) {
-  NavGeofence m;
+// A status message of something navemu does not model: every field but iTOW keeps its "nothing
+// to report" value (what each one reports is beside its row in kOutputs).
+template <class M>
+void emit_itow_only(const EpochView& e, std::vector<std::uint8_t>& out) {
+  M m;
   m.i_tow_ms = e.i_tow;
   append(m, out);
 }
@@ -790,14 +785,6 @@ void emit_nav_sbas(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
-// NAV-SLAS (F9 HPG "UBX-NAV-SLAS"): no QZSS L1S signal tracked, so no ground monitoring station
-// and no corrections.
-void emit_nav_slas(const EpochView& e, std::vector<std::uint8_t>& out) {
-  NavSlas m;
-  m.i_tow_ms = e.i_tow;
-  append(m, out);
-}
-
 // NAV-DGPS (M8 32.17.5): PR + PRR corrections in DGPS mode, none otherwise. The corrections
 // themselves are not modelled (ReceiverMode::kDgps removes the errors they would), so no
 // per-satellite blocks.
@@ -805,13 +792,6 @@ void emit_nav_dgps(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavDgps m;
   m.i_tow_ms = e.i_tow;
   m.status = e.mode == ReceiverMode::kDgps ? 1 : 0;
-  append(m, out);
-}
-
-// NAV-AOPSTATUS (M8 32.17.2): AssistNow Autonomous off (CFG-NAVX5 aopCfg's power-up value), idle.
-void emit_nav_aopstatus(const EpochView& e, std::vector<std::uint8_t>& out) {
-  NavAopstatus m;
-  m.i_tow_ms = e.i_tow;
   append(m, out);
 }
 
@@ -872,21 +852,26 @@ constexpr UbxOutput kOutputs[] = {
     {kNavSat, "UBX_NAV_SAT", true, true, &emit_nav_sat},
     {kNavSig, "UBX_NAV_SIG", false, true, &emit_nav_sig},
     {kNavSbas, "UBX_NAV_SBAS", true, true, &emit_nav_sbas},
-    {kNavSlas, "UBX_NAV_SLAS", false, true, &emit_nav_slas},
+    // NAV-SLAS (F9 HPG "UBX-NAV-SLAS"): no QZSS L1S signal tracked, so no ground monitoring
+    // station and no corrections.
+    {kNavSlas, "UBX_NAV_SLAS", false, true, &emit_itow_only<NavSlas>},
     {kNavDgps, "", true, false, &emit_nav_dgps},
-    {kNavAopstatus, "", true, false, &emit_nav_aopstatus},
+    // NAV-AOPSTATUS (M8 32.17.2): AssistNow Autonomous off (CFG-NAVX5 aopCfg's power-up value), idle.
+    {kNavAopstatus, "", true, false, &emit_itow_only<NavAopstatus>},
     {kNavHpposecef, "UBX_NAV_HPPOSECEF", false, true, &emit_nav_hpposecef},
     {kNavHpposllh, "UBX_NAV_HPPOSLLH", false, true, &emit_nav_hpposllh},
     {kNavCov, "UBX_NAV_COV", false, true, &emit_nav_cov},
     {kNavRelposned, "UBX_NAV_RELPOSNED", false, true, &emit_nav_relposned},
-    {kNavSvin, "UBX_NAV_SVIN", false, true, &emit_nav_svin},
+    // NAV-SVIN (M8 32.17.24, F9 5.14.17): no survey-in (time mode off, CFG-TMODE-MODE 0).
+    {kNavSvin, "UBX_NAV_SVIN", false, true, &emit_itow_only<NavSvin>},
     {kNavTimels, "UBX_NAV_TIMELS", true, true, &emit_nav_timels},
     {kNavTimebds, "UBX_NAV_TIMEBDS", true, true, &emit_nav_timebds},
     {kNavTimegal, "UBX_NAV_TIMEGAL", true, true, &emit_nav_timegal},
     {kNavTimeglo, "UBX_NAV_TIMEGLO", true, true, &emit_nav_timeglo},
     {kNavOrb, "UBX_NAV_ORB", true, true, &emit_nav_orb},
     {kNavOdo, "UBX_NAV_ODO", true, true, &emit_nav_odo},
-    {kNavGeofence, "UBX_NAV_GEOFENCE", true, true, &emit_nav_geofence},
+    // NAV-GEOFENCE (M8 32.17.7, F9 5.14.4): no geofence configured: status 0 "not available".
+    {kNavGeofence, "UBX_NAV_GEOFENCE", true, true, &emit_itow_only<NavGeofence>},
     {kTimTp, "UBX_TIM_TP", true, true, &emit_tim_tp},
     {kTimTm2, "UBX_TIM_TM2", true, true, &emit_tim_tm2},
     {kTimVrfy, "UBX_TIM_VRFY", true, true, &emit_tim_vrfy},
