@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/sat_table.hpp"
+#include "emulator/ubx_aiding.hpp"
 #include "models/reuse.hpp"
 
 namespace navemu {
@@ -337,28 +338,38 @@ void UbxDevice::nak(MsgId msg, Bytes& out) {
 // The commands the receiver takes: a poll (empty payload) answered by `poll`, anything else
 // (and polls of messages without `poll`) handled by `set`, which acknowledges itself.
 struct UbxDevice::Command {
+  enum Parts : std::uint8_t { kBoth, kF9, kM8 };
   MsgId id;
-  bool protocol27;  // protocol 27+ only (configuration interface, UBX-18010854 section 6)
+  // kF9: protocol 27+ only (the configuration interface, UBX-18010854 section 6; UPD-SOS, the
+  // M8 profile being a ROM part without flash); kM8: u-blox 8 only (the AID messages).
+  Parts parts;
   void (UbxDevice::*poll)(std::uint8_t port, Bytes& out);
   void (UbxDevice::*set)(Payload payload, std::uint8_t port, Bytes& out);
 };
 
 const UbxDevice::Command UbxDevice::kCommands[] = {
-    {kMonVer, false, &UbxDevice::poll_mon_ver, nullptr},
-    {kMonGnss, false, &UbxDevice::poll_mon_gnss, nullptr},
-    {kMonPatch, false, &UbxDevice::poll_mon_patch, nullptr},
-    {kSecUniqid, false, &UbxDevice::poll_sec_uniqid, nullptr},
-    {kNavResetodo, false, nullptr, &UbxDevice::handle_nav_resetodo},
-    {kCfgPrt, false, nullptr, &UbxDevice::handle_cfg_prt},
-    {kCfgMsg, false, nullptr, &UbxDevice::handle_cfg_msg},
-    {kCfgRate, false, &UbxDevice::poll_cfg_rate, &UbxDevice::handle_cfg_rate},
-    {kCfgNav5, false, &UbxDevice::poll_cfg_nav5, &UbxDevice::handle_cfg_nav5},
-    {kCfgGnss, false, &UbxDevice::poll_cfg_gnss, &UbxDevice::handle_cfg_gnss},
-    {kCfgCfg, false, nullptr, &UbxDevice::handle_cfg_cfg},
-    {kCfgRst, false, nullptr, &UbxDevice::handle_cfg_rst},
-    {kCfgValset, true, nullptr, &UbxDevice::handle_valset},
-    {kCfgValget, true, nullptr, &UbxDevice::handle_valget},
-    {kCfgValdel, true, nullptr, &UbxDevice::handle_valdel},
+    {kMonVer, Command::kBoth, &UbxDevice::poll_mon_ver, nullptr},
+    {kMonGnss, Command::kBoth, &UbxDevice::poll_mon_gnss, nullptr},
+    {kMonPatch, Command::kBoth, &UbxDevice::poll_mon_patch, nullptr},
+    {kSecUniqid, Command::kBoth, &UbxDevice::poll_sec_uniqid, nullptr},
+    {kNavResetodo, Command::kBoth, nullptr, &UbxDevice::handle_nav_resetodo},
+    {kAidIni, Command::kM8, &UbxDevice::poll_aid_ini, nullptr},
+    {kAidHui, Command::kM8, &UbxDevice::poll_aid_hui, nullptr},
+    {kAidAlm, Command::kM8, &UbxDevice::poll_aid_alm, &UbxDevice::handle_aid_alm},
+    {kAidEph, Command::kM8, &UbxDevice::poll_aid_eph, &UbxDevice::handle_aid_eph},
+    {kAidAop, Command::kM8, &UbxDevice::poll_aid_aop, &UbxDevice::handle_aid_aop},
+    {kMgaDbd, Command::kBoth, &UbxDevice::poll_mga_dbd, nullptr},
+    {kUpdSos, Command::kF9, &UbxDevice::poll_upd_sos, &UbxDevice::handle_upd_sos},
+    {kCfgPrt, Command::kBoth, nullptr, &UbxDevice::handle_cfg_prt},
+    {kCfgMsg, Command::kBoth, nullptr, &UbxDevice::handle_cfg_msg},
+    {kCfgRate, Command::kBoth, &UbxDevice::poll_cfg_rate, &UbxDevice::handle_cfg_rate},
+    {kCfgNav5, Command::kBoth, &UbxDevice::poll_cfg_nav5, &UbxDevice::handle_cfg_nav5},
+    {kCfgGnss, Command::kBoth, &UbxDevice::poll_cfg_gnss, &UbxDevice::handle_cfg_gnss},
+    {kCfgCfg, Command::kBoth, nullptr, &UbxDevice::handle_cfg_cfg},
+    {kCfgRst, Command::kBoth, nullptr, &UbxDevice::handle_cfg_rst},
+    {kCfgValset, Command::kF9, nullptr, &UbxDevice::handle_valset},
+    {kCfgValget, Command::kF9, nullptr, &UbxDevice::handle_valget},
+    {kCfgValdel, Command::kF9, nullptr, &UbxDevice::handle_valdel},
 };
 
 void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_t port, Bytes& out) {
@@ -366,7 +377,7 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_
   // Any CFG message but VALSET and VALDEL cancels a started transaction (UBX-CFG-VALSET notes).
   if (cls == kClassCfg && !(msg == kCfgValset) && !(msg == kCfgValdel)) config_.cancel_transaction();
   for (const Command& c : kCommands) {
-    if (!(c.id == msg) || (c.protocol27 && !protocol27_)) continue;
+    if (!(c.id == msg) || (c.parts == (protocol27_ ? Command::kM8 : Command::kF9))) continue;
     if (p.empty() && c.poll) {
       ++counters_.polls;
       return (this->*c.poll)(port, out);
@@ -446,6 +457,73 @@ void UbxDevice::handle_nav_resetodo(Payload p, std::uint8_t, Bytes& out) {
   if (!p.empty()) return nak(kNavResetodo, out);
   status_.odo_distance_m = 0.0;
   ack(kNavResetodo, out);
+}
+
+// ---- Aiding data, the navigation database and its backup (emulator/ubx_aiding.hpp) ---------
+// AID-* (u-blox 8): a poll of all 32 GPS satellites or, with one byte, of one; the aiding input
+// itself is taken without effect (navemu's navigation data are the run's) and not acknowledged.
+
+void UbxDevice::poll_aid_ini(std::uint8_t, Bytes& out) { append_aid_ini(last_fix_, last_meas_, out); }
+
+void UbxDevice::poll_aid_hui(std::uint8_t, Bytes& out) { append_aid_hui(nav_, last_fix_.t, out); }
+
+void UbxDevice::poll_aid_alm(std::uint8_t, Bytes& out) {
+  for (int n = 1; n <= kAidSatellites; ++n) append_aid_alm(n, nav_, last_fix_.t, out);
+}
+
+void UbxDevice::poll_aid_eph(std::uint8_t, Bytes& out) {
+  for (int n = 1; n <= kAidSatellites; ++n) append_aid_eph(n, last_meas_, out);
+}
+
+// AID-AOP (u-blox 8): AssistNow Autonomous is off, so no satellite has its data, and the answer
+// per satellite is "the corresponding poll request message" (UBX-AID-AOP).
+void UbxDevice::poll_aid_aop(std::uint8_t, Bytes& out) {
+  for (int n = 1; n <= kAidSatellites; ++n) append(AidAopPoll{static_cast<std::uint8_t>(n)}, out);
+}
+
+// The one-satellite polls of AID-ALM, AID-EPH and AID-AOP; a satellite outside 1..32 gets nothing.
+std::optional<int> UbxDevice::aid_poll_svid(Payload p) {
+  if (p.size() != 1 || p[0] < 1 || p[0] > kAidSatellites) return std::nullopt;
+  ++counters_.polls;
+  return p[0];
+}
+
+void UbxDevice::handle_aid_alm(Payload p, std::uint8_t, Bytes& out) {
+  if (const std::optional<int> n = aid_poll_svid(p)) append_aid_alm(*n, nav_, last_fix_.t, out);
+}
+
+void UbxDevice::handle_aid_eph(Payload p, std::uint8_t, Bytes& out) {
+  if (const std::optional<int> n = aid_poll_svid(p)) append_aid_eph(*n, last_meas_, out);
+}
+
+void UbxDevice::handle_aid_aop(Payload p, std::uint8_t, Bytes& out) {
+  if (const std::optional<int> n = aid_poll_svid(p)) append(AidAopPoll{static_cast<std::uint8_t>(*n)}, out);
+}
+
+void UbxDevice::poll_mga_dbd(std::uint8_t, Bytes& out) { append_mga_dbd_dump(last_meas_, out); }
+
+// UPD-SOS (UBX-18010854 5.18.1): the poll is answered with whether the last start restored a
+// backup; "create" makes one and is answered with the creation acknowledgement; "clear" removes
+// it, with no answer described.
+void UbxDevice::poll_upd_sos(std::uint8_t, Bytes& out) {
+  UpdSos m;
+  m.cmd = UpdSos::kRestored;
+  m.response = sos_restored_ ? 2 : 3;  // restored from backup / not restored (no backup)
+  append(m, out);
+}
+
+void UbxDevice::handle_upd_sos(Payload p, std::uint8_t, Bytes& out) {
+  UpdSosCommand c;
+  if (!decode(p, c)) return;
+  if (c.cmd == UpdSosCommand::kCreate) {
+    sos_backup_ = true;
+    UpdSos m;
+    m.cmd = UpdSos::kCreationAck;
+    m.response = 1;  // acknowledged
+    append(m, out);
+  } else if (c.cmd == UpdSosCommand::kClear) {
+    sos_backup_ = false;
+  }
 }
 
 
@@ -648,6 +726,7 @@ void UbxDevice::handle_cfg_rst(Payload p, std::uint8_t, Bytes& out) {
   if (!decode(p, r)) return nak(kCfgRst, out);
   if (r.reset_mode == CfgRst::kHardwareReset || r.reset_mode == CfgRst::kControlledSoftwareReset ||
       r.reset_mode == CfgRst::kHardwareResetAfterShutdown) {
+    sos_restored_ = sos_backup_;  // the start-up restores a backup in flash (UPD-SOS)
     config_.reload();
     legacy_.load();
     stale_ = true;

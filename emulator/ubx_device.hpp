@@ -79,6 +79,18 @@ class UbxDevice final : public GnssDevice {
   void poll_mon_patch(std::uint8_t port, Bytes& out);
   void poll_sec_uniqid(std::uint8_t port, Bytes& out);
   void handle_nav_resetodo(Payload payload, std::uint8_t port, Bytes& out);
+  void poll_aid_ini(std::uint8_t port, Bytes& out);
+  void poll_aid_hui(std::uint8_t port, Bytes& out);
+  void poll_aid_alm(std::uint8_t port, Bytes& out);
+  void poll_aid_eph(std::uint8_t port, Bytes& out);
+  void poll_aid_aop(std::uint8_t port, Bytes& out);
+  std::optional<int> aid_poll_svid(Payload payload);
+  void handle_aid_alm(Payload payload, std::uint8_t port, Bytes& out);
+  void handle_aid_eph(Payload payload, std::uint8_t port, Bytes& out);
+  void handle_aid_aop(Payload payload, std::uint8_t port, Bytes& out);
+  void poll_mga_dbd(std::uint8_t port, Bytes& out);
+  void poll_upd_sos(std::uint8_t port, Bytes& out);
+  void handle_upd_sos(Payload payload, std::uint8_t port, Bytes& out);
   void poll_cfg_rate(std::uint8_t port, Bytes& out);
   void poll_cfg_nav5(std::uint8_t port, Bytes& out);
   void poll_cfg_gnss(std::uint8_t port, Bytes& out);
@@ -124,6 +136,8 @@ class UbxDevice final : public GnssDevice {
   // messages the receiver does not send but takes a rate for): (class << 8 | id) -> per port.
   std::map<std::uint16_t, std::array<std::uint8_t, ubx::kNumPorts>> other_rates_;
   GpsTime restart_until_{0};
+  bool sos_backup_ = false;    // a backup in flash (UPD-SOS create)
+  bool sos_restored_ = false;  // the last start restored it
 
   NavEngineSettings engine_;  // from CFG-NAVSPG
   std::string talker_;        // the NMEA talker ID the output uses (CFG-NMEA-MAINTALKERID)

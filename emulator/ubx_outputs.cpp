@@ -46,7 +46,8 @@ Accuracy accuracy(const ReceiverFix& fix) {
   return {fix.sigma_h_m, fix.sigma_v_m, p, 0.05 * std::max(fix.dops.pdop, 1.0)};
 }
 
-// The GPS broadcast record of a satellite as IS-GPS-200 subframes 1-3 carry it.
+}  // namespace
+
 lnav::LnavEphemeris to_lnav(const GpsEphemeris& e) {
   lnav::LnavEphemeris l;
   l.sv_id = e.sat.number();
@@ -83,7 +84,19 @@ lnav::LnavEphemeris to_lnav(const GpsEphemeris& e) {
   return l;
 }
 
-}  // namespace
+lnav::LnavIonoUtc broadcast_iono_utc(const NavData& nav, int week, int leap_s) {
+  lnav::LnavIonoUtc iono;
+  if (nav.klobuchar) {
+    iono.alpha = nav.klobuchar->alpha;
+    iono.beta = nav.klobuchar->beta;
+  }
+  iono.dt_ls_s = leap_s;
+  iono.dt_lsf_s = leap_s;
+  iono.wnt = week;
+  iono.wn_lsf = week;
+  iono.dn = 1;
+  return iono;
+}
 
 // What the output messages of one epoch are built from: the latest fix and measurements and
 // the quantities several messages share, in wire-ready units.
@@ -365,16 +378,7 @@ void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
   const std::uint32_t tow_count_this = (tow_count_next + lnav::kTowCountsPerWeek - 1) % lnav::kTowCountsPerWeek;
   const int sf_id = static_cast<int>(tow_count_this % 5) + 1;
   const int page = static_cast<int>((tow_count_this / 5) % 25) + 1;
-  lnav::LnavIonoUtc iono;
-  if (e.nav.klobuchar) {
-    iono.alpha = e.nav.klobuchar->alpha;
-    iono.beta = e.nav.klobuchar->beta;
-  }
-  iono.dt_ls_s = e.leap_s;
-  iono.dt_lsf_s = e.leap_s;
-  iono.wnt = e.wt.week;
-  iono.wn_lsf = e.wt.week;
-  iono.dn = 1;
+  const lnav::LnavIonoUtc iono = broadcast_iono_utc(e.nav, e.wt.week, e.leap_s);
   std::uint8_t chn = 0;
   for (const SatMeasurement& s : e.meas.sats) {
     if (s.eph == nullptr) continue;
@@ -767,12 +771,13 @@ void emit_nav_relposned(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
-// A status message of something navemu does not model: every field but iTOW keeps its "nothing
-// to report" value (what each one reports is beside its row in kOutputs).
+// A status message of something navemu does not model: every field but iTOW (where the message
+// has one) keeps its "nothing to report" value (what each one reports is beside its row in
+// kOutputs).
 template <class M>
-void emit_itow_only(const EpochView& e, std::vector<std::uint8_t>& out) {
+void emit_status(const EpochView& e, std::vector<std::uint8_t>& out) {
   M m;
-  m.i_tow_ms = e.i_tow;
+  if constexpr (requires { m.i_tow_ms; }) m.i_tow_ms = e.i_tow;
   append(m, out);
 }
 
@@ -792,6 +797,62 @@ void emit_nav_dgps(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavDgps m;
   m.i_tow_ms = e.i_tow;
   m.status = e.mode == ReceiverMode::kDgps ? 1 : 0;
+  append(m, out);
+}
+
+// RXM-MEASX (M8 32.18.2, F9 UBX-18010854 5.15.1): each tracked signal's pseudorange as RRLP
+// reports it (3GPP TS 44.031 A.3.2.6, "GPS Measurement Information"): the code phase is the
+// pseudorange modulo the 1 ms C/A code period, in chips (1023 per ms) with 1/1024 fractions and
+// again in 2^-21 ms; intCodePhase the whole milliseconds; the Doppler in 0.2 Hz and, times the
+// wavelength, in 0.04 m/s. RRLP's multipath indicator: low under 5 m of multipath error, medium
+// to 43 m, high above; its pseudorange RMS error index: 0.5 (1 + x/8) 2^y m (x the index's low
+// 3 bits, y the high 3), of the 0.32 m RXM-RAWX reports. The reference times of week are the
+// receiver's, in each system's time scale (GLONASS: UTC(SU) + 3 h; BeiDou: GPS - 14 s).
+std::uint8_t rrlp_multipath(double error_m) {
+  const double a = std::abs(error_m);
+  return a < 5.0 ? 1 : a < 43.0 ? 2 : 3;
+}
+std::uint8_t rrlp_rms_error_index(double sigma_m) {
+  for (int i = 0; i < 63; ++i)
+    if (sigma_m <= 0.5 * (1.0 + (i & 7) / 8.0) * std::ldexp(1.0, i >> 3)) return static_cast<std::uint8_t>(i);
+  return 63;
+}
+void emit_rxm_measx(const EpochView& e, std::vector<std::uint8_t>& out) {
+  constexpr std::uint32_t kWeek_ms = 604'800'000u;
+  constexpr double kPrSigma_m = 0.32;  // RXM-RAWX prStdev 5
+  const WeekTow rt = to_week_tow(e.meas.t_receiver);
+  const auto tow_ms = static_cast<std::uint32_t>(std::llround(rt.tow_s * 1000.0)) % kWeek_ms;
+  const auto shifted = [&](std::int64_t offset_ms) {
+    return static_cast<std::uint32_t>((tow_ms + offset_ms + kWeek_ms) % kWeek_ms);
+  };
+  RxmMeasx& m = reset_keeping_storage(e.lists.measx, &RxmMeasx::svs);
+  m.gps_tow_ms = m.qzss_tow_ms = tow_ms;
+  m.glo_tow_ms = shifted(3 * 3'600'000 - 1000 * static_cast<std::int64_t>(e.leap_s));
+  m.bds_tow_ms = shifted(-14'000);
+  const std::uint16_t acc = e.valid ? 1 : 0;  // the 20 ns of tAcc, rounded up to 2^-4 ms
+  m.gps_tow_acc_2m4ms = m.glo_tow_acc_2m4ms = m.bds_tow_acc_2m4ms = m.qzss_tow_acc_2m4ms = acc;
+  m.flags = e.valid ? 2 : 0;  // towSet
+  for (const SatMeasurement& s : e.meas.sats) {
+    if (!s.signals[0]) continue;
+    const SignalObs& o = *s.signals[0];
+    const double pr_ms = o.pseudorange_m / kSpeedOfLight_mps * 1e3;
+    const double whole_ms = std::floor(pr_ms);
+    const double frac_ms = pr_ms - whole_ms;
+    const auto frac_1024chips = static_cast<std::uint32_t>(std::floor(frac_ms * 1023.0 * 1024.0));
+    RxmMeasxSv v;
+    v.gnss_id = s.sat.ubx_gnss_id();
+    v.sv_id = s.sat.ubx_sv_id();
+    v.cno_dbhz = clamp_cast<std::uint8_t>(o.cn0_dbhz);
+    v.mpath_indic = rrlp_multipath(s.multipath_m);
+    v.doppler_200mhz = clamp_cast<std::int32_t>(o.doppler_hz / 0.2);
+    v.doppler_4cmps = clamp_cast<std::int32_t>(o.doppler_hz * kSpeedOfLight_mps / kBandFreq_Hz[0] / 0.04);
+    v.whole_chips = static_cast<std::uint16_t>(frac_1024chips / 1024);
+    v.frac_chips = static_cast<std::uint16_t>(frac_1024chips % 1024);
+    v.code_phase_2m21ms = static_cast<std::uint32_t>(std::floor(std::ldexp(frac_ms, 21)));
+    v.int_code_phase_ms = static_cast<std::uint8_t>(static_cast<std::int64_t>(whole_ms) & 0xFF);
+    v.pseu_range_rms_err = rrlp_rms_error_index(kPrSigma_m);
+    m.svs.push_back(v);
+  }
   append(m, out);
 }
 
@@ -837,6 +898,9 @@ namespace {
 constexpr UbxOutput kOutputs[] = {
     {kRxmRawx, "UBX_RXM_RAWX", true, true, &emit_rxm_rawx},
     {kRxmSfrbx, "UBX_RXM_SFRBX", true, true, &emit_rxm_sfrbx},
+    {kRxmMeasx, "UBX_RXM_MEASX", true, true, &emit_rxm_measx},
+    // RXM-IMES (M8 32.18.1): no IMES transmitter received.
+    {kRxmImes, "", true, false, &emit_status<RxmImes>},
     {kNavPosecef, "UBX_NAV_POSECEF", true, true, &emit_nav_posecef},
     {kNavPosllh, "UBX_NAV_POSLLH", true, true, &emit_nav_posllh},
     {kNavStatus, "UBX_NAV_STATUS", true, true, &emit_nav_status},
@@ -854,16 +918,16 @@ constexpr UbxOutput kOutputs[] = {
     {kNavSbas, "UBX_NAV_SBAS", true, true, &emit_nav_sbas},
     // NAV-SLAS (F9 HPG "UBX-NAV-SLAS"): no QZSS L1S signal tracked, so no ground monitoring
     // station and no corrections.
-    {kNavSlas, "UBX_NAV_SLAS", false, true, &emit_itow_only<NavSlas>},
+    {kNavSlas, "UBX_NAV_SLAS", false, true, &emit_status<NavSlas>},
     {kNavDgps, "", true, false, &emit_nav_dgps},
     // NAV-AOPSTATUS (M8 32.17.2): AssistNow Autonomous off (CFG-NAVX5 aopCfg's power-up value), idle.
-    {kNavAopstatus, "", true, false, &emit_itow_only<NavAopstatus>},
+    {kNavAopstatus, "", true, false, &emit_status<NavAopstatus>},
     {kNavHpposecef, "UBX_NAV_HPPOSECEF", false, true, &emit_nav_hpposecef},
     {kNavHpposllh, "UBX_NAV_HPPOSLLH", false, true, &emit_nav_hpposllh},
     {kNavCov, "UBX_NAV_COV", false, true, &emit_nav_cov},
     {kNavRelposned, "UBX_NAV_RELPOSNED", false, true, &emit_nav_relposned},
     // NAV-SVIN (M8 32.17.24, F9 5.14.17): no survey-in (time mode off, CFG-TMODE-MODE 0).
-    {kNavSvin, "UBX_NAV_SVIN", false, true, &emit_itow_only<NavSvin>},
+    {kNavSvin, "UBX_NAV_SVIN", false, true, &emit_status<NavSvin>},
     {kNavTimels, "UBX_NAV_TIMELS", true, true, &emit_nav_timels},
     {kNavTimebds, "UBX_NAV_TIMEBDS", true, true, &emit_nav_timebds},
     {kNavTimegal, "UBX_NAV_TIMEGAL", true, true, &emit_nav_timegal},
@@ -871,7 +935,7 @@ constexpr UbxOutput kOutputs[] = {
     {kNavOrb, "UBX_NAV_ORB", true, true, &emit_nav_orb},
     {kNavOdo, "UBX_NAV_ODO", true, true, &emit_nav_odo},
     // NAV-GEOFENCE (M8 32.17.7, F9 5.14.4): no geofence configured: status 0 "not available".
-    {kNavGeofence, "UBX_NAV_GEOFENCE", true, true, &emit_itow_only<NavGeofence>},
+    {kNavGeofence, "UBX_NAV_GEOFENCE", true, true, &emit_status<NavGeofence>},
     {kTimTp, "UBX_TIM_TP", true, true, &emit_tim_tp},
     {kTimTm2, "UBX_TIM_TM2", true, true, &emit_tim_tm2},
     {kTimVrfy, "UBX_TIM_VRFY", true, true, &emit_tim_vrfy},

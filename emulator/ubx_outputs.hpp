@@ -13,6 +13,7 @@
 #include "core/nav_data.hpp"
 #include "models/receiver.hpp"
 #include "models/measurement.hpp"
+#include "protocols/gps_lnav.hpp"
 #include "protocols/ubx_messages.hpp"
 
 namespace navemu {
@@ -24,6 +25,7 @@ struct UbxListScratch {
   ubx::NavSat sat;
   ubx::RxmRawx rawx;
   ubx::RxmSfrbx sfrbx;
+  ubx::RxmMeasx measx;
   ubx::MonRf rf;
   ubx::NavSig sig;
   ubx::NavOrb orb;
@@ -68,5 +70,13 @@ const UbxOutput* find_ubx_output(ubx::MsgId id);
 void emit_ubx_outputs(std::uint64_t due, const ReceiverFix& fix, const EpochMeasurements& meas,
                       const NavData& nav, ReceiverMode mode, const UbxDeviceStatus& status,
                       UbxListScratch& lists, std::vector<std::uint8_t>& out);
+
+// The GPS broadcast record of a satellite as IS-GPS-200 subframes 1-3 carry it (RXM-SFRBX,
+// AID-EPH).
+lnav::LnavEphemeris to_lnav(const GpsEphemeris& e);
+// The ionosphere and UTC parameters of subframe 4 page 18 (IS-GPS-200 20.3.3.5.1.6/7) as the
+// satellites broadcast them in week `week`: the file's Klobuchar coefficients, UTC(USNO) = GPS
+// - `leap_s`, no leap second announced (RXM-SFRBX, AID-HUI).
+lnav::LnavIonoUtc broadcast_iono_utc(const NavData& nav, int week, int leap_s);
 
 }  // namespace navemu

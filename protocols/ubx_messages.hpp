@@ -92,8 +92,10 @@ inline constexpr MsgId kNavAopstatus{kClassNav, 0x60};
 inline constexpr MsgId kNavEoe{kClassNav, 0x61};
 
 inline constexpr MsgId kRxmSfrbx{kClassRxm, 0x13};
+inline constexpr MsgId kRxmMeasx{kClassRxm, 0x14};
 inline constexpr MsgId kRxmRawx{kClassRxm, 0x15};
 inline constexpr MsgId kRxmRtcm{kClassRxm, 0x32};
+inline constexpr MsgId kRxmImes{kClassRxm, 0x61};
 
 inline constexpr MsgId kInfError{kClassInf, 0x00};
 inline constexpr MsgId kInfWarning{kClassInf, 0x01};
@@ -133,6 +135,17 @@ inline constexpr MsgId kCfgPms{kClassCfg, 0x86};
 inline constexpr MsgId kCfgValset{kClassCfg, 0x8A};
 inline constexpr MsgId kCfgValget{kClassCfg, 0x8B};
 inline constexpr MsgId kCfgValdel{kClassCfg, 0x8C};
+
+inline constexpr MsgId kUpdSos{kClassUpd, 0x14};
+
+inline constexpr MsgId kAidIni{kClassAid, 0x01};
+inline constexpr MsgId kAidHui{kClassAid, 0x02};
+inline constexpr MsgId kAidAlm{kClassAid, 0x30};
+inline constexpr MsgId kAidEph{kClassAid, 0x31};
+inline constexpr MsgId kAidAop{kClassAid, 0x33};
+
+inline constexpr MsgId kMgaAck{kClassMga, 0x60};
+inline constexpr MsgId kMgaDbd{kClassMga, 0x80};
 
 inline constexpr MsgId kMonIo{kClassMon, 0x02};
 inline constexpr MsgId kMonVer{kClassMon, 0x04};
@@ -744,6 +757,59 @@ struct RxmRtcm {
   std::uint16_t msg_type = 0;
 };
 
+// UBX-RXM-MEASX (0x02 0x14), 44 + 24 * numSV bytes (M8 32.18.2; ZED-F9P UBX-18010854 5.15.1):
+// the satellite measurements of RRLP (3GPP TS 44.031, "GPS Measurement Information"): per
+// satellite the code phase within the 1 ms code period and the Doppler, against the reference
+// time of week of each system.
+struct RxmMeasxSv {
+  std::uint8_t gnss_id = 0, sv_id = 0, cno_dbhz = 0;
+  std::uint8_t mpath_indic = 0;  // 0 not measured, 1 low, 2 medium, 3 high
+  std::int32_t doppler_4cmps = 0;   // Doppler as a velocity, 0.04 m/s
+  std::int32_t doppler_200mhz = 0;  // 0.2 Hz
+  std::uint16_t whole_chips = 0;  // code phase, whole chips 0..1022
+  std::uint16_t frac_chips = 0;   // and 1/1024 chips 0..1023
+  std::uint32_t code_phase_2m21ms = 0;  // the same fraction of a ms, 2^-21 ms
+  std::uint8_t int_code_phase_ms = 0;  // whole ms
+  std::uint8_t pseu_range_rms_err = 0;  // RRLP pseudorange RMS error index
+  std::array<std::uint8_t, 2> reserved5{};
+};
+struct RxmMeasx {
+  static constexpr MsgId kMsg = kRxmMeasx;
+  static constexpr std::size_t kHeaderSize = 44, kBlockSize = 24;
+  static constexpr std::uint8_t kTowSetMask = 0x03;  // flags: towSet, 0 not set, 1 or 2 set
+  std::uint8_t version = 1;
+  std::array<std::uint8_t, 3> reserved1{};
+  std::uint32_t gps_tow_ms = 0, glo_tow_ms = 0, bds_tow_ms = 0;
+  std::array<std::uint8_t, 4> reserved2{};
+  std::uint32_t qzss_tow_ms = 0;
+  std::uint16_t gps_tow_acc_2m4ms = 0, glo_tow_acc_2m4ms = 0, bds_tow_acc_2m4ms = 0;  // 2^-4 ms
+  std::array<std::uint8_t, 2> reserved3{};
+  std::uint16_t qzss_tow_acc_2m4ms = 0;
+  std::uint8_t flags = 0;
+  std::array<std::uint8_t, 8> reserved4{};
+  std::vector<RxmMeasxSv> svs;  // numSV = svs.size() (at most 255)
+};
+
+// UBX-RXM-IMES (0x02 0x61), 4 + 44 * numTx bytes (M8 32.18.1; not on protocol 27+): the Indoor
+// Messaging System transmitters received.
+struct RxmImesTx {
+  std::uint8_t reserved2 = 0, tx_id = 0;
+  std::array<std::uint8_t, 3> reserved3{};
+  std::uint8_t cno_dbhz = 0;
+  std::array<std::uint8_t, 2> reserved4{};
+  std::int32_t doppler_2m12hz = 0;
+  std::uint32_t position1_1 = 0, position1_2 = 0, position2_1 = 0;
+  std::int32_t lat = 0, lon = 0;  // 180/2^23 deg (position 2)
+  std::uint32_t short_id_frame = 0, medium_id_lsb = 0, medium_id_2 = 0;
+};
+struct RxmImes {
+  static constexpr MsgId kMsg = kRxmImes;
+  static constexpr std::size_t kHeaderSize = 4, kBlockSize = 44;
+  std::uint8_t version = 1;
+  std::array<std::uint8_t, 2> reserved1{};
+  std::vector<RxmImesTx> txs;  // numTx = txs.size() (at most 255)
+};
+
 // ---- INF -----------------------------------------------------------------------------------
 
 // UBX-INF-ERROR/WARNING/NOTICE/TEST/DEBUG (0x04 0x00..0x04), 0 + N bytes (M8 32.13, F9 5.10):
@@ -771,6 +837,108 @@ struct AckNak {
   static constexpr MsgId kMsg = kAckNak;
   static constexpr std::size_t kPayloadSize = 2;
   std::uint8_t cls_id = 0, msg_id = 0;
+};
+
+// ---- UPD, AID, MGA ------------------------------------------------------------------------
+
+// UBX-UPD-SOS (0x09 0x14) (ZED-F9P UBX-18010854 5.18.1; u-blox 8 protocol 15+ on flash parts):
+// the backup of the battery-backed RAM in flash. Input: the poll (empty; answered with the
+// "system restored" form), create (cmd 0) and clear (cmd 1), 4 bytes. Output, 8 bytes: the
+// backup creation acknowledgement (cmd 2; response 0 not acknowledged, 1 acknowledged) and
+// whether the system was restored from a backup at start-up (cmd 3; response 0 unknown,
+// 1 failed, 2 restored, 3 not restored: no backup).
+struct UpdSosCommand {
+  static constexpr MsgId kMsg = kUpdSos;
+  static constexpr std::uint8_t kCreate = 0, kClear = 1;
+  std::uint8_t cmd = 0;
+  std::array<std::uint8_t, 3> reserved1{};
+};
+struct UpdSos {
+  static constexpr MsgId kMsg = kUpdSos;
+  static constexpr std::size_t kPayloadSize = 8;
+  static constexpr std::uint8_t kCreationAck = 2, kRestored = 3;
+  std::uint8_t cmd = 0;
+  std::array<std::uint8_t, 3> reserved1{};
+  std::uint8_t response = 0;
+  std::array<std::uint8_t, 3> reserved2{};
+};
+
+// UBX-AID-INI (0x0B 0x01), 48 bytes (u-blox 8 UBX-13003221, UBX-AID-INI; not on protocol 27+):
+// the aiding position, time and clock drift; a poll (empty) is answered with the receiver's own.
+struct AidIni {
+  static constexpr MsgId kMsg = kAidIni;
+  static constexpr std::size_t kPayloadSize = 48;
+  // flags
+  static constexpr std::uint32_t kPos = 0x01, kTime = 0x02, kClockD = 0x04, kLla = 0x20;
+  std::int32_t ecef_x_or_lat = 0, ecef_y_or_lon = 0, ecef_z_or_alt = 0;  // cm (or 1e-7 deg)
+  std::uint32_t pos_acc_cm = 0;
+  std::uint16_t tm_cfg = 0;
+  std::uint16_t wno_or_date = 0;
+  std::uint32_t tow_or_time_ms = 0;
+  std::int32_t tow_ns = 0;
+  std::uint32_t t_acc_ms = 0, t_acc_ns = 0;
+  std::int32_t clk_d_or_freq = 0;          // ns/s (or 1e-2 Hz)
+  std::uint32_t clk_d_acc_or_freq_acc = 0;  // ns/s (or ppb)
+  std::uint32_t flags = 0;
+};
+
+// UBX-AID-HUI (0x0B 0x02), 72 bytes (u-blox 8, UBX-AID-HUI): GPS health, UTC and Klobuchar
+// parameters as the satellites broadcast them (IS-GPS-200 20.3.3.5.1.6/7), in SI units.
+struct AidHui {
+  static constexpr MsgId kMsg = kAidHui;
+  static constexpr std::size_t kPayloadSize = 72;
+  static constexpr std::uint32_t kHealthValid = 0x01, kUtcValid = 0x02, kKlobValid = 0x04;
+  std::uint32_t health = 0;  // bit n-1: SV n healthy
+  double utc_a0_s = 0.0, utc_a1_sps = 0.0;
+  std::int32_t utc_tow_s = 0;
+  std::int16_t utc_wnt = 0, utc_ls_s = 0, utc_wnf = 0, utc_dn = 0, utc_lsf_s = 0, utc_spare = 0;
+  std::array<float, 4> klob_a{}, klob_b{};  // s, s/semicircle, s/semicircle^2, s/semicircle^3
+  std::uint32_t flags = 0;
+};
+
+// UBX-AID-ALM (0x0B 0x30) and UBX-AID-EPH (0x0B 0x31) (u-blox 8): a GPS satellite's almanac
+// (8 or 40 bytes) and ephemeris (8 or 104 bytes). The words are those after the HOW (words
+// 3..10) of the almanac page and of subframes 1-3, parity removed, the 24 data bits in bits
+// 0..23. Without data only the first two fields are sent: week 0 (ALM), how 0 (EPH). A poll is
+// empty (all 32 satellites) or names one satellite (1 byte, AidSvPoll).
+struct AidAlm {
+  static constexpr MsgId kMsg = kAidAlm;
+  std::uint32_t svid = 0, week = 0;
+  bool has_data = false;
+  std::array<std::uint32_t, 8> dwrd{};
+};
+struct AidEph {
+  static constexpr MsgId kMsg = kAidEph;
+  std::uint32_t svid = 0, how = 0;
+  bool has_data = false;
+  std::array<std::uint32_t, 8> sf1d{}, sf2d{}, sf3d{};
+};
+template <std::uint8_t Id>
+struct AidSvPoll {
+  static constexpr MsgId kMsg{kClassAid, Id};
+  std::uint8_t svid = 0;
+};
+using AidAlmPoll = AidSvPoll<kAidAlm.id>;
+using AidEphPoll = AidSvPoll<kAidEph.id>;
+using AidAopPoll = AidSvPoll<kAidAop.id>;
+
+// UBX-MGA-ACK-DATA0 (0x13 0x60), 8 bytes (ZED-F9P UBX-18010854 5.12.1; u-blox 8): an assistance
+// message taken (type 1) or not (type 0, infoCode why), with the first 4 bytes of its payload;
+// after an MGA-DBD dump, msgPayloadStart counts the MGA-DBD messages sent.
+struct MgaAck {
+  static constexpr MsgId kMsg = kMgaAck;
+  static constexpr std::size_t kPayloadSize = 8;
+  std::uint8_t type = 1, version = 0, info_code = 0, msg_id = 0;
+  std::uint32_t msg_payload_start = 0;
+};
+
+// UBX-MGA-DBD (0x13 0x80), 12 + N bytes (ZED-F9P UBX-18010854 5.12.3; u-blox 8): one entry of
+// the navigation database, its data firmware-specific (only for the receiver that made it).
+struct MgaDbd {
+  static constexpr MsgId kMsg = kMgaDbd;
+  static constexpr std::size_t kHeaderSize = 12;
+  std::array<std::uint8_t, 12> reserved1{};
+  std::vector<std::uint8_t> data;
 };
 
 // ---- MON -----------------------------------------------------------------------------------
@@ -1721,6 +1889,69 @@ struct Descriptions : Describing {
           u1(&RxmSfrbx::chn, "chn"), u1(&RxmSfrbx::version, "version"),
           u1(&RxmSfrbx::reserved2, "reserved2"),
           block(&RxmSfrbx::words, self<Wire::kU4, std::uint32_t>("dwrd"))),
+      describe<RxmMeasx>(kRxmMeasx, "RXM-MEASX", Length::kExact,
+          u1(&RxmMeasx::version, "version"), u1(&RxmMeasx::reserved1, "reserved1"),
+          u4(&RxmMeasx::gps_tow_ms, "gpsTOW", 1e-3), u4(&RxmMeasx::glo_tow_ms, "gloTOW", 1e-3),
+          u4(&RxmMeasx::bds_tow_ms, "bdsTOW", 1e-3), u1(&RxmMeasx::reserved2, "reserved2"),
+          u4(&RxmMeasx::qzss_tow_ms, "qzssTOW", 1e-3),
+          u2(&RxmMeasx::gps_tow_acc_2m4ms, "gpsTOWacc", 0x1p-4 * 1e-3),
+          u2(&RxmMeasx::glo_tow_acc_2m4ms, "gloTOWacc", 0x1p-4 * 1e-3),
+          u2(&RxmMeasx::bds_tow_acc_2m4ms, "bdsTOWacc", 0x1p-4 * 1e-3), u1(&RxmMeasx::reserved3, "reserved3"),
+          u2(&RxmMeasx::qzss_tow_acc_2m4ms, "qzssTOWacc", 0x1p-4 * 1e-3), count("numSV"),
+          x1(&RxmMeasx::flags, "flags"), u1(&RxmMeasx::reserved4, "reserved4"),
+          block(&RxmMeasx::svs, u1(&RxmMeasxSv::gnss_id, "gnssId"), u1(&RxmMeasxSv::sv_id, "svId"),
+                u1(&RxmMeasxSv::cno_dbhz, "cNo"), u1(&RxmMeasxSv::mpath_indic, "mpathIndic"),
+                i4(&RxmMeasxSv::doppler_4cmps, "dopplerMS", 0.04),
+                i4(&RxmMeasxSv::doppler_200mhz, "dopplerHz", 0.2),
+                u2(&RxmMeasxSv::whole_chips, "wholeChips"), u2(&RxmMeasxSv::frac_chips, "fracChips"),
+                u4(&RxmMeasxSv::code_phase_2m21ms, "codePhase", 0x1p-21 * 1e-3),
+                u1(&RxmMeasxSv::int_code_phase_ms, "intCodePhase", 1e-3),
+                u1(&RxmMeasxSv::pseu_range_rms_err, "pseuRangeRMSErr"),
+                u1(&RxmMeasxSv::reserved5, "reserved5"))),
+      describe<RxmImes>(kRxmImes, "RXM-IMES", Length::kExact,
+          count("numTx"), u1(&RxmImes::version, "version"), u1(&RxmImes::reserved1, "reserved1"),
+          block(&RxmImes::txs, u1(&RxmImesTx::reserved2, "reserved2"), u1(&RxmImesTx::tx_id, "txId"),
+                u1(&RxmImesTx::reserved3, "reserved3"), u1(&RxmImesTx::cno_dbhz, "cno"),
+                u1(&RxmImesTx::reserved4, "reserved4"), i4(&RxmImesTx::doppler_2m12hz, "doppler", 0x1p-12),
+                x4(&RxmImesTx::position1_1, "position1_1"), x4(&RxmImesTx::position1_2, "position1_2"),
+                x4(&RxmImesTx::position2_1, "position2_1"), i4(&RxmImesTx::lat, "lat"),
+                i4(&RxmImesTx::lon, "lon"), x4(&RxmImesTx::short_id_frame, "shortIdFrame"),
+                u4(&RxmImesTx::medium_id_lsb, "mediumIdLSB"), x4(&RxmImesTx::medium_id_2, "mediumId_2"))),
+      describe<UpdSosCommand>(kUpdSos, "UPD-SOS", Length::kExact,
+          u1(&UpdSosCommand::cmd, "cmd"), u1(&UpdSosCommand::reserved1, "reserved1")),
+      describe<UpdSos>(kUpdSos, "UPD-SOS", Length::kExact,
+          u1(&UpdSos::cmd, "cmd"), u1(&UpdSos::reserved1, "reserved1"),
+          u1(&UpdSos::response, "response"), u1(&UpdSos::reserved2, "reserved2")),
+      describe<AidIni>(kAidIni, "AID-INI", Length::kExact,
+          i4(&AidIni::ecef_x_or_lat, "ecefXOrLat"), i4(&AidIni::ecef_y_or_lon, "ecefYOrLon"),
+          i4(&AidIni::ecef_z_or_alt, "ecefZOrAlt"), u4(&AidIni::pos_acc_cm, "posAcc", 1e-2),
+          x2(&AidIni::tm_cfg, "tmCfg"), u2(&AidIni::wno_or_date, "wnoOrDate"),
+          u4(&AidIni::tow_or_time_ms, "towOrTime", 1e-3), i4(&AidIni::tow_ns, "towNs", 1e-9),
+          u4(&AidIni::t_acc_ms, "tAccMs", 1e-3), u4(&AidIni::t_acc_ns, "tAccNs", 1e-9),
+          i4(&AidIni::clk_d_or_freq, "clkDOrFreq"), u4(&AidIni::clk_d_acc_or_freq_acc, "clkDAccOrFreqAcc"),
+          x4(&AidIni::flags, "flags")),
+      describe<AidHui>(kAidHui, "AID-HUI", Length::kExact,
+          x4(&AidHui::health, "health"), r8(&AidHui::utc_a0_s, "utcA0"), r8(&AidHui::utc_a1_sps, "utcA1"),
+          i4(&AidHui::utc_tow_s, "utcTOW"), i2(&AidHui::utc_wnt, "utcWNT"), i2(&AidHui::utc_ls_s, "utcLS"),
+          i2(&AidHui::utc_wnf, "utcWNF"), i2(&AidHui::utc_dn, "utcDN"), i2(&AidHui::utc_lsf_s, "utcLSF"),
+          i2(&AidHui::utc_spare, "utcSpare"), r4(&AidHui::klob_a, "klobA"), r4(&AidHui::klob_b, "klobB"),
+          x4(&AidHui::flags, "flags")),
+      describe<AidAlmPoll>(kAidAlm, "AID-ALM", Length::kExact, u1(&AidAlmPoll::svid, "svid")),
+      describe<AidAlm>(kAidAlm, "AID-ALM", Length::kExact,
+          u4(&AidAlm::svid, "svid"), u4(&AidAlm::week, "week"),
+          optional(&AidAlm::has_data, u4(&AidAlm::dwrd, "dwrd"))),
+      describe<AidEphPoll>(kAidEph, "AID-EPH", Length::kExact, u1(&AidEphPoll::svid, "svid")),
+      describe<AidEph>(kAidEph, "AID-EPH", Length::kExact,
+          u4(&AidEph::svid, "svid"), x4(&AidEph::how, "how"),
+          optional(&AidEph::has_data, u4(&AidEph::sf1d, "sf1d"), u4(&AidEph::sf2d, "sf2d"),
+                   u4(&AidEph::sf3d, "sf3d"))),
+      describe<AidAopPoll>(kAidAop, "AID-AOP", Length::kExact, u1(&AidAopPoll::svid, "svid")),
+      describe<MgaAck>(kMgaAck, "MGA-ACK", Length::kExact,
+          u1(&MgaAck::type, "type"), u1(&MgaAck::version, "version"), u1(&MgaAck::info_code, "infoCode"),
+          u1(&MgaAck::msg_id, "msgId"), u4(&MgaAck::msg_payload_start, "msgPayloadStart")),
+      describe<MgaDbd>(kMgaDbd, "MGA-DBD", Length::kExact,
+          u1(&MgaDbd::reserved1, "reserved1"),
+          block_to_end<Repeat::kAll>(&MgaDbd::data, self<Wire::kU1, std::uint8_t>("data"))),
       describe<AckAck>(kAckAck, "ACK-ACK", Length::kExact,
           u1(&AckAck::cls_id, "clsID"), u1(&AckAck::msg_id, "msgID")),
       describe<AckNak>(kAckNak, "ACK-NAK", Length::kExact,

@@ -18,6 +18,7 @@
 
 #include "emulator/ubx_device.hpp"
 #include "models/constellation.hpp"
+#include "models/ephemeris.hpp"
 #include "models/receiver.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/nmea.hpp"
@@ -1549,6 +1550,237 @@ TEST_F(UbxDeviceTest, NmeaVersionAndTalkerFollowTheirItems) {
   EXPECT_EQ(rmc.size(), 12u);
   EXPECT_EQ(rmc[0], "GNRMC");
   EXPECT_EQ(sentence("GGA")[0], "GNGGA");
+}
+
+
+// One epoch of the receiver model on the nominal constellation, encoded by `d`, for the tests
+// of what the device keeps between epochs (aiding data, raw measurements).
+struct ModelEpoch {
+  NavData nav = nominal_constellation(kT0);
+  ReceiverFix fix;
+  EpochMeasurements meas;
+  explicit ModelEpoch(const GnssProfile& p) {
+    ReceiverParams rp;
+    apply_receiver_class(rp.measurement, p.receiver_class);
+    rp.measurement.elevation_mask_deg = p.elevation_mask_deg;
+    Receiver rx(nav, rp);
+    ImuTruth truth;
+    truth.position = Geodetic{32.3, -90.9, 60.0};
+    truth.t = kT0;
+    fix = rx.update(kT0, &truth);
+    meas = rx.measurements();
+  }
+};
+
+// A 24-bit field of the AID data words (words 3..10 of a subframe, parity removed, data bits
+// d1..d24 in bits 23..0): `bits` bits from IS-GPS-200 bit `first` (1-based within the word).
+std::uint32_t bits_of(std::uint32_t word, int first, int bits) {
+  return (word >> (24 - first - bits + 1)) & ((1u << bits) - 1u);
+}
+
+// AID-EPH, AID-ALM, AID-HUI, AID-INI and AID-AOP polls of the u-blox 8 (UBX-13003221, the AID
+// messages), checked field by field against the bit positions of IS-GPS-200 (Figure 20-1,
+// Tables 20-I/III/VI): a tracked satellite's ephemeris (week, IODE, e, sqrt(A)), an almanac
+// page's data ID, SV ID and elements, the Klobuchar and UTC values of the file, the fix.
+TEST_F(UbxDeviceTest, AidPollsAnswerFromTheNavigationDataInUse) {
+  const ModelEpoch e(m8_);
+  ASSERT_EQ(e.fix.fix, FixType::k3D);
+  UbxDevice d(m8_, ReceiverMode::kStandalone, e.nav);
+  std::string epoch;
+  d.encode_epoch(e.fix, e.meas, 0, epoch);
+  const int week = to_week_tow(kT0).week;
+
+  // AID-EPH: 32 answers to the poll of all; 104 bytes for each tracked satellite, 8 otherwise.
+  const std::vector<Frame> eph = frames_of(send(d, poll(ubx::kAidEph)));
+  ASSERT_EQ(eph.size(), 32u);
+  std::size_t with_data = 0;
+  for (std::size_t i = 0; i < eph.size(); ++i) {
+    ubx::AidEph m;
+    ASSERT_TRUE(eph[i].id == ubx::kAidEph && ubx::decode(eph[i].payload, m));
+    EXPECT_EQ(m.svid, i + 1);
+    const auto s = std::find_if(e.meas.sats.begin(), e.meas.sats.end(),
+                                [&](const SatMeasurement& x) { return x.sat == gps_sat(static_cast<int>(i + 1)); });
+    if (s == e.meas.sats.end()) {
+      EXPECT_EQ(eph[i].payload.size(), 8u);
+      EXPECT_EQ(m.how, 0u);
+      continue;
+    }
+    ++with_data;
+    ASSERT_EQ(eph[i].payload.size(), 104u);
+    const GpsEphemeris& r = *s->eph;
+    EXPECT_EQ(bits_of(m.how, 20, 3), 1u);                                          // subframe ID 1
+    EXPECT_EQ(bits_of(m.sf1d[0], 1, 10), static_cast<std::uint32_t>(to_week_tow(r.toe).week % 1024));
+    EXPECT_EQ(bits_of(m.sf2d[0], 1, 8), static_cast<std::uint32_t>(r.iode & 0xFF));  // word 3: IODE
+    EXPECT_EQ(bits_of(m.sf3d[7], 1, 8), static_cast<std::uint32_t>(r.iode & 0xFF));  // word 10: IODE
+    const double ecc = std::ldexp(static_cast<double>(bits_of(m.sf2d[3], 17, 8) << 24 | m.sf2d[4]), -33);
+    const double sqrt_a = std::ldexp(static_cast<double>(bits_of(m.sf2d[5], 17, 8) << 24 | m.sf2d[6]), -19);
+    EXPECT_NEAR(ecc, r.e, 0x1p-33);
+    EXPECT_NEAR(sqrt_a, r.sqrt_a_sqrtm, 0x1p-19);
+    for (std::uint32_t w : m.sf1d) EXPECT_EQ(w >> 24, 0u);
+  }
+  EXPECT_GE(with_data, 4u);
+  const std::vector<Frame> one = frames_of(send(d, raw_frame(ubx::kAidEph, {eph.back().payload[0]})));
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].payload, eph.back().payload);
+  EXPECT_TRUE(frames_of(send(d, raw_frame(ubx::kAidEph, {33}))).empty());
+
+  // AID-ALM: the almanac page of each satellite with a record (subframe 5 page n for SV n <= 24,
+  // subframe 4 for 25..32): data ID 01, the SV ID, e (2^-21) and sqrt(A) (2^-11).
+  const std::vector<Frame> alm = frames_of(send(d, poll(ubx::kAidAlm)));
+  ASSERT_EQ(alm.size(), 32u);
+  for (std::size_t i = 0; i < alm.size(); ++i) {
+    ubx::AidAlm m;
+    ASSERT_TRUE(ubx::decode(alm[i].payload, m));
+    const GpsEphemeris* r = select_ephemeris(e.nav, gps_sat(static_cast<int>(i + 1)), kT0);
+    if (r == nullptr) {
+      EXPECT_EQ(alm[i].payload.size(), 8u);
+      EXPECT_EQ(m.week, 0u);
+      continue;
+    }
+    ASSERT_EQ(alm[i].payload.size(), 40u);
+    EXPECT_EQ(m.week, static_cast<std::uint32_t>(week));
+    EXPECT_EQ(bits_of(m.dwrd[0], 1, 2), 1u);
+    EXPECT_EQ(bits_of(m.dwrd[0], 3, 6), i + 1);
+    EXPECT_NEAR(std::ldexp(bits_of(m.dwrd[0], 9, 16), -21), r->e, 0x1p-21);
+    EXPECT_NEAR(std::ldexp(m.dwrd[3], -11), r->sqrt_a_sqrtm, 0x1p-11);
+  }
+
+  // AID-HUI: the file's Klobuchar coefficients, GPS - UTC = 15 s in 2010, every satellite of
+  // the file healthy.
+  const std::vector<Frame> hui = frames_of(send(d, poll(ubx::kAidHui)));
+  ubx::AidHui h;
+  ASSERT_EQ(hui.size(), 1u);
+  ASSERT_TRUE(ubx::decode(hui[0].payload, h));
+  EXPECT_EQ(h.utc_ls_s, 15);
+  EXPECT_EQ(h.flags & 0x03u, 0x03u);
+  for (int n = 1; n <= 32; ++n)
+    EXPECT_EQ((h.health >> (n - 1)) & 1u, select_ephemeris(e.nav, gps_sat(n), kT0) ? 1u : 0u) << n;
+  if (e.nav.klobuchar) {
+    EXPECT_FLOAT_EQ(h.klob_a[1], static_cast<float>(e.nav.klobuchar->alpha[1]));
+    EXPECT_FLOAT_EQ(h.klob_b[3], static_cast<float>(e.nav.klobuchar->beta[3]));
+  }
+
+  // AID-INI: the fix, in cm of ECEF, with its GPS week and time of week.
+  const std::vector<Frame> ini = frames_of(send(d, poll(ubx::kAidIni)));
+  ubx::AidIni i0;
+  ASSERT_EQ(ini.size(), 1u);
+  ASSERT_TRUE(ubx::decode(ini[0].payload, i0));
+  EXPECT_NEAR(i0.ecef_x_or_lat * 0.01, e.fix.p_ecef_m.x(), 0.006);
+  EXPECT_NEAR(i0.ecef_z_or_alt * 0.01, e.fix.p_ecef_m.z(), 0.006);
+  EXPECT_EQ(i0.wno_or_date, week);
+  EXPECT_EQ(i0.tow_or_time_ms, static_cast<std::uint32_t>(std::llround(to_week_tow(kT0).tow_s * 1000.0)));
+  EXPECT_EQ(i0.flags & 0x27u, 0x07u);  // position, time and drift valid; ECEF
+
+  // AID-AOP: AssistNow Autonomous off, so each satellite's poll request comes back.
+  const std::vector<Frame> aop = frames_of(send(d, poll(ubx::kAidAop)));
+  ASSERT_EQ(aop.size(), 32u);
+  for (std::size_t i = 0; i < aop.size(); ++i) EXPECT_EQ(aop[i].payload, std::vector<std::uint8_t>{static_cast<std::uint8_t>(i + 1)});
+
+  // The F9P has no AID messages: no answer.
+  UbxDevice f9(f9p_, ReceiverMode::kStandalone, e.nav);
+  f9.encode_epoch(e.fix, e.meas, 0, epoch);
+  for (ubx::MsgId id : {ubx::kAidIni, ubx::kAidHui, ubx::kAidAlm, ubx::kAidEph, ubx::kAidAop})
+    EXPECT_TRUE(frames_of(send(f9, poll(id))).empty());
+}
+
+// MGA-DBD (UBX-18010854 5.12.3): the dump is one entry per tracked GPS satellite, then MGA-ACK
+// (type 1, msgId 0x80) whose msgPayloadStart counts the entries; UPD-SOS (5.18.1) on the F9P:
+// "not restored" at power-up, "acknowledged" for a backup, "restored" after the next reset, and
+// nothing on the M8 (a ROM part).
+TEST_F(UbxDeviceTest, NavigationDatabaseDumpAndFlashBackup) {
+  const ModelEpoch e(f9p_);
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    SCOPED_TRACE(p->name);
+    UbxDevice d(*p, ReceiverMode::kStandalone, e.nav);
+    std::string epoch;
+    d.encode_epoch(e.fix, e.meas, 0, epoch);
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kMgaDbd)));
+    ASSERT_FALSE(f.empty());
+    ubx::MgaAck ack;
+    ASSERT_TRUE(f.back().id == ubx::kMgaAck && ubx::decode(f.back().payload, ack));
+    EXPECT_EQ(ack.type, 1);
+    EXPECT_EQ(ack.msg_id, 0x80);
+    EXPECT_EQ(ack.msg_payload_start, f.size() - 1);
+    EXPECT_EQ(f.size() - 1, e.meas.sats.size());
+    for (std::size_t i = 0; i + 1 < f.size(); ++i) {
+      ubx::MgaDbd dbd;
+      ASSERT_TRUE(f[i].id == ubx::kMgaDbd && ubx::decode(f[i].payload, dbd));
+      ASSERT_EQ(dbd.data.size(), 105u);
+      EXPECT_EQ(dbd.data[0], 1);
+      ubx::AidEph m;
+      ASSERT_TRUE(ubx::decode(std::span(dbd.data).subspan(1), m));
+      EXPECT_TRUE(m.has_data);
+      EXPECT_TRUE(e.meas.sats[i].sat == gps_sat(static_cast<int>(m.svid)));
+    }
+  }
+  UbxDevice m8(m8_, ReceiverMode::kStandalone, e.nav);
+  EXPECT_TRUE(frames_of(send(m8, poll(ubx::kUpdSos))).empty());
+
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, e.nav);
+  std::string epoch;
+  d.encode_epoch(e.fix, e.meas, 0, epoch);
+  const auto sos = [&](const std::vector<std::uint8_t>& bytes) {
+    const std::vector<Frame> f = frames_of(send(d, bytes));
+    ubx::UpdSos m;
+    EXPECT_EQ(f.size(), 1u);
+    EXPECT_TRUE(!f.empty() && ubx::decode(f[0].payload, m));
+    return std::pair{int{m.cmd}, int{m.response}};
+  };
+  const auto reset = [&] { send(d, frame(ubx::CfgRst{ubx::CfgRst::kHotStart, ubx::CfgRst::kHardwareReset})); };
+  EXPECT_EQ(sos(poll(ubx::kUpdSos)), std::pair(3, 3));  // not restored: no backup
+  EXPECT_EQ(sos(raw_frame(ubx::kUpdSos, {0, 0, 0, 0})), std::pair(2, 1));  // backup acknowledged
+  EXPECT_EQ(sos(poll(ubx::kUpdSos)), std::pair(3, 3));  // until the next start
+  reset();
+  EXPECT_EQ(sos(poll(ubx::kUpdSos)), std::pair(3, 2));  // restored from the backup
+  EXPECT_TRUE(frames_of(send(d, raw_frame(ubx::kUpdSos, {1, 0, 0, 0}))).empty());  // clear: no answer
+  reset();
+  EXPECT_EQ(sos(poll(ubx::kUpdSos)), std::pair(3, 3));
+}
+
+// RXM-MEASX (M8 32.18.4, UBX-18010854 5.15.1): per tracked signal the code phase and Doppler of
+// RRLP (3GPP TS 44.031), checked against RXM-RAWX of the same epoch: the whole ms plus the code
+// phase is the pseudorange (to 2^-21 ms, 0.14 m), the chips (1023 per ms, in 1/1024) are the
+// same fraction, dopplerHz is doMes in 0.2 Hz and dopplerMS the same times the L1 wavelength.
+TEST_F(UbxDeviceTest, RxmMeasxIsTheRawMeasurementInRrlpUnits) {
+  const ModelEpoch e(f9p_);
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, e.nav);
+  std::string epoch;
+  d.encode_epoch(e.fix, e.meas, 0, epoch);
+  const std::vector<Frame> fx = frames_of(send(d, poll(ubx::kRxmMeasx)));
+  const std::vector<Frame> fr = frames_of(send(d, poll(ubx::kRxmRawx)));
+  ubx::RxmMeasx mx;
+  ubx::RxmRawx raw;
+  ASSERT_EQ(fx.size(), 1u);
+  ASSERT_EQ(fr.size(), 1u);
+  ASSERT_TRUE(ubx::decode(fx[0].payload, mx));
+  ASSERT_TRUE(ubx::decode(fr[0].payload, raw));
+  EXPECT_EQ(mx.version, 1);
+  EXPECT_EQ(mx.flags & ubx::RxmMeasx::kTowSetMask, 2);
+  EXPECT_EQ(mx.gps_tow_ms, static_cast<std::uint32_t>(std::llround(raw.rcv_tow_s * 1000.0)));
+  EXPECT_EQ(mx.bds_tow_ms, mx.gps_tow_ms - 14'000);  // BDT = GPST - 14 s
+  EXPECT_EQ(mx.glo_tow_ms, mx.gps_tow_ms + 3 * 3'600'000 - 15'000);  // UTC(SU) + 3 h, 15 s leap
+  ASSERT_EQ(mx.svs.size(), raw.meas.size());
+  ASSERT_GE(mx.svs.size(), 4u);
+  constexpr double kC = 299'792'458.0;
+  const double lambda_m = kC / 1575.42e6;
+  for (std::size_t i = 0; i < mx.svs.size(); ++i) {
+    const ubx::RxmMeasxSv& s = mx.svs[i];
+    const ubx::RxmRawxMeas& r = raw.meas[i];
+    SCOPED_TRACE(int{s.sv_id});
+    EXPECT_EQ(s.gnss_id, r.gnss_id);
+    EXPECT_EQ(s.sv_id, r.sv_id);
+    EXPECT_EQ(s.cno_dbhz, r.cno_dbhz);
+    EXPECT_LT(s.whole_chips, 1023);
+    EXPECT_LT(s.frac_chips, 1024);
+    const double frac_ms = std::ldexp(s.code_phase_2m21ms, -21);
+    EXPECT_LT(frac_ms, 1.0);
+    EXPECT_NEAR((s.int_code_phase_ms + frac_ms) * 1e-3 * kC, r.pr_mes_m, std::ldexp(1.0, -21) * 1e-3 * kC);
+    EXPECT_NEAR((s.whole_chips + s.frac_chips / 1024.0) / 1023.0, frac_ms, 1.0 / 1023.0 / 1024.0);
+    EXPECT_NEAR(s.doppler_200mhz * 0.2, r.do_mes_hz, 0.1);
+    EXPECT_NEAR(s.doppler_4cmps * 0.04, r.do_mes_hz * lambda_m, 0.02);
+    EXPECT_GE(s.mpath_indic, 1);
+    EXPECT_EQ(s.pseu_range_rms_err, 0);  // 0.32 m: under 0.5 m
+  }
 }
 
 }  // namespace

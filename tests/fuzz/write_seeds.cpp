@@ -163,6 +163,20 @@ void ubx_seeds(const fs::path& dir) {
     ubx::append_poll(id, legacy);
   write_ubx(dir, "cfg-legacy", legacy);
 
+  // Aiding data, the navigation database and its backup: the AID polls of all satellites and of
+  // one, the MGA-DBD dump, UPD-SOS poll, create and clear, a reset between, RXM-MEASX.
+  std::vector<std::uint8_t> aiding;
+  for (const ubx::MsgId id : {ubx::kAidIni, ubx::kAidHui, ubx::kAidAlm, ubx::kAidEph, ubx::kAidAop,
+                              ubx::kMgaDbd, ubx::kUpdSos, ubx::kRxmMeasx, ubx::kRxmImes})
+    ubx::append_poll(id, aiding);
+  for (const ubx::MsgId id : {ubx::kAidAlm, ubx::kAidEph, ubx::kAidAop})
+    ubx::append_frame(id.cls, id.id, std::vector<std::uint8_t>{7}, aiding);
+  ubx::append(ubx::UpdSosCommand{ubx::UpdSosCommand::kCreate, {}}, aiding);
+  ubx::append(ubx::CfgRst{ubx::CfgRst::kHotStart, ubx::CfgRst::kHardwareReset, 0}, aiding);
+  ubx::append_poll(ubx::kUpdSos, aiding);
+  ubx::append(ubx::UpdSosCommand{ubx::UpdSosCommand::kClear, {}}, aiding);
+  write_ubx(dir, "aiding", aiding);
+
   // NMEA commands and noise between frames, and a frame cut short.
   std::vector<std::uint8_t> mixed;
   for (const char c : std::string_view("$PUBX,40,GSV,0,0,0,0,0,0*59\r\n$GPGGA,,*56\r\n\xB5\x62\x06"))

@@ -1197,7 +1197,7 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
     const auto r = static_cast<std::uint32_t>(rng());
     return static_cast<std::uint8_t>(r % 4 == 0 ? (r >> 8) % 2 : r >> 16);
   };
-  ASSERT_EQ(messages().size(), 97u);
+  ASSERT_EQ(messages().size(), 110u);
   for (const MessageInfo& m : messages()) {
     SCOPED_TRACE(m.name);
     int decoded = 0;
@@ -1219,8 +1219,10 @@ TEST(UbxDescriptions, EveryDescribedMessageRoundTrips) {
           for (std::size_t k = cfg_value_size(key); k > 0; --k) p.push_back(byte());
         }
       } else {
-        // Beyond the fixed part: none, part or all of the optional groups, and a byte or two.
-        extra = rng() % (m.optional_size + 3);
+        // Beyond the fixed part: none, all of the optional groups, or any number of bytes up to
+        // two more than them (part of the groups, a byte or two too many).
+        const std::size_t form = rng() % 3;
+        extra = form == 0 ? 0 : form == 1 ? m.optional_size : rng() % (m.optional_size + 3);
         for (std::size_t i = 0; i < extra; ++i) p.push_back(byte());
       }
       Bytes out;
