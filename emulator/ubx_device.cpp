@@ -68,7 +68,7 @@ std::vector<std::pair<std::uint32_t, std::uint64_t>> profile_defaults(const Gnss
   add(item("CFG-UART1-BAUDRATE"), static_cast<std::uint64_t>(p.baud));
   add(item("CFG-RATE-MEAS"), static_cast<std::uint64_t>(std::lround(1000.0 / p.rate_hz)));
   add(item("CFG-NAVSPG-INFIL_MINELEV"), static_cast<std::uint64_t>(std::lround(p.elevation_mask_deg)));
-  for (std::uint8_t port : {kPortDdc, kPortUart1, kPortUsb, kPortSpi}) {
+  for (std::uint8_t port : kPortsButUart2) {
     const std::string suffix = std::string("_") + kPortNames[port];
     add(proto_item(port, false, "NMEA"), p.ubx->nmea_out ? 1 : 0);
     for (const auto& id_name : kNmeaIds) {
@@ -161,6 +161,7 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
   lists_.svinfo.channels.reserve(kDefinedSatellites);
   lists_.sat.svs.reserve(kDefinedSatellites);
   lists_.rawx.meas.reserve(kDefinedSatellites);
+  lists_.measx.svs.reserve(kDefinedSatellites);
   lists_.rf.blocks.reserve(2);
   lists_.sig.signals.reserve(2 * kDefinedSatellites);
   lists_.orb.svs.reserve(255);
@@ -171,7 +172,7 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
   // the ports profile_defaults() sets.
   const auto keep = [&](MsgId id, int rate) {
     if (msgout_key(id, kPortUart1)) return;
-    for (std::uint8_t port : {kPortDdc, kPortUart1, kPortUsb, kPortSpi})
+    for (std::uint8_t port : kPortsButUart2)
       other_rates_[key(id)][port] = static_cast<std::uint8_t>(rate);
   };
   for (const auto& [name, rate] : profile_.ubx->messages)
@@ -183,10 +184,44 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
   scratch_.reserve(8192);
 }
 
-std::uint32_t UbxDevice::msgout_key(MsgId id, std::uint8_t port) const {
-  if (port >= kReceiverPorts) return 0;
+namespace {
+
+// The CFG-MSGOUT item of a message on a port, by name (0: none).
+std::uint32_t msgout_item(MsgId id, std::uint8_t port) {
   const std::string n = msgout_name(id);
   return n.empty() ? 0 : item("CFG-MSGOUT-" + n + "_" + kPortNames[port]);
+}
+
+// Those of the messages refresh() reads the rates of, looked up once (the key database is
+// searched by name): by port, the outputs in the order of ubx_outputs(), then kNmeaIds.
+constexpr std::size_t kMaxOutputs = 64;  // one bit each in emit_ubx_outputs()
+using MsgoutItems = std::array<std::array<std::uint32_t, kMaxOutputs + std::size(kNmeaIds)>, kReceiverPorts>;
+const MsgoutItems& cached_msgout_items() {
+  static const MsgoutItems items = [] {
+    MsgoutItems k{};
+    const std::span<const UbxOutput> outs = ubx_outputs();
+    for (std::uint8_t p = 0; p < kReceiverPorts; ++p) {
+      for (std::size_t i = 0; i < outs.size(); ++i) k[p][i] = msgout_item(outs[i].id, p);
+      for (std::size_t i = 0; i < std::size(kNmeaIds); ++i)
+        k[p][kMaxOutputs + i] = msgout_item({kClassNmea, kNmeaIds[i].first}, p);
+    }
+    return k;
+  }();
+  return items;
+}
+
+}  // namespace
+
+std::uint32_t UbxDevice::msgout_key(MsgId id, std::uint8_t port) const {
+  if (port >= kReceiverPorts) return 0;
+  const std::span<const UbxOutput> outs = ubx_outputs();
+  const auto& cached = cached_msgout_items()[port];
+  for (std::size_t i = 0; i < outs.size(); ++i)
+    if (outs[i].id == id) return cached[i];
+  if (id.cls == kClassNmea)
+    for (std::size_t i = 0; i < std::size(kNmeaIds); ++i)
+      if (kNmeaIds[i].first == id.id) return cached[kMaxOutputs + i];
+  return msgout_item(id, port);
 }
 
 // The configuration in the form the output needs, after a change (not in the steady loop: a

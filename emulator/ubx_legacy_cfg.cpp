@@ -38,7 +38,7 @@ Bytes power_up(MsgId id, std::uint8_t index, bool protocol27) {
     CfgInfBlock b;
     b.protocol_id = index;
     if (index == 1)
-      for (std::uint8_t port : {kPortDdc, kPortUart1, kPortUsb, kPortSpi}) b.inf_msg_mask[port] = 0x07;
+      for (std::uint8_t port : kPortsButUart2) b.inf_msg_mask[port] = 0x07;
     m.blocks = {b};
     return encoded(m);
   }

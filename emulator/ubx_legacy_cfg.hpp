@@ -8,6 +8,7 @@
 //
 // Like the part's other settings, what was set is lost at a reset unless CFG-CFG saved it.
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -17,6 +18,11 @@
 #include "protocols/ubx_messages.hpp"
 
 namespace navemu {
+
+// The ports the parts set alike at power-up: every port but UART2, an RTCM port on the F9 (F9
+// HPG 1.13 description, CFG-UART2OUTPROT defaults).
+inline constexpr std::array<std::uint8_t, 4> kPortsButUart2 = {ubx::kPortDdc, ubx::kPortUart1, ubx::kPortUsb,
+                                                               ubx::kPortSpi};
 
 class UbxLegacyCfg {
  public:
