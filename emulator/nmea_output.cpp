@@ -10,7 +10,8 @@ namespace navemu {
 namespace {
 }
 
-NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optional<int> nmea_version)
+NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optional<int> nmea_version,
+                       bool high_precision)
     : profile_(profile),
       format_(profile.style == "garmin" ? nmea::Format::garmin() : nmea::Format::ublox()) {
   // GGA quality and the mode indicator by receiver mode (NMEA 0183 4.10, GGA and RMC).
@@ -28,6 +29,7 @@ NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optio
     format_.mode_indicator = *nmea_version >= 23;
     format_.nav_status = format_.system_signal_ids = *nmea_version >= 41;
   }
+  format_.high_precision = high_precision;
   numbering_ = format_.system_signal_ids ? NmeaNumbering::kV411 : NmeaNumbering::kV410Extended;
   gsv_.reserve(64);
   gsa_.sat_ids.reserve(64);

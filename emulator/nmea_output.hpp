@@ -17,8 +17,10 @@ namespace navemu {
 class NmeaOutput {
  public:
   // `nmea_version`: the NMEA version a client chose (u-blox CFG-NMEA-PROTVER: 21, 23, 40, 41,
-  // 42 for 2.1 ... 4.11); none: the profile style's.
-  NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optional<int> nmea_version = {});
+  // 42 for 2.1 ... 4.11); none: the profile style's. `high_precision`: u-blox NMEA high
+  // precision mode (nmea::Format::high_precision).
+  NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optional<int> nmea_version = {},
+             bool high_precision = false);
   // Appends the sentences due at this epoch (those whose divisor divides epoch_index) to `out`.
   void encode(const ReceiverFix& fix, std::int64_t epoch_index, std::string& out);
 

@@ -256,6 +256,10 @@ void UbxDevice::refresh() {
   // its legacy CFG-NMEA, not applied: the profile's.
   talker_ = profile_.talker;
   nmea_version_.reset();
+  // High precision mode "cannot be used while in NMEA compatibility mode or when NMEA output is
+  // limited to 82 characters" (ZED-F9P integration manual UBX-18010802 3.1.4.5).
+  const bool high_precision = protocol27_ && flag(item("CFG-NMEA-HIGHPREC"), false) &&
+                              !flag(item("CFG-NMEA-COMPAT"), false) && !flag(item("CFG-NMEA-LIMIT82"), false);
   if (protocol27_) {
     nmea_version_ = static_cast<int>(config_.get(item("CFG-NMEA-PROTVER")));
     static constexpr const char* kTalkers[] = {"", "GP", "GL", "GN", "GA", "GB", "", "GQ"};
@@ -288,7 +292,7 @@ void UbxDevice::refresh() {
       };
       return rank(a.first) < rank(b.first);
     });
-    s.nmea = std::make_unique<NmeaOutput>(np, mode_, nmea_version_);
+    s.nmea = std::make_unique<NmeaOutput>(np, mode_, nmea_version_, high_precision);
   }
 }
 

@@ -47,14 +47,14 @@ constexpr double kMaxSpeed_mps = kMaxKnots / kMpsToKnots;
 struct Style {
   int time_dec, latlon_dec, dop_dec, alt_dec, speed_dec, speed_int, course_dec, course_int;
   int snr_digits, gst_sig;
-  bool sats2, mode, nav_status, ids;
+  bool sats2, mode, nav_status, ids, limit82;
 };
 
 Style style(const Format& f) {
   return {std::clamp(f.time_decimals, 0, 3),
-          std::clamp(f.latlon_minute_decimals, 0, 5),
+          f.high_precision ? 7 : std::clamp(f.latlon_minute_decimals, 0, 5),
           std::clamp(f.dop_decimals, 0, 2),
-          std::clamp(f.altitude_decimals, 0, 3),
+          f.high_precision ? 3 : std::clamp(f.altitude_decimals, 0, 3),
           std::clamp(f.speed_decimals, 0, 3),
           std::clamp(f.speed_integer_digits, 1, 3),
           std::clamp(f.course_decimals, 0, 3),
@@ -64,7 +64,8 @@ Style style(const Format& f) {
           f.gga_sats_two_digits,
           f.mode_indicator,
           f.mode_indicator && f.nav_status,
-          f.system_signal_ids};
+          f.system_signal_ids,
+          !f.high_precision};
 }
 
 // A set value, finite, clamped to [lo, hi]; nothing otherwise.
@@ -75,16 +76,16 @@ std::optional<double> valid(std::optional<double> v, double lo, double hi) {
 
 char letter_or(char c, char fallback) { return c >= 'A' && c <= 'Z' ? c : fallback; }
 
-// Renders a sentence; while it is longer than 82 characters, takes one decimal off the first
-// number in `shrink` that still has one and renders it again. The value clamps make the
-// sentence fit once all of them are at zero (the bounds are worked out in nmea.hpp).
+// Renders a sentence; while it is longer than 82 characters (`limit82`), takes one decimal off
+// the first number in `shrink` that still has one and renders it again. The value clamps make
+// the sentence fit once all of them are at zero (the bounds are worked out in nmea.hpp).
 template <std::size_t N, typename Render>
-void emit_fitted(std::string& out, std::array<int*, N> shrink, Render render) {
+void emit_fitted(std::string& out, std::array<int*, N> shrink, Render render, bool limit82 = true) {
   for (;;) {
     Line line = render();
     const auto next =
         std::find_if(shrink.begin(), shrink.end(), [](const int* d) { return *d > 0; });
-    if (line.fits() || next == shrink.end()) {
+    if (!limit82 || line.fits() || next == shrink.end()) {
       line.finish(out);
       return;
     }
@@ -267,7 +268,7 @@ void encode(const GgaFields& f, const Format& fmt, std::string& out) {
     l.sep();
     put_int(l, f.dgps_station, 4, 0, 1023);
     return l;
-  });
+  }, st.limit82);
 }
 
 // RMC: time, status, lat, N/S, lon, E/W, SOG knots, COG, date, magvar, E/W [, mode [, navStatus]].
@@ -308,7 +309,7 @@ void encode(const RmcFields& f, const Format& fmt, std::string& out) {
       l.put(letter_or(f.nav_status, 'V'));
     }
     return l;
-  });
+  }, st.limit82);
 }
 
 // GSA: selection, fix, 12 PRN slots, PDOP, HDOP, VDOP [, systemId].

@@ -9,7 +9,8 @@
 // a value is not valid.
 //
 // No sentence exceeds 82 characters including "$" and CR LF (NMEA 0183 section 5.3). This
-// holds by construction, for every Format and every field value:
+// holds by construction, for every Format but one in u-blox high precision mode (which the part
+// documents as violating the standard; Format::high_precision) and every field value:
 //  - Format knobs are clamped to the ranges noted next to them;
 //  - values are clamped to the ranges of their fields (noted at each struct; e.g. altitude to
 //    [-9999, 99999] m, DOP to [0, 99.99], C/N0 to [0, 99] dB-Hz, PRN to [0, 999]);
@@ -57,6 +58,11 @@ struct Format {
                                     // (sent only together with the mode indicator)
   bool system_signal_ids = true;    // NMEA 4.1 GNSS system ID at the end of GSA, signal ID at
                                     // the end of GSV
+  // u-blox NMEA high precision mode (ZED-F9P integration manual UBX-18010802 3.1.4.5,
+  // CFG-NMEA-HIGHPREC): latitude and longitude with seven decimals of the minute, altitude
+  // (and geoid separation) with three, instead of the two knobs above; no decimals are dropped
+  // to fit 82 characters.
+  bool high_precision = false;
 
   static Format ublox() { return {}; }  // u-blox M9 with NMEA 4.10 (its default)
   static Format garmin();               // the Garmin 15x/18x style

@@ -27,7 +27,7 @@ inline constexpr std::size_t kTail = 5;  // "*hh\r\n"
 
 inline constexpr double kMpsToKmh = 3.6;  // 1 km/h = 1/3.6 m/s
 
-inline constexpr std::array<std::int64_t, 7> kPow10{1, 10, 100, 1000, 10000, 100000, 1000000};
+inline constexpr std::array<std::int64_t, 8> kPow10{1, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
 
 // One sentence assembled in a fixed buffer (no allocation). Every field is preceded by ','.
 class Line {

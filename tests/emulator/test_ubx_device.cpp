@@ -1552,6 +1552,39 @@ TEST_F(UbxDeviceTest, NmeaVersionAndTalkerFollowTheirItems) {
   EXPECT_EQ(sentence("GGA")[0], "GNGGA");
 }
 
+// CFG-NMEA-HIGHPREC (ZED-F9P integration manual UBX-18010802 3.1.4.5): latitude and longitude
+// with seven digits after the decimal point and altitude with three, unless compatibility mode
+// or the 82-character limit is on, with which the mode "cannot be used".
+TEST_F(UbxDeviceTest, NmeaHighPrecisionModeWidensPositionAndAltitude) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  std::int64_t k = 0;
+  const auto gga = [&] {
+    const std::string out = epoch_output(d, k++);
+    const std::size_t at = out.find("GGA,");
+    return at == std::string::npos ? std::vector<std::string>{}
+                                   : fields_of(out.substr(at - 3, out.find("\r\n", at) - (at - 3)));
+  };
+  const auto decimals = [](const std::string& f) {
+    const std::size_t dot = f.find('.');
+    return dot == std::string::npos ? 0 : static_cast<int>(f.size() - dot - 1);
+  };
+  std::vector<std::string> g = gga();
+  ASSERT_GE(g.size(), 10u);
+  EXPECT_EQ(decimals(g[2]), 5);
+  EXPECT_EQ(decimals(g[4]), 5);
+  EXPECT_EQ(decimals(g[9]), 1);
+  set_items(d, {{"CFG-NMEA-HIGHPREC", 1}});
+  g = gga();
+  ASSERT_GE(g.size(), 10u);
+  EXPECT_EQ(g[2], "3218.0000000");
+  EXPECT_EQ(g[4], "09054.0000000");
+  EXPECT_EQ(g[9], "60.000");
+  set_items(d, {{"CFG-NMEA-LIMIT82", 1}});
+  EXPECT_EQ(decimals(gga()[2]), 5);
+  set_items(d, {{"CFG-NMEA-LIMIT82", 0}, {"CFG-NMEA-COMPAT", 1}});
+  EXPECT_EQ(decimals(gga()[2]), 5);
+}
+
 
 // One epoch of the receiver model on the nominal constellation, encoded by `d`, for the tests
 // of what the device keeps between epochs (aiding data, raw measurements).
