@@ -194,8 +194,7 @@ std::uint32_t msgout_item(MsgId id, std::uint8_t port) {
 
 // Those of the messages refresh() reads the rates of, looked up once (the key database is
 // searched by name): by port, the outputs in the order of ubx_outputs(), then kNmeaIds.
-constexpr std::size_t kMaxOutputs = 64;  // one bit each in emit_ubx_outputs()
-using MsgoutItems = std::array<std::array<std::uint32_t, kMaxOutputs + std::size(kNmeaIds)>, kReceiverPorts>;
+using MsgoutItems = std::array<std::array<std::uint32_t, kMaxUbxOutputs + std::size(kNmeaIds)>, kReceiverPorts>;
 const MsgoutItems& cached_msgout_items() {
   static const MsgoutItems items = [] {
     MsgoutItems k{};
@@ -203,7 +202,7 @@ const MsgoutItems& cached_msgout_items() {
     for (std::uint8_t p = 0; p < kReceiverPorts; ++p) {
       for (std::size_t i = 0; i < outs.size(); ++i) k[p][i] = msgout_item(outs[i].id, p);
       for (std::size_t i = 0; i < std::size(kNmeaIds); ++i)
-        k[p][kMaxOutputs + i] = msgout_item({kClassNmea, kNmeaIds[i].first}, p);
+        k[p][kMaxUbxOutputs + i] = msgout_item({kClassNmea, kNmeaIds[i].first}, p);
     }
     return k;
   }();
@@ -220,7 +219,7 @@ std::uint32_t UbxDevice::msgout_key(MsgId id, std::uint8_t port) const {
     if (outs[i].id == id) return cached[i];
   if (id.cls == kClassNmea)
     for (std::size_t i = 0; i < std::size(kNmeaIds); ++i)
-      if (kNmeaIds[i].first == id.id) return cached[kMaxOutputs + i];
+      if (kNmeaIds[i].first == id.id) return cached[kMaxUbxOutputs + i];
   return msgout_item(id, port);
 }
 

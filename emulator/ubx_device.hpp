@@ -63,7 +63,7 @@ class UbxDevice final : public GnssDevice {
   struct PortSettings {
     bool in_ubx = true, in_nmea = true, out_ubx = true, out_nmea = true;
     int baud = 0;  // UARTs
-    std::array<std::uint8_t, 64> ubx_rates{};  // by index in ubx_outputs()
+    std::array<std::uint8_t, kMaxUbxOutputs> ubx_rates{};  // by index in ubx_outputs()
     std::unique_ptr<NmeaOutput> nmea;          // this port's sentences and their rates
   };
   void refresh();

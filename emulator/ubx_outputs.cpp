@@ -964,7 +964,7 @@ const UbxOutput* find_ubx_output(MsgId id) {
 void emit_ubx_outputs(std::uint64_t due, const ReceiverFix& fix, const EpochMeasurements& meas,
                       const NavData& nav, ReceiverMode mode, const UbxDeviceStatus& status,
                       UbxListScratch& lists, std::vector<std::uint8_t>& out) {
-  static_assert(std::size(kOutputs) <= 64, "one bit per output message");
+  static_assert(std::size(kOutputs) <= kMaxUbxOutputs, "one bit per output message");
   const EpochView view(fix, meas, nav, mode, status, lists);
   for (std::size_t i = 0; i < std::size(kOutputs); ++i)
     if (due >> i & 1u) kOutputs[i].emit(view, out);

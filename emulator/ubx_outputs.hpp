@@ -60,6 +60,9 @@ struct UbxOutput {
   void (*emit)(const EpochView&, std::vector<std::uint8_t>&);
 };
 
+// At most 64: emit_ubx_outputs() takes the messages due as one bit each.
+inline constexpr std::size_t kMaxUbxOutputs = 64;
+
 // In the order of one epoch's output: raw measurement data first (it is measured before the
 // solution), the navigation messages, and NAV-EOE closing the epoch (UBX-NAV-EOE).
 std::span<const UbxOutput> ubx_outputs();
