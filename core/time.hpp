@@ -67,6 +67,12 @@ int leap_seconds_at_utc(const CalendarTime& utc, std::optional<int> after_table_
 int leap_seconds_at_gps(GpsTime t, std::optional<int> after_table_s = {});
 
 GpsTime gps_from_utc(const CalendarTime& utc, std::optional<int> after_table_s = {});
+
+// The other systems' time scales, in whole seconds from GPS time or UTC:
+// BDT = GPST - 14 s (BDS-SIS-ICD-B1I 3.0, 5.1.3.2); GLONASS time = UTC(SU) + 3 h (GLONASS ICD
+// 5.1, 3.3.3); GST runs with GPST (Galileo OS SIS ICD 2.1, 5.1.2; the GGTO aside).
+inline constexpr int kGpsMinusBdt_s = 14;
+inline constexpr int kGlonassMinusUtc_s = 3 * 3600;
 CalendarTime utc_from_gps(GpsTime t, std::optional<int> after_table_s = {});
 // Unix time (nanoseconds since 1970-01-01 UTC, leap seconds excluded, as CLOCK_REALTIME) to GPS
 // time: the GPS epoch is Unix second 315964800, plus GPS - UTC at that instant.

@@ -20,9 +20,10 @@ const char* fix_name(FixType f) {
   return "?";
 }
 
-// Smallest multiple of `period` at or after t.
-std::int64_t first_index_at_or_after(GpsTime t, std::int64_t period_ns) {
-  return t.ns / period_ns + (t.ns % period_ns != 0 ? 1 : 0);
+// Smallest k with k * period + offset at or after t.
+std::int64_t first_index_at_or_after(GpsTime t, std::int64_t period_ns, std::int64_t offset_ns) {
+  const std::int64_t since = t.ns - offset_ns;
+  return since / period_ns + (since % period_ns != 0 ? 1 : 0);
 }
 
 }  // namespace
@@ -49,11 +50,12 @@ GnssChannel::GnssChannel(std::unique_ptr<NavData> nav, const ReceiverParams& rec
 
 void GnssChannel::begin(GpsTime start) {
   start_ = start;
-  k_ = first_index_at_or_after(start, period_ns_);
+  offset_ns_ = device_->grid_offset_ns(start);
+  k_ = first_index_at_or_after(start, period_ns_, offset_ns_);
 }
 
 std::optional<SensorChannel::Event> GnssChannel::next_event(GpsTime end) const {
-  const GpsTime epoch{k_ * period_ns_};
+  const GpsTime epoch = epoch_time(k_);
   if (!(epoch < end)) return std::nullopt;
   const GpsTime deadline{epoch.ns + latency_ns_};
   return Event{GpsTime{deadline.ns - std::min(kComputeLead_ns, period_ns_ / 2)}, deadline};
@@ -66,7 +68,7 @@ void GnssChannel::skip_event() {
 
 // Compute ahead, write at the deadline.
 bool GnssChannel::run_event(EventContext& ctx) {
-  const GpsTime te{k_ * period_ns_};
+  const GpsTime te = epoch_time(k_);
   const std::optional<ImuTruth> tr = ctx.truth.at(te);
   if (const NavEngineSettings* engine = device_->engine_settings()) receiver_->set_engine(*engine);
   const ReceiverFix& fix = receiver_->update(te, tr ? &*tr : nullptr);
@@ -99,12 +101,15 @@ bool GnssChannel::run_event(EventContext& ctx) {
   return true;
 }
 
-// A client changed the navigation rate (u-blox CFG-RATE): the next epoch lies on the new grid,
-// after the last one sent.
+// A client changed the navigation rate or time reference (u-blox CFG-RATE): the next epoch lies
+// on the new grid, after the last one sent.
 void GnssChannel::follow_rate(GpsTime last) {
-  if (device_->period_ns() == period_ns_) return;
+  const std::int64_t offset_ns = device_->grid_offset_ns(last);
+  if (device_->period_ns() == period_ns_ && offset_ns == offset_ns_) return;
   period_ns_ = device_->period_ns();
-  k_ = std::max(last.ns / period_ns_ + 1, first_index_at_or_after(start_, period_ns_));
+  offset_ns_ = offset_ns;
+  k_ = std::max(first_index_at_or_after(GpsTime{last.ns + 1}, period_ns_, offset_ns_),
+                first_index_at_or_after(start_, period_ns_, offset_ns_));
 }
 
 // Commands from the clients, answered on the port they came from.
@@ -127,7 +132,7 @@ void GnssChannel::service() {
   for (std::size_t i = 0; i < io_.ports.size(); ++i)
     if (const std::optional<int> baud = device_->take_baud_change(io_.receiver_ports[i]))
       transport::set_serial_baud(*io_.ports[i], *baud);
-  follow_rate(GpsTime{(k_ - 1) * period_ns_});
+  follow_rate(epoch_time(k_ - 1));
 }
 
 void GnssChannel::status(fmt::memory_buffer& out, ChannelStatus& st) {

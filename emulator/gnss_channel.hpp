@@ -2,11 +2,13 @@
 // The GNSS receiver as a sensor channel (emulator/channel.hpp): the receiver model, its device
 // behaviour (NMEA, u-blox), its byte ports with the capture mirrors, and its recorders.
 //
-// Epoch k is measured at k * period (GPS time) and due at that + the profile's output latency.
+// Epoch k is measured at k * period + the device's grid offset (GPS time; the offset is 0 unless
+// a client aligned the epochs to another time system) and due at that + the profile's output
+// latency.
 // It is computed kComputeLead before its deadline and written at the deadline; an epoch more
 // than one period late is skipped (a receiver outputs the current solution, not old ones). A
-// client that changes the navigation rate (u-blox CFG-RATE) moves the next epoch onto the new
-// grid, after the current one, as soon as the command is taken.
+// client that changes the navigation rate or time reference (u-blox CFG-RATE) moves the next
+// epoch onto the new grid, after the current one, as soon as the command is taken.
 
 #include <array>
 #include <memory>
@@ -55,6 +57,7 @@ class GnssChannel final : public SensorChannel {
  private:
   static constexpr std::int64_t kComputeLead_ns = 2'000'000;  // computed 2 ms before output
   void follow_rate(GpsTime last);
+  GpsTime epoch_time(std::int64_t k) const { return GpsTime{k * period_ns_ + offset_ns_}; }
 
   std::unique_ptr<NavData> nav_;  // before the receiver and device, which refer to it
   std::unique_ptr<Receiver> receiver_;
@@ -62,9 +65,10 @@ class GnssChannel final : public SensorChannel {
   GnssPorts io_;
   std::vector<std::unique_ptr<EpochRecorder>> recorders_;
   std::int64_t period_ns_, latency_ns_;
+  std::int64_t offset_ns_ = 0;  // the epoch grid's offset from GPS time's, in [0, period)
   double nominal_rate_hz_;
   GpsTime start_;
-  std::int64_t k_ = 0;  // the next epoch's index: whole periods since the GPS epoch
+  std::int64_t k_ = 0;  // the next epoch's index: whole periods since the grid's origin
 
   std::string chunk_, replies_;
   std::array<std::uint8_t, 4096> input_{};

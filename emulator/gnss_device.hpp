@@ -47,6 +47,13 @@ class GnssDevice {
   }
   // The navigation epoch period; a client may change it (u-blox CFG-RATE).
   virtual std::int64_t period_ns() const = 0;
+  // Where the epoch grid lies near GPS time t: epochs are at k * period_ns() + this, in
+  // [0, period). 0 is GPS time's own grid; a u-blox client may align it to another time
+  // system (CFG-RATE timeRef).
+  virtual std::int64_t grid_offset_ns(GpsTime t) const {
+    (void)t;
+    return 0;
+  }
   // A baud rate the client asked for on a UART, to apply after the acknowledgement went out
   // (once).
   virtual std::optional<int> take_baud_change(ReceiverPort port) {

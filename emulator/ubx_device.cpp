@@ -232,6 +232,7 @@ void UbxDevice::refresh() {
   period_ns_ = static_cast<std::int64_t>(std::max<std::uint64_t>(config_.get(keys_.rate_meas), 1) *
                                          std::max<std::uint64_t>(config_.get(keys_.rate_nav), 1)) *
                1'000'000;
+  time_ref_ = config_.get(keys_.rate_timeref);
   const auto flag = [&](std::uint32_t id, bool fallback) { return id ? config_.get(id) != 0 : fallback; };
   engine_ = engine_settings_of(config_);
   // Switches the outputs follow: configuration items on the F9, the legacy CFG-ITFM (config
@@ -646,6 +647,22 @@ void UbxDevice::handle_cfg_msg(Payload p, std::uint8_t port, Bytes& out) {
   else
     for (std::uint8_t q = 0; q < kReceiverPorts; ++q) set_rate(target, q, all.rate[q]);
   ack(kCfgMsg, out);
+}
+
+// CFG-RATE timeRef (UBX-13003221 "UBX-CFG-RATE"; F9 interface description
+// CFG-RATE-TIMEREF): the measurements are aligned to the reference system's time. The epochs
+// are whole periods of that system's time, which differs from GPS time by whole seconds
+// (core/time.hpp), so its grid differs from GPS time's only for a period that does not divide
+// that difference (e.g. 700 ms against UTC's 18 s).
+std::int64_t UbxDevice::grid_offset_ns(GpsTime t) const {
+  std::int64_t gps_minus_ref_s = 0;  // GPS (1) and Galileo (4) run together
+  if (time_ref_ == CfgRate::kTimeRefUtc || time_ref_ == CfgRate::kTimeRefGlonass)
+    gps_minus_ref_s = leap_seconds_at_gps(t, nav_.leap_seconds) -
+                      (time_ref_ == CfgRate::kTimeRefGlonass ? kGlonassMinusUtc_s : 0);
+  else if (time_ref_ == CfgRate::kTimeRefBeidou)
+    gps_minus_ref_s = kGpsMinusBdt_s;
+  const std::int64_t r = gps_minus_ref_s * kNsPerS % period_ns_;
+  return r < 0 ? r + period_ns_ : r;
 }
 
 void UbxDevice::poll_cfg_rate(std::uint8_t, Bytes& out) {

@@ -45,6 +45,7 @@ class UbxDevice final : public GnssDevice {
   void encode(ReceiverPort port, std::string& out) override;
   void receive(std::span<const std::uint8_t> bytes, ReceiverPort port, std::string& replies) override;
   std::int64_t period_ns() const override { return period_ns_; }
+  std::int64_t grid_offset_ns(GpsTime t) const override;
   std::optional<int> take_baud_change(ReceiverPort port) override;
   bool restarting(GpsTime t) const override { return t < restart_until_; }
   const NavEngineSettings* engine_settings() const override { return &engine_; }
@@ -130,6 +131,7 @@ class UbxDevice final : public GnssDevice {
   std::uint64_t seen_generation_ = 0;
   bool stale_ = true;  // refresh() must run even if the database did not change
   std::int64_t period_ns_ = 1'000'000'000;
+  std::uint64_t time_ref_ = 1;  // CFG-RATE-TIMEREF
   std::array<PortSettings, kReceiverPorts> ports_;
   std::array<std::optional<int>, kReceiverPorts> pending_baud_;
   // Rates of messages without a CFG-MSGOUT item on this part (u-blox 8 only messages, and

@@ -1000,6 +1000,63 @@ TEST(UbxFaults, GarbageFromTheClientNeverStopsTheOutput) {
               garbage_bytes, bursts, g1 - g0, max_gap(pvt_t), max_gap(rmc_t), *answered_s * 1e3);
 }
 
+// ---- Time reference -------------------------------------------------------------------------
+
+// CFG-RATE timeRef (UBX-13003221 "UBX-CFG-RATE"): the measurement epochs are whole periods of the
+// reference system's time. At 700 ms, which does not divide the whole seconds between the
+// systems, each reference gives its own NAV-PVT iTOW phase. The expected phases follow from the
+// published offsets alone (a GPS week is 864,000 periods of 700 ms): UTC = GPS - 18 s (IERS
+// Bulletin C, since 2017) gives iTOW mod 700 = 500 ms; GLONASS time = UTC + 3 h gives 100 ms;
+// BDT = GPS - 14 s and GST = GPS give 0.
+TEST(UbxTimeRef, EpochsFollowTheReferenceSystemsGrid) {
+  TempDir dir("ubx-timeref");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  const fs::path profile = write_profile(dir, "ublox-m8", "NAV-PVT: 1");
+  NavemuRun nav(dir, "navemu", ubx_config(profile, link, log), 40);
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  PtyClient pty;
+  ASSERT_TRUE(pty.open(link));
+  struct Case {
+    std::uint16_t time_ref;
+    std::uint32_t phase_ms;
+  };
+  for (const Case c : {Case{ubx::CfgRate::kTimeRefUtc, 500}, Case{ubx::CfgRate::kTimeRefGlonass, 100},
+                       Case{ubx::CfgRate::kTimeRefGps, 0}, Case{ubx::CfgRate::kTimeRefBeidou, 0},
+                       Case{ubx::CfgRate::kTimeRefUtc, 500}}) {
+    std::vector<std::uint8_t> cmd;
+    ubx::append(ubx::CfgRate{700, 1, c.time_ref}, cmd);
+    const std::size_t from = pty.frames().size();
+    ASSERT_TRUE(pty.write_all(cmd));
+    bool acked = false;
+    // The NAV-PVT iTOWs after the acknowledgement.
+    const auto tows_after_ack = [&] {
+      std::vector<std::uint32_t> tows;
+      acked = false;
+      for (std::size_t i = from; i < pty.frames().size(); ++i) {
+        const UbxFrame& f = pty.frames()[i];
+        acked = acked || f.id == ubx::kAckAck;
+        ubx::NavPvt m;
+        if (acked && f.id == ubx::kNavPvt && ubx::decode(f.payload, m)) tows.push_back(m.i_tow_ms);
+      }
+      return tows;
+    };
+    pty.read_until(mono_s() + 5.0, [&] { return tows_after_ack().size() >= 4; });
+    const std::vector<std::uint32_t> tows = tows_after_ack();
+    ASSERT_TRUE(acked) << "CFG-RATE timeRef " << c.time_ref << " acknowledged" << nav.diagnostics();
+    ASSERT_GE(tows.size(), 4u) << "NAV-PVT after timeRef " << c.time_ref;
+    // The first one may be the epoch that was on its way when the command came.
+    for (std::size_t i = 1; i < tows.size(); ++i) {
+      EXPECT_EQ(tows[i] % 700, c.phase_ms) << "timeRef " << c.time_ref << ", iTOW " << tows[i];
+      if (i >= 2) {
+        EXPECT_EQ(tows[i] - tows[i - 1], 700u) << "timeRef " << c.time_ref;
+      }
+    }
+    std::printf("timeRef %u: iTOW mod 700 ms of %zu NAV-PVT: ", c.time_ref, tows.size());
+    for (std::uint32_t t : tows) std::printf("%u ", t % 700);
+    std::printf("\n");
+  }
+}
+
 // ---- NMEA input ------------------------------------------------------------------------------
 
 // $PUBX,41 written to the pty with in/out masks of UBX only (what an autopilot's u-blox driver

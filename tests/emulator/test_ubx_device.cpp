@@ -256,6 +256,32 @@ TEST_F(UbxDeviceTest, CfgRateSetValidAndInvalid) {
   EXPECT_EQ(d.counters().naks, 3u);
 }
 
+// CFG-RATE timeRef puts the epoch grid on the reference system's whole periods: at 700 ms the
+// offset from GPS time's grid is the GPS - reference difference modulo 700 ms, with the leap
+// seconds of the instant (IERS Bulletin C: 17 s in 2016, 18 s from 2017).
+TEST_F(UbxDeviceTest, TimeRefOffsetsTheEpochGrid) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  const GpsTime t2016 = gps_from_calendar({2016, 6, 1, 0, 0, 0.0});
+  const GpsTime t2024 = gps_from_calendar({2024, 6, 1, 0, 0, 0.0});
+  EXPECT_EQ(d.grid_offset_ns(t2024), 0) << "GPS time at power-up";
+  const auto set = [&](std::uint16_t meas_ms, std::uint16_t time_ref) {
+    EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgRate{meas_ms, 1, time_ref})), ubx::kCfgRate));
+  };
+  set(700, ubx::CfgRate::kTimeRefUtc);
+  EXPECT_EQ(d.grid_offset_ns(t2016), 200'000'000);  // 17 s mod 0.7 s
+  EXPECT_EQ(d.grid_offset_ns(t2024), 500'000'000);  // 18 s mod 0.7 s
+  set(700, ubx::CfgRate::kTimeRefGlonass);
+  EXPECT_EQ(d.grid_offset_ns(t2024), 100'000'000);  // (18 s - 3 h) mod 0.7 s
+  set(700, ubx::CfgRate::kTimeRefBeidou);
+  EXPECT_EQ(d.grid_offset_ns(t2024), 0);  // 14 s is 20 periods
+  set(300, ubx::CfgRate::kTimeRefBeidou);
+  EXPECT_EQ(d.grid_offset_ns(t2024), 200'000'000);  // 14 s mod 0.3 s
+  set(700, ubx::CfgRate::kTimeRefGalileo);
+  EXPECT_EQ(d.grid_offset_ns(t2024), 0);
+  set(1000, ubx::CfgRate::kTimeRefUtc);
+  EXPECT_EQ(d.grid_offset_ns(t2024), 0) << "whole seconds: every reference has GPS time's grid";
+}
+
 // Legacy CFG messages (UBX-13003221 32.10): one the part has is polled (the message, then
 // ACK-ACK), set in its documented form and read back, and kept over a reset only after CFG-CFG
 // save; a form of the wrong length and a message the part does not have (CFG-DGNSS on the
