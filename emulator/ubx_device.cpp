@@ -152,7 +152,8 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
       mode_(mode),
       nav_(nav),
       protocol27_(profile.ubx->protver >= "27"),
-      keys_{item("CFG-RATE-MEAS"), item("CFG-RATE-NAV"), item("CFG-RATE-TIMEREF")},
+      keys_{item("CFG-RATE-MEAS"), item("CFG-RATE-NAV"), item("CFG-RATE-TIMEREF"),
+            {item("CFG-TMODE-MODE"), item("CFG-TMODE-SVIN_MIN_DUR"), item("CFG-TMODE-SVIN_ACC_LIMIT")}},
       config_(firmware_of(*profile.ubx), profile_defaults(profile)),
       legacy_(protocol27_) {
   // Room for every satellite: copying and refilling the epoch's lists never allocates.
@@ -238,6 +239,7 @@ void UbxDevice::refresh() {
   // Switches the outputs follow: configuration items on the F9, the legacy CFG-ITFM (config
   // bit 31 "enable") and CFG-ODO (flags bit 0 "useODO") on the u-blox 8 (UBX-13003221).
   if (protocol27_) {
+    refresh_time_mode();
     status_.jamming_monitor = flag(item("CFG-ITFM-ENABLE"), true);
     status_.odometer = flag(item("CFG-ODO-USE_ODO"), false);
   } else {
@@ -294,6 +296,22 @@ void UbxDevice::refresh() {
     });
     s.nmea = std::make_unique<NmeaOutput>(np, mode_, nmea_version_, high_precision);
   }
+}
+
+// The time mode (F9 interface description CFG-TMODE-*; the u-blox 8 profile is a standard
+// precision part without it): survey-in (mode 1) starts anew with new settings, fixed (2) and
+// disabled (0) have none.
+void UbxDevice::refresh_time_mode() {
+  constexpr std::uint64_t kSurveyIn = 1;
+  std::array<std::uint64_t, 3> settings{};
+  for (std::size_t i = 0; i < settings.size(); ++i) settings[i] = config_.get(keys_.tmode[i]);
+  if (survey_settings_ == settings) return;
+  survey_settings_ = settings;
+  if (settings[0] == kSurveyIn)
+    survey_.start({.min_duration_s = static_cast<double>(settings[1]), .acc_limit_m = static_cast<double>(settings[2]) * 1e-4});
+  else
+    survey_.stop();
+  status_.svin = survey_.state();
 }
 
 std::optional<int> UbxDevice::take_baud_change(ReceiverPort port) {
@@ -403,6 +421,7 @@ const UbxDevice::Command UbxDevice::kCommands[] = {
     {kCfgMsg, Command::kBoth, nullptr, &UbxDevice::handle_cfg_msg},
     {kCfgRate, Command::kBoth, &UbxDevice::poll_cfg_rate, &UbxDevice::handle_cfg_rate},
     {kCfgNav5, Command::kBoth, &UbxDevice::poll_cfg_nav5, &UbxDevice::handle_cfg_nav5},
+    {kCfgTmode3, Command::kF9, &UbxDevice::poll_cfg_tmode3, &UbxDevice::handle_cfg_tmode3},
     {kCfgGnss, Command::kBoth, &UbxDevice::poll_cfg_gnss, &UbxDevice::handle_cfg_gnss},
     {kCfgCfg, Command::kBoth, nullptr, &UbxDevice::handle_cfg_cfg},
     {kCfgRst, Command::kBoth, nullptr, &UbxDevice::handle_cfg_rst},
@@ -736,6 +755,61 @@ void UbxDevice::handle_cfg_nav5(Payload p, std::uint8_t, Bytes& out) {
   ack(kCfgNav5, out);
 }
 
+// CFG-TMODE3's fields are the CFG-TMODE-* items (F9 interface description, "Legacy UBX-CFG
+// message fields reference"): flags bits 0..7 the mode, bit 8 the position as LLH rather than
+// ECEF, which also picks the items the position fields are.
+namespace {
+struct Tmode3Position {
+  const char *ecef_key, *llh_key;
+  std::int32_t CfgTmode3::*whole;
+  std::int8_t CfgTmode3::*hp;
+  const char *ecef_hp_key, *llh_hp_key;
+};
+constexpr Tmode3Position kTmode3Position[] = {
+    {"CFG-TMODE-ECEF_X", "CFG-TMODE-LAT", &CfgTmode3::ecef_x_or_lat, &CfgTmode3::ecef_x_or_lat_hp,
+     "CFG-TMODE-ECEF_X_HP", "CFG-TMODE-LAT_HP"},
+    {"CFG-TMODE-ECEF_Y", "CFG-TMODE-LON", &CfgTmode3::ecef_y_or_lon, &CfgTmode3::ecef_y_or_lon_hp,
+     "CFG-TMODE-ECEF_Y_HP", "CFG-TMODE-LON_HP"},
+    {"CFG-TMODE-ECEF_Z", "CFG-TMODE-HEIGHT", &CfgTmode3::ecef_z_or_alt_cm, &CfgTmode3::ecef_z_or_alt_hp_0p1mm,
+     "CFG-TMODE-ECEF_Z_HP", "CFG-TMODE-HEIGHT_HP"},
+};
+constexpr std::pair<std::uint32_t CfgTmode3::*, const char*> kTmode3Unsigned[] = {
+    {&CfgTmode3::fixed_pos_acc_0p1mm, "CFG-TMODE-FIXED_POS_ACC"},
+    {&CfgTmode3::svin_min_dur_s, "CFG-TMODE-SVIN_MIN_DUR"},
+    {&CfgTmode3::svin_acc_limit_0p1mm, "CFG-TMODE-SVIN_ACC_LIMIT"},
+};
+}  // namespace
+
+void UbxDevice::poll_cfg_tmode3(std::uint8_t, Bytes& out) {
+  const auto get = [&](const char* key) { return config_.get(item(key)); };
+  CfgTmode3 m;
+  const bool llh = get("CFG-TMODE-POS_TYPE") == 1;
+  m.flags = static_cast<std::uint16_t>((get("CFG-TMODE-MODE") & CfgTmode3::kModeMask) | (llh ? CfgTmode3::kLla : 0));
+  for (const Tmode3Position& f : kTmode3Position) {  // signed items are held as their two's complement
+    m.*f.whole = static_cast<std::int32_t>(static_cast<std::uint32_t>(get(llh ? f.llh_key : f.ecef_key)));
+    m.*f.hp = static_cast<std::int8_t>(static_cast<std::uint8_t>(get(llh ? f.llh_hp_key : f.ecef_hp_key)));
+  }
+  for (const auto& [member, key] : kTmode3Unsigned) m.*member = static_cast<std::uint32_t>(get(key));
+  append(m, out);
+  ack(kCfgTmode3, out);
+}
+
+// A set writes every item of the form it is in (all or nothing, refused like the items: an
+// unknown mode, an HP part beyond +-99).
+void UbxDevice::handle_cfg_tmode3(Payload p, std::uint8_t, Bytes& out) {
+  CfgTmode3 m;
+  if (!decode(p, m)) return nak(kCfgTmode3, out);
+  const bool llh = (m.flags & CfgTmode3::kLla) != 0;
+  std::vector<CfgKeyValue> v{{item("CFG-TMODE-MODE"), std::uint64_t{m.flags} & CfgTmode3::kModeMask},
+                             {item("CFG-TMODE-POS_TYPE"), llh ? 1u : 0u}};
+  for (const Tmode3Position& f : kTmode3Position) {
+    v.push_back({item(llh ? f.llh_key : f.ecef_key), static_cast<std::uint32_t>(m.*f.whole)});
+    v.push_back({item(llh ? f.llh_hp_key : f.ecef_hp_key), static_cast<std::uint8_t>(m.*f.hp)});
+  }
+  for (const auto& [member, key] : kTmode3Unsigned) v.push_back({item(key), m.*member});
+  config_.set_ram(v) ? ack(kCfgTmode3, out) : nak(kCfgTmode3, out);
+}
+
 void UbxDevice::poll_cfg_gnss(std::uint8_t, Bytes& out) {
   CfgGnss g;
   g.num_trk_ch_hw = static_cast<std::uint8_t>(std::min(profile_.max_channels, 255));
@@ -787,6 +861,8 @@ void UbxDevice::handle_cfg_rst(Payload p, std::uint8_t, Bytes& out) {
     stale_ = true;
   }
   if (r.nav_bbr_mask == CfgRst::kColdStart) status_.odo_distance_m = status_.odo_total_m = 0.0;
+  survey_settings_.reset();  // a survey-in starts again with the navigation
+  stale_ = true;
   const double outage_s = r.nav_bbr_mask == CfgRst::kHotStart    ? 1.0
                           : r.nav_bbr_mask == CfgRst::kWarmStart ? 25.0
                                                                  : 26.0;
@@ -833,6 +909,9 @@ void UbxDevice::update(const ReceiverFix& fix, const EpochMeasurements& meas, st
     last_meas_.sats.clear();
   }
   count_distance(last_fix_);
+  if (last_fix_.fix == FixType::k3D)
+    survey_.add(last_fix_.t, last_fix_.p_ecef_m, std::hypot(last_fix_.sigma_h_m, last_fix_.sigma_v_m));
+  status_.svin = survey_.state();
 }
 
 // The odometer (CFG-ODO-USE_ODO; UBX-13003221 "Odometer"): the ground speed integrated over

@@ -21,6 +21,7 @@
 #include "emulator/ubx_config.hpp"
 #include "emulator/ubx_legacy_cfg.hpp"
 #include "emulator/ubx_outputs.hpp"
+#include "models/survey_in.hpp"
 #include "protocols/pubx.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
@@ -68,6 +69,7 @@ class UbxDevice final : public GnssDevice {
     std::unique_ptr<NmeaOutput> nmea;          // this port's sentences and their rates
   };
   void refresh();
+  void refresh_time_mode();
   std::uint32_t msgout_key(ubx::MsgId id, std::uint8_t port) const;  // 0: none
   void set_keys(std::initializer_list<ubx::CfgKeyValue> values);
   void set_rate(ubx::MsgId id, std::uint8_t port, int rate);
@@ -99,6 +101,8 @@ class UbxDevice final : public GnssDevice {
   void handle_cfg_msg(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_rate(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_nav5(Payload payload, std::uint8_t port, Bytes& out);
+  void poll_cfg_tmode3(std::uint8_t port, Bytes& out);
+  void handle_cfg_tmode3(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_gnss(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_cfg(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_rst(Payload payload, std::uint8_t port, Bytes& out);
@@ -122,6 +126,7 @@ class UbxDevice final : public GnssDevice {
   bool protocol27_;
   struct Keys {
     std::uint32_t rate_meas, rate_nav, rate_timeref;
+    std::array<std::uint32_t, 3> tmode;  // CFG-TMODE-MODE, -SVIN_MIN_DUR, -SVIN_ACC_LIMIT
   } keys_;
   std::array<ubx::Parser, kReceiverPorts> parsers_;
   std::array<pubx::NmeaInputReader, kReceiverPorts> nmea_in_;
@@ -147,6 +152,9 @@ class UbxDevice final : public GnssDevice {
   // What the monitor and odometer messages report (traffic, odometer, switches).
   UbxDeviceStatus status_;
   std::optional<GpsTime> odo_last_t_;  // the previous fix the odometer counted from
+  // The time mode (F9): a survey-in starts anew when its settings change or the receiver resets.
+  SurveyIn survey_;
+  std::optional<std::array<std::uint64_t, 3>> survey_settings_;  // the settings it started with
 
   // The latest epoch, for the output and polled messages and the restart clock.
   ReceiverFix last_fix_;

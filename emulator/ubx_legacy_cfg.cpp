@@ -85,7 +85,6 @@ Bytes power_up(MsgId id, std::uint8_t index, bool protocol27) {
   }
   if (id == kCfgNavx5) return encoded(CfgNavx5{});
   if (id == kCfgItfm) return encoded(CfgItfm{});
-  if (id == kCfgTmode3) return encoded(CfgTmode3{});
   if (id == kCfgDgnss) return encoded(CfgDgnss{});
   if (id == kCfgOdo) return encoded(CfgOdo{});
   if (id == kCfgAnt) return encoded(CfgAnt{});
@@ -128,7 +127,6 @@ constexpr struct {
     {kCfgPwr, true, true, false, false, &decodes<CfgPwr>},
     {kCfgGeofence, true, true, false, true, &decodes<CfgGeofence>},
     {kCfgDgnss, false, true, false, true, &decodes<CfgDgnss>},
-    {kCfgTmode3, false, true, false, true, &decodes<CfgTmode3>},
     {kCfgPms, true, false, false, true, &decodes<CfgPms>},
 };
 

@@ -771,6 +771,23 @@ void emit_nav_relposned(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
+// NAV-SVIN (M8 32.17.24, F9 5.14.17): the survey-in's progress (models/survey_in.hpp); all 0
+// while the time mode is off or fixed.
+void emit_nav_svin(const EpochView& e, std::vector<std::uint8_t>& out) {
+  const SurveyInState& s = e.status.svin;
+  NavSvin m;
+  m.i_tow_ms = e.i_tow;
+  m.dur_s = static_cast<std::uint32_t>(s.duration_s);
+  split_high_precision(s.mean_ecef_m.x() * 1e4, 100.0, m.mean_x_cm, m.mean_x_hp_0p1mm);
+  split_high_precision(s.mean_ecef_m.y() * 1e4, 100.0, m.mean_y_cm, m.mean_y_hp_0p1mm);
+  split_high_precision(s.mean_ecef_m.z() * 1e4, 100.0, m.mean_z_cm, m.mean_z_hp_0p1mm);
+  m.mean_acc_0p1mm = clamp_cast<std::uint32_t>(s.mean_acc_m * 1e4);
+  m.obs = s.obs;
+  m.valid = s.valid ? 1 : 0;
+  m.active = s.active ? 1 : 0;
+  append(m, out);
+}
+
 // A status message of something navemu does not model: every field but iTOW (where the message
 // has one) keeps its "nothing to report" value (what each one reports is beside its row in
 // kOutputs).
@@ -926,8 +943,7 @@ constexpr UbxOutput kOutputs[] = {
     {kNavHpposllh, "UBX_NAV_HPPOSLLH", false, true, &emit_nav_hpposllh},
     {kNavCov, "UBX_NAV_COV", false, true, &emit_nav_cov},
     {kNavRelposned, "UBX_NAV_RELPOSNED", false, true, &emit_nav_relposned},
-    // NAV-SVIN (M8 32.17.24, F9 5.14.17): no survey-in (time mode off, CFG-TMODE-MODE 0).
-    {kNavSvin, "UBX_NAV_SVIN", false, true, &emit_status<NavSvin>},
+    {kNavSvin, "UBX_NAV_SVIN", false, true, &emit_nav_svin},
     {kNavTimels, "UBX_NAV_TIMELS", true, true, &emit_nav_timels},
     {kNavTimebds, "UBX_NAV_TIMEBDS", true, true, &emit_nav_timebds},
     {kNavTimegal, "UBX_NAV_TIMEGAL", true, true, &emit_nav_timegal},

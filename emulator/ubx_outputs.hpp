@@ -13,6 +13,7 @@
 #include "core/nav_data.hpp"
 #include "models/receiver.hpp"
 #include "models/measurement.hpp"
+#include "models/survey_in.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/ubx_messages.hpp"
 
@@ -47,6 +48,7 @@ struct UbxDeviceStatus {
   double odo_total_m = 0.0;      // since the last cold start
   std::uint8_t gnss_enabled = 0x01;  // MON-GNSS bits: GPS 0, GLONASS 1, BeiDou 2, Galileo 3
   std::string_view hw_version;   // MON-VER's, for MON-HW3
+  SurveyInState svin;            // the time mode's survey-in (NAV-SVIN)
 };
 
 struct EpochView;

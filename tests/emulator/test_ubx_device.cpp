@@ -437,6 +437,127 @@ TEST_F(UbxDeviceTest, ValsetValgetOnProtocol27) {
   EXPECT_EQ(valget(ubx::cfgkey::kMsgoutUbxNavPvtUart1), 1u);
 }
 
+// The F9P's time mode (F9 interface description CFG-TMODE-*, UBX-NAV-SVIN): survey-in set by
+// its items (IDs from the description) reports its progress, finishes after the minimum
+// duration with the mean of the 3D fixes, and starts again after a reset.
+TEST_F(UbxDeviceTest, SurveyInReportsProgressAndFinishes) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  const auto svin = [&] {
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kNavSvin)));
+    ubx::NavSvin m;
+    EXPECT_EQ(f.size(), 1u);
+    EXPECT_TRUE(!f.empty() && ubx::decode(f[0].payload, m));
+    return m;
+  };
+  const auto feed = [&](int from_s, int to_s) {
+    for (int i = from_s; i <= to_s; ++i) {
+      ReceiverFix fix = a_fix(kT0.plus_s(i));
+      fix.p_ecef_m.x() += i % 2 ? 1.0 : -1.0;
+      d.update(fix, EpochMeasurements{}, i);
+    }
+  };
+  const Vec3 p = a_fix(kT0).p_ecef_m;
+  feed(0, 0);
+  EXPECT_EQ(svin().active, 0) << "time mode off at power-up";
+
+  ubx::CfgValset set;
+  set.layers = ubx::kLayerMaskRam | ubx::kLayerMaskBbr;  // kept over the reset below
+  set.values = {{0x20030001, 1}, {0x40030010, 10}, {0x40030011, 1'000'000}};  // survey-in, 10 s, 100 m
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgValset));
+  feed(1, 6);
+  ubx::NavSvin m = svin();
+  EXPECT_EQ(m.active, 1);
+  EXPECT_EQ(m.valid, 0);
+  EXPECT_EQ(m.obs, 6u);
+  EXPECT_EQ(m.dur_s, 5u);
+  EXPECT_NEAR(m.mean_x_cm * 1e-2 + m.mean_x_hp_0p1mm * 1e-4, p.x(), 1e-4) << "+1 -1 +1 -1 +1 -1 m";
+  EXPECT_NEAR(m.mean_y_cm * 1e-2 + m.mean_y_hp_0p1mm * 1e-4, p.y(), 1e-4);
+  EXPECT_NEAR(m.mean_z_cm * 1e-2 + m.mean_z_hp_0p1mm * 1e-4, p.z(), 1e-4);
+  // 3D accuracy of a fix: hypot(3.3, 4.2) m; under 2 tau (120 s) the mean is no better.
+  EXPECT_EQ(m.mean_acc_0p1mm, static_cast<std::uint32_t>(std::lround(std::hypot(3.3, 4.2) * 1e4)));
+  feed(7, 10);
+  EXPECT_EQ(svin().active, 1) << "9 s < 10 s";
+  feed(11, 11);
+  m = svin();
+  EXPECT_EQ(m.active, 0);
+  EXPECT_EQ(m.valid, 1) << "10 s and 5.3 m <= 100 m";
+  EXPECT_EQ(m.obs, 11u);
+  EXPECT_EQ(m.dur_s, 10u);
+  feed(12, 13);
+  EXPECT_EQ(svin().obs, 11u) << "finished: no more fixes taken";
+
+  send(d, frame(ubx::CfgRst{ubx::CfgRst::kHotStart, ubx::CfgRst::kControlledSoftwareReset}));
+  m = svin();
+  EXPECT_EQ(m.active, 1) << "the reset starts the survey again";
+  EXPECT_EQ(m.valid, 0);
+  EXPECT_EQ(m.obs, 0u);
+
+  set.values = {{0x20030001, 2}};  // fixed
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgValset));
+  EXPECT_EQ(svin().active, 0) << "fixed mode: no survey";
+}
+
+// CFG-TMODE3 on the F9P is a view of the CFG-TMODE-* items (F9 interface description, "Legacy
+// UBX-CFG message fields reference"): a set in the LLH form writes the LLH items, a poll reads
+// them back in the same form, VALGET sees them; the u-blox 8 standard-precision part has no
+// CFG-TMODE3 and refuses it.
+TEST_F(UbxDeviceTest, CfgTmode3IsTheTimeModeItemsOnTheF9) {
+  ubx::CfgTmode3 llh;
+  llh.flags = 2 | ubx::CfgTmode3::kLla;  // fixed, position as LLH
+  llh.ecef_x_or_lat = 323'000'123;        // 1e-7 deg
+  llh.ecef_y_or_lon = -909'000'456;
+  llh.ecef_z_or_alt_cm = 6'012;
+  llh.ecef_x_or_lat_hp = -5;  // 1e-9 deg
+  llh.ecef_y_or_lon_hp = 7;
+  llh.ecef_z_or_alt_hp_0p1mm = 3;
+  llh.fixed_pos_acc_0p1mm = 1'000;
+  llh.svin_min_dur_s = 120;
+  llh.svin_acc_limit_0p1mm = 20'000;
+  {
+    UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
+    EXPECT_TRUE(only_ack(send(m8, frame(llh)), ubx::kCfgTmode3, true));
+  }
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  EXPECT_TRUE(only_ack(send(d, frame(llh)), ubx::kCfgTmode3));
+  ubx::CfgValgetRequest req;
+  req.keys = {0x20030001, 0x20030002, 0x40030009, 0x4003000a, 0x4003000b, 0x2003000c,
+              0x2003000d, 0x2003000e, 0x4003000f, 0x40030010, 0x40030011};
+  std::vector<Frame> f = frames_of(send(d, frame(req)));
+  ASSERT_EQ(f.size(), 2u);
+  ubx::CfgValgetResponse r;
+  ASSERT_TRUE(ubx::decode(f[0].payload, r));
+  std::map<std::uint32_t, std::uint64_t> items;
+  for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+  EXPECT_EQ(items[0x20030001], 2u) << "MODE fixed";
+  EXPECT_EQ(items[0x20030002], 1u) << "POS_TYPE LLH";
+  EXPECT_EQ(items[0x40030009], 323'000'123u);
+  EXPECT_EQ(items[0x4003000a], static_cast<std::uint32_t>(-909'000'456));
+  EXPECT_EQ(items[0x4003000b], 6'012u);
+  EXPECT_EQ(items[0x2003000c], static_cast<std::uint8_t>(-5));
+  EXPECT_EQ(items[0x2003000d], 7u);
+  EXPECT_EQ(items[0x2003000e], 3u);
+  EXPECT_EQ(items[0x4003000f], 1'000u);
+  EXPECT_EQ(items[0x40030010], 120u);
+  EXPECT_EQ(items[0x40030011], 20'000u);
+
+  f = frames_of(send(d, poll(ubx::kCfgTmode3)));
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_TRUE(is_ack(f[1], ubx::kCfgTmode3));
+  ubx::CfgTmode3 back;
+  ASSERT_TRUE(ubx::decode(f[0].payload, back));
+  EXPECT_EQ(frame(back), frame(llh)) << "the poll gives the set back";
+
+  // An HP part beyond +-99 is out of the item's range: refused, nothing changed.
+  ubx::CfgTmode3 bad = llh;
+  bad.flags = 1;
+  bad.ecef_x_or_lat_hp = 100;
+  EXPECT_TRUE(only_ack(send(d, frame(bad)), ubx::kCfgTmode3, true));
+  f = frames_of(send(d, poll(ubx::kCfgTmode3)));
+  ASSERT_EQ(f.size(), 2u);
+  ASSERT_TRUE(ubx::decode(f[0].payload, back));
+  EXPECT_EQ(back.flags, llh.flags);
+}
+
 // A protocol 18 receiver (M8) has no configuration interface: VALSET and VALGET get ACK-NAK.
 TEST_F(UbxDeviceTest, ValsetValgetNakedOnProtocol18) {
   UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
