@@ -158,6 +158,7 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
       legacy_(protocol27_) {
   // Room for every satellite: copying and refilling the epoch's lists never allocates.
   last_fix_.satellites.reserve(kDefinedSatellites);
+  nmea_fix_.satellites.reserve(kDefinedSatellites);
   last_meas_.sats.reserve(kDefinedSatellites);
   lists_.svinfo.channels.reserve(kDefinedSatellites);
   lists_.sat.svs.reserve(kDefinedSatellites);
@@ -234,6 +235,8 @@ void UbxDevice::refresh() {
                                          std::max<std::uint64_t>(config_.get(keys_.rate_nav), 1)) *
                1'000'000;
   time_ref_ = config_.get(keys_.rate_timeref);
+  status_.outfil_pdop = static_cast<double>(config_.get(item("CFG-NAVSPG-OUTFIL_PDOP"))) * 0.1;
+  status_.outfil_pacc_m = static_cast<double>(config_.get(item("CFG-NAVSPG-OUTFIL_PACC")));
   const auto flag = [&](std::uint32_t id, bool fallback) { return id ? config_.get(id) != 0 : fallback; };
   engine_ = engine_settings_of(config_);
   // Switches the outputs follow: configuration items on the F9, the legacy CFG-ITFM (config
@@ -909,6 +912,14 @@ void UbxDevice::update(const ReceiverFix& fix, const EpochMeasurements& meas, st
     last_meas_.sats.clear();
   }
   count_distance(last_fix_);
+  // A fix outside the output filters is no fix to NMEA: status V, quality 0, navMode 1 and
+  // empty fields (F9 interface description 4.1.6 "Position Fix Flags", "GNSS fix, but user
+  // limits exceeded"; 4.1.8).
+  fix_filtered_out_ = last_fix_.fix != FixType::kNone && !within_output_filters(last_fix_, mode_, status_);
+  if (fix_filtered_out_) {
+    nmea_fix_ = last_fix_;
+    nmea_fix_.fix = FixType::kNone;
+  }
   if (last_fix_.fix == FixType::k3D)
     survey_.add(last_fix_.t, last_fix_.p_ecef_m, std::hypot(last_fix_.sigma_h_m, last_fix_.sigma_v_m));
   status_.svin = survey_.state();
@@ -946,7 +957,7 @@ void UbxDevice::encode(ReceiverPort port, std::string& out) {
     emit_ubx_outputs(due, last_fix_, last_meas_, nav_, mode_, status_, lists_, scratch_);
     out.append(reinterpret_cast<const char*>(scratch_.data()), scratch_.size());
   }
-  if (s.out_nmea) s.nmea->encode(last_fix_, epoch_index_, out);
+  if (s.out_nmea) s.nmea->encode(fix_filtered_out_ ? nmea_fix_ : last_fix_, epoch_index_, out);
   status_.ports[static_cast<std::size_t>(port)].tx_bytes += static_cast<std::uint32_t>(out.size() - before);
 }
 

@@ -158,6 +158,8 @@ class UbxDevice final : public GnssDevice {
 
   // The latest epoch, for the output and polled messages and the restart clock.
   ReceiverFix last_fix_;
+  ReceiverFix nmea_fix_;  // last_fix_ as NMEA reports it when outside the output filters
+  bool fix_filtered_out_ = false;
   EpochMeasurements last_meas_;
   std::int64_t epoch_index_ = 0;
   Bytes scratch_;

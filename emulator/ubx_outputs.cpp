@@ -48,6 +48,12 @@ Accuracy accuracy(const ReceiverFix& fix) {
 
 }  // namespace
 
+bool within_output_filters(const ReceiverFix& fix, ReceiverMode mode, const UbxDeviceStatus& status) {
+  if (fix.fix == FixType::kNone) return false;
+  if (mode == ReceiverMode::kRtkFixed) return true;
+  return fix.dops.pdop <= status.outfil_pdop && accuracy(fix).p_m <= status.outfil_pacc_m;
+}
+
 lnav::LnavEphemeris to_lnav(const GpsEphemeris& e) {
   lnav::LnavEphemeris l;
   l.sv_id = e.sat.number();
@@ -114,6 +120,7 @@ struct EpochView {
   std::uint32_t i_tow = static_cast<std::uint32_t>(std::llround(wt.tow_s * 1000.0)) % 604'800'000u;
   bool valid = fix.fix != FixType::kNone;
   Accuracy acc = accuracy(fix);
+  bool fix_ok = within_output_filters(fix, mode, status);
   Vec3 v_ned = fix.v_ned_mps.value_or(Vec3::Zero());
   Vec3 v_ecef = valid ? Vec3(R_ned_from_ecef(fix.position).transpose() * v_ned) : Vec3::Zero();
   double g_speed = std::hypot(v_ned.x(), v_ned.y());
@@ -123,7 +130,7 @@ struct EpochView {
   }();
   double separation_m = fix.geoid_separation_m;  // 0 without a fix
   std::uint8_t status_flags =
-      static_cast<std::uint8_t>((valid ? NavStatus::kGpsFixOk : 0) |
+      static_cast<std::uint8_t>((fix_ok ? NavStatus::kGpsFixOk : 0) |
                                 (mode == ReceiverMode::kDgps ? NavStatus::kDiffSoln : 0) |
                                 NavStatus::kWknSet | NavStatus::kTowSet);
   int leap_s = leap_seconds_at_gps(fix.t, nav.leap_seconds);
@@ -149,7 +156,7 @@ void emit_nav_pvt(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.valid = NavPvt::kValidDate | NavPvt::kValidTime | NavPvt::kFullyResolved;
   m.t_acc_ns = 20;
   m.fix_type = fix_type(fix.fix);
-  m.flags = static_cast<std::uint8_t>((e.valid ? NavPvt::kGnssFixOk : 0) |
+  m.flags = static_cast<std::uint8_t>((e.fix_ok ? NavPvt::kGnssFixOk : 0) |
                                       (e.mode == ReceiverMode::kDgps ? NavPvt::kDiffSoln : 0) |
                                       (e.mode == ReceiverMode::kRtkFixed && e.valid ? 0x80 : 0));
   m.flags2 = NavPvt::kConfirmedAvai | NavPvt::kConfirmedDate | NavPvt::kConfirmedTime;
@@ -767,7 +774,7 @@ void emit_nav_odo(const EpochView& e, std::vector<std::uint8_t>& out) {
 void emit_nav_relposned(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavRelposned m;
   m.i_tow_ms = e.i_tow;
-  m.flags = e.valid ? NavRelposned::kGnssFixOk : 0;
+  m.flags = e.fix_ok ? NavRelposned::kGnssFixOk : 0;
   append(m, out);
 }
 

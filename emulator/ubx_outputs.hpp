@@ -49,6 +49,8 @@ struct UbxDeviceStatus {
   std::uint8_t gnss_enabled = 0x01;  // MON-GNSS bits: GPS 0, GLONASS 1, BeiDou 2, Galileo 3
   std::string_view hw_version;   // MON-VER's, for MON-HW3
   SurveyInState svin;            // the time mode's survey-in (NAV-SVIN)
+  // The navigation output filters (CFG-NAVSPG-OUTFIL_PDOP, _PACC; CFG-NAV5 pDop, pAcc).
+  double outfil_pdop = 25.0, outfil_pacc_m = 100.0;
 };
 
 struct EpochView;
@@ -75,6 +77,12 @@ const UbxOutput* find_ubx_output(ubx::MsgId id);
 void emit_ubx_outputs(std::uint64_t due, const ReceiverFix& fix, const EpochMeasurements& meas,
                       const NavData& nav, ReceiverMode mode, const UbxDeviceStatus& status,
                       UbxListScratch& lists, std::vector<std::uint8_t>& out);
+
+// Whether a fix is valid: a fix within the navigation output filters' PDOP and 3D accuracy
+// masks (ZED-F9P integration manual UBX-18010802 3.1.7.2; UBX-13003221 "Navigation Output
+// Filters"). NAV-PVT gnssFixOK, NAV-STATUS/NAV-SOL gpsFixOK and the NMEA validity follow it; an
+// RTK solution has no output filters (the same section).
+bool within_output_filters(const ReceiverFix& fix, ReceiverMode mode, const UbxDeviceStatus& status);
 
 // The GPS broadcast record of a satellite as IS-GPS-200 subframes 1-3 carry it (RXM-SFRBX,
 // AID-EPH).

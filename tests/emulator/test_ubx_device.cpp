@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <regex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -435,6 +436,62 @@ TEST_F(UbxDeviceTest, ValsetValgetOnProtocol27) {
   EXPECT_TRUE(only_ack(send(d, frame(msg)), ubx::kCfgValset));
   EXPECT_EQ(d.rate(ubx::kNavPvt), 1);
   EXPECT_EQ(valget(ubx::cfgkey::kMsgoutUbxNavPvtUart1), 1u);
+}
+
+// The navigation output filters (ZED-F9P integration manual UBX-18010802 3.1.7.2; F9 interface
+// description 4.1.6 "GNSS fix, but user limits exceeded"): a fix beyond the PDOP or the 3D
+// accuracy mask keeps its fix type but is not valid: NAV-PVT gnssFixOK and NAV-STATUS gpsFixOk
+// clear, and NMEA reports no fix (GGA quality 0, RMC status V). Set by item on the F9P
+// (OUTFIL_PDOP 0x301100b1 in 0.1, OUTFIL_PACC 0x301100b3 in m), by CFG-NAV5 on the M8. The fix:
+// PDOP 1.8, 3D accuracy hypot(3.3, 4.2) = 5.3 m.
+TEST_F(UbxDeviceTest, OutputFiltersDecideValidity) {
+  const auto check = [&](UbxDevice& d, bool ok, const std::string& what) {
+    SCOPED_TRACE(what);
+    std::string nmea;
+    d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, nmea);
+    std::vector<Frame> f = frames_of(send(d, poll(ubx::kNavPvt)));
+    ubx::NavPvt pvt;
+    ASSERT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, pvt));
+    EXPECT_EQ(pvt.fix_type, 3);
+    EXPECT_EQ((pvt.flags & ubx::NavPvt::kGnssFixOk) != 0, ok);
+    f = frames_of(send(d, poll(ubx::kNavStatus)));
+    ubx::NavStatus st;
+    ASSERT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, st));
+    EXPECT_EQ((st.flags & ubx::NavStatus::kGpsFixOk) != 0, ok);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(nmea, m, std::regex(R"(\$G[PN]GGA,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*,(\d),)"))) << nmea;
+    EXPECT_EQ(m[1], ok ? "1" : "0") << "GGA quality";
+    ASSERT_TRUE(std::regex_search(nmea, m, std::regex(R"(\$G[PN]RMC,[^,]*,([AV]),([^,]*),)"))) << nmea;
+    EXPECT_EQ(m[1], ok ? "A" : "V") << "RMC status";
+    EXPECT_EQ(m[2].length() == 0, !ok) << "no latitude for an invalid fix";
+  };
+  {
+    UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+    check(d, true, "F9P at the power-up masks (PDOP 25, 100 m)");
+    const auto set = [&](std::uint32_t key, std::uint64_t value) {
+      ubx::CfgValset v;
+      v.values = {{key, value}};
+      EXPECT_TRUE(only_ack(send(d, frame(v)), ubx::kCfgValset));
+    };
+    set(0x301100b3, 5);
+    check(d, false, "F9P, 3D accuracy mask 5 m");
+    set(0x301100b3, 6);
+    check(d, true, "F9P, 3D accuracy mask 6 m");
+    set(0x301100b1, 17);
+    check(d, false, "F9P, PDOP mask 1.7");
+    set(0x301100b1, 18);
+    check(d, true, "F9P, PDOP mask 1.8");
+  }
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  ubx::CfgNav5 nav5;
+  nav5.mask = ubx::CfgNav5::kMaskPosMask;
+  nav5.p_dop_0p1 = 250;
+  nav5.p_acc_m = 5;
+  EXPECT_TRUE(only_ack(send(d, frame(nav5)), ubx::kCfgNav5));
+  check(d, false, "M8, CFG-NAV5 pAcc 5 m");
+  nav5.p_acc_m = 100;
+  EXPECT_TRUE(only_ack(send(d, frame(nav5)), ubx::kCfgNav5));
+  check(d, true, "M8, CFG-NAV5 pAcc 100 m");
 }
 
 // The F9P's time mode (F9 interface description CFG-TMODE-*, UBX-NAV-SVIN): survey-in set by
