@@ -425,6 +425,9 @@ const UbxDevice::Command UbxDevice::kCommands[] = {
     {kCfgRate, Command::kBoth, &UbxDevice::poll_cfg_rate, &UbxDevice::handle_cfg_rate},
     {kCfgNav5, Command::kBoth, &UbxDevice::poll_cfg_nav5, &UbxDevice::handle_cfg_nav5},
     {kCfgTmode3, Command::kF9, &UbxDevice::poll_cfg_tmode3, &UbxDevice::handle_cfg_tmode3},
+    {kCfgInf, Command::kF9, nullptr, &UbxDevice::handle_cfg_inf},
+    {kCfgItfm, Command::kF9, &UbxDevice::poll_cfg_itfm, &UbxDevice::handle_cfg_itfm},
+    {kCfgOdo, Command::kF9, &UbxDevice::poll_cfg_odo, &UbxDevice::handle_cfg_odo},
     {kCfgGnss, Command::kBoth, &UbxDevice::poll_cfg_gnss, &UbxDevice::handle_cfg_gnss},
     {kCfgCfg, Command::kBoth, nullptr, &UbxDevice::handle_cfg_cfg},
     {kCfgRst, Command::kBoth, nullptr, &UbxDevice::handle_cfg_rst},
@@ -465,9 +468,7 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_
 // u-blox 8: CFG-INF, the protocol 0 and 1 blocks' infMsgMask by port ID).
 void UbxDevice::inform(std::uint8_t port, std::uint8_t type, std::string_view text, Bytes& out) {
   const auto mask = [&](bool nmea_protocol) -> unsigned {
-    if (protocol27_)
-      return static_cast<unsigned>(config_.get(item(std::string("CFG-INFMSG-") + (nmea_protocol ? "NMEA_" : "UBX_") +
-                                                     kPortNames[port])));
+    if (protocol27_) return static_cast<unsigned>(config_.get(infmsg_key(nmea_protocol ? 1 : 0, port)));
     CfgInf m;
     return decode(legacy_.current(kCfgInf, static_cast<std::uint8_t>(nmea_protocol ? 1 : 0)), m) && !m.blocks.empty()
                ? m.blocks[0].inf_msg_mask[port]
@@ -811,6 +812,103 @@ void UbxDevice::handle_cfg_tmode3(Payload p, std::uint8_t, Bytes& out) {
   }
   for (const auto& [member, key] : kTmode3Unsigned) v.push_back({item(key), m.*member});
   config_.set_ram(v) ? ack(kCfgTmode3, out) : nak(kCfgTmode3, out);
+}
+
+// On the F9 CFG-INF, CFG-ITFM and CFG-ODO are views of configuration items too (F9 interface
+// description, "Legacy UBX-CFG message fields reference"); the u-blox 8 keeps them as legacy
+// settings (emulator/ubx_legacy_cfg.hpp).
+//
+// CFG-INF: a block per protocol (0 UBX, 1 NMEA) with the INF mask of each port ID, the items
+// CFG-INFMSG-UBX_<port> / NMEA_<port>. The poll is the one-byte form naming the protocol; other
+// protocols have no items and are refused.
+std::uint32_t UbxDevice::infmsg_key(std::uint8_t protocol, std::uint8_t port) const {
+  return item(std::string("CFG-INFMSG-") + (protocol == 1 ? "NMEA_" : "UBX_") + kPortNames[port]);
+}
+
+void UbxDevice::handle_cfg_inf(Payload p, std::uint8_t, Bytes& out) {
+  CfgInfPoll poll;
+  if (decode(p, poll)) {
+    if (poll.protocol_id > 1) return nak(kCfgInf, out);
+    CfgInf m;
+    CfgInfBlock& b = m.blocks.emplace_back();
+    b.protocol_id = poll.protocol_id;
+    for (std::uint8_t port = 0; port < kReceiverPorts; ++port)
+      b.inf_msg_mask[port] = static_cast<std::uint8_t>(config_.get(infmsg_key(poll.protocol_id, port)));
+    append(m, out);
+    return ack(kCfgInf, out);
+  }
+  CfgInf m;
+  if (!decode(p, m)) return nak(kCfgInf, out);
+  std::vector<CfgKeyValue> v;
+  for (const CfgInfBlock& b : m.blocks) {
+    if (b.protocol_id > 1) return nak(kCfgInf, out);
+    for (std::uint8_t port = 0; port < kReceiverPorts; ++port)
+      v.push_back({infmsg_key(b.protocol_id, port), b.inf_msg_mask[port]});
+  }
+  config_.set_ram(v) ? ack(kCfgInf, out) : nak(kCfgInf, out);
+}
+
+// CFG-ITFM (UBX-13003221 "UBX-CFG-ITFM"): config holds bbThreshold bits 0..3, cwThreshold 4..8,
+// the reserved algorithmBits 9..30 (0x16B156 "for correct settings") and enable bit 31;
+// config2 the reserved generalBits 0..11 (0x31E), antSetting 12..13 and enable2 (the auxiliary
+// band) bit 14.
+namespace {
+constexpr std::uint32_t kItfmAlgorithmBits = 0x16B156, kItfmGeneralBits = 0x31E;
+}
+
+void UbxDevice::poll_cfg_itfm(std::uint8_t, Bytes& out) {
+  const auto get = [&](const char* key) { return static_cast<std::uint32_t>(config_.get(item(key))); };
+  CfgItfm m;
+  m.config = get("CFG-ITFM-BBTHRESHOLD") | get("CFG-ITFM-CWTHRESHOLD") << 4 | kItfmAlgorithmBits << 9 |
+             get("CFG-ITFM-ENABLE") << 31;
+  m.config2 = kItfmGeneralBits | get("CFG-ITFM-ANTSETTING") << 12 | get("CFG-ITFM-ENABLE_AUX") << 14;
+  append(m, out);
+  ack(kCfgItfm, out);
+}
+
+void UbxDevice::handle_cfg_itfm(Payload p, std::uint8_t, Bytes& out) {
+  CfgItfm m;
+  if (!decode(p, m)) return nak(kCfgItfm, out);
+  const std::vector<CfgKeyValue> v{{item("CFG-ITFM-BBTHRESHOLD"), m.config & 0xF},
+                                   {item("CFG-ITFM-CWTHRESHOLD"), m.config >> 4 & 0x1F},
+                                   {item("CFG-ITFM-ENABLE"), m.config >> 31},
+                                   {item("CFG-ITFM-ANTSETTING"), m.config2 >> 12 & 0x3},
+                                   {item("CFG-ITFM-ENABLE_AUX"), m.config2 >> 14 & 0x1}};
+  config_.set_ram(v) ? ack(kCfgItfm, out) : nak(kCfgItfm, out);
+}
+
+// CFG-ODO (UBX-13003221 "UBX-CFG-ODO"): flags useODO bit 0, useCOG 1, outLPVel 2, outLPCog 3;
+// odoCfg profile bits 0..2; then the COG filter's speed and accuracy limits and the two
+// low-pass gains, each an item of its own.
+namespace {
+constexpr const char* kOdoFlagKeys[] = {"CFG-ODO-USE_ODO", "CFG-ODO-USE_COG", "CFG-ODO-OUTLPVEL",
+                                        "CFG-ODO-OUTLPCOG"};
+constexpr std::pair<std::uint8_t CfgOdo::*, const char*> kOdoBytes[] = {
+    {&CfgOdo::cog_max_speed_0p1mps, "CFG-ODO-COGMAXSPEED"},
+    {&CfgOdo::cog_max_pos_acc_m, "CFG-ODO-COGMAXPOSACC"},
+    {&CfgOdo::vel_lp_gain, "CFG-ODO-VELLPGAIN"},
+    {&CfgOdo::cog_lp_gain, "CFG-ODO-COGLPGAIN"},
+};
+}  // namespace
+
+void UbxDevice::poll_cfg_odo(std::uint8_t, Bytes& out) {
+  CfgOdo m;
+  for (std::size_t bit = 0; bit < std::size(kOdoFlagKeys); ++bit)
+    m.flags = static_cast<std::uint8_t>(m.flags | (config_.get(item(kOdoFlagKeys[bit])) & 1) << bit);
+  m.odo_cfg = static_cast<std::uint8_t>(config_.get(item("CFG-ODO-PROFILE")) & 0x7);
+  for (const auto& [member, key] : kOdoBytes) m.*member = static_cast<std::uint8_t>(config_.get(item(key)));
+  append(m, out);
+  ack(kCfgOdo, out);
+}
+
+void UbxDevice::handle_cfg_odo(Payload p, std::uint8_t, Bytes& out) {
+  CfgOdo m;
+  if (!decode(p, m)) return nak(kCfgOdo, out);
+  std::vector<CfgKeyValue> v{{item("CFG-ODO-PROFILE"), m.odo_cfg & 0x7u}};
+  for (std::size_t bit = 0; bit < std::size(kOdoFlagKeys); ++bit)
+    v.push_back({item(kOdoFlagKeys[bit]), m.flags >> bit & 1u});
+  for (const auto& [member, key] : kOdoBytes) v.push_back({item(key), m.*member});
+  config_.set_ram(v) ? ack(kCfgOdo, out) : nak(kCfgOdo, out);
 }
 
 void UbxDevice::poll_cfg_gnss(std::uint8_t, Bytes& out) {

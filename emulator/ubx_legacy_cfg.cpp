@@ -101,8 +101,9 @@ Bytes power_up(MsgId id, std::uint8_t index, bool protocol27) {
 namespace {
 
 // The messages, which parts have them (UBX-13003221 32.10 for the u-blox 8 standard-precision
-// part; the F9 HPG interface descriptions for the F9P: no power-save, SBAS or RXM messages, but
-// the base-station ones), whether a shorter set form extends into the longer one (CFG-NMEA
+// part; the F9 HPG interface descriptions for the F9P: no power-save, SBAS or RXM messages, and
+// CFG-INF, ITFM, ODO and TMODE3 are views of its configuration items, emulator/ubx_device.cpp),
+// whether a shorter set form extends into the longer one (CFG-NMEA
 // 4/12/20 bytes, CFG-NAVX5 40/44, CFG-PM2 44/48), whether they can be polled, and how a set is
 // checked.
 constexpr struct {
@@ -110,18 +111,18 @@ constexpr struct {
   bool m8, f9, extends, pollable;
   bool (*valid)(Payload);
 } kEntries[] = {
-    {kCfgInf, true, true, false, true, &decodes<CfgInf>},
+    {kCfgInf, true, false, false, true, &decodes<CfgInf>},
     {kCfgDat, true, true, false, true, &decodes<CfgDat>},
     {kCfgRxm, true, false, false, true, &decodes<CfgRxm>},
     {kCfgAnt, true, true, false, true, &decodes<CfgAnt>},
     {kCfgSbas, true, false, false, true, &decodes<CfgSbas>},
     {kCfgNmea, true, true, true, true, &decodes<CfgNmea>},
     {kCfgUsb, true, true, false, true, &decodes<CfgUsb>},
-    {kCfgOdo, true, true, false, true, &decodes<CfgOdo>},
+    {kCfgOdo, true, false, false, true, &decodes<CfgOdo>},
     {kCfgNavx5, true, true, true, true, &decodes<CfgNavx5>},
     {kCfgTp5, true, true, false, true, &decodes<CfgTp5>},
     {kCfgRinv, true, true, false, true, &decodes<CfgRinv>},
-    {kCfgItfm, true, true, false, true, &decodes<CfgItfm>},
+    {kCfgItfm, true, false, false, true, &decodes<CfgItfm>},
     {kCfgPm2, true, false, true, true, &decodes<CfgPm2>},
     {kCfgLogfilter, true, true, false, true, &decodes<CfgLogfilter>},
     {kCfgPwr, true, true, false, false, &decodes<CfgPwr>},

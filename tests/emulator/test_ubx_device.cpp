@@ -494,6 +494,80 @@ TEST_F(UbxDeviceTest, OutputFiltersDecideValidity) {
   check(d, true, "M8, CFG-NAV5 pAcc 100 m");
 }
 
+// On the F9P, CFG-INF, CFG-ITFM and CFG-ODO are views of the CFG-INFMSG, CFG-ITFM and CFG-ODO
+// items (F9 interface description, "Legacy UBX-CFG message fields reference"; item IDs from
+// the description): a set is seen by VALGET, a poll gives the set back (with the reserved ITFM
+// bits at their documented values, UBX-13003221 "UBX-CFG-ITFM"), and CFG-INF for a protocol
+// without items is refused.
+TEST_F(UbxDeviceTest, LegacyInfItfmOdoAreItemsOnTheF9) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  const auto valget = [&](std::vector<std::uint32_t> keys) {
+    ubx::CfgValgetRequest req;
+    req.keys = std::move(keys);
+    const std::vector<Frame> f = frames_of(send(d, frame(req)));
+    std::map<std::uint32_t, std::uint64_t> items;
+    ubx::CfgValgetResponse r;
+    EXPECT_TRUE(f.size() == 2 && ubx::decode(f[0].payload, r));
+    for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+    return items;
+  };
+  const auto payload_of = [](const std::vector<std::uint8_t>& f) {  // a frame's payload
+    return std::vector<std::uint8_t>(f.begin() + 6, f.end() - 2);
+  };
+  const auto poll_back = [&](ubx::MsgId id, const std::vector<std::uint8_t>& request) {
+    const std::vector<Frame> f = frames_of(send(d, request));
+    EXPECT_EQ(f.size(), 2u);
+    EXPECT_TRUE(f.size() == 2 && is_ack(f[1], id));
+    return f.empty() ? Frame{} : f[0];
+  };
+
+  ubx::CfgItfm itfm;
+  itfm.config = 0x3 | 0xF << 4 | 0x16B156u << 9 | 0x80000000u;  // bb 3, cw 15, enabled
+  itfm.config2 = 0x31E | 2u << 12;                                 // external antenna
+  EXPECT_TRUE(only_ack(send(d, frame(itfm)), ubx::kCfgItfm));
+  auto items = valget({0x20410001, 0x20410002, 0x1041000d, 0x20410010, 0x10410013});
+  EXPECT_EQ(items[0x20410001], 3u);
+  EXPECT_EQ(items[0x20410002], 15u);
+  EXPECT_EQ(items[0x1041000d], 1u);
+  EXPECT_EQ(items[0x20410010], 2u);
+  EXPECT_EQ(items[0x10410013], 0u);
+  EXPECT_EQ(poll_back(ubx::kCfgItfm, poll(ubx::kCfgItfm)).payload, payload_of(frame(itfm)));
+
+  ubx::CfgOdo odo;
+  odo.flags = ubx::CfgOdo::kUseOdo | 0x4;  // useODO, outLPVel
+  odo.odo_cfg = 2;                         // cycling
+  odo.cog_max_speed_0p1mps = 12;
+  odo.cog_max_pos_acc_m = 40;
+  odo.vel_lp_gain = 153;
+  odo.cog_lp_gain = 76;
+  EXPECT_TRUE(only_ack(send(d, frame(odo)), ubx::kCfgOdo));
+  items = valget({0x10220001, 0x10220002, 0x10220003, 0x10220004, 0x20220005, 0x20220021, 0x20220022,
+                  0x20220031, 0x20220032});
+  EXPECT_EQ(items[0x10220001], 1u);
+  EXPECT_EQ(items[0x10220002], 0u);
+  EXPECT_EQ(items[0x10220003], 1u);
+  EXPECT_EQ(items[0x10220004], 0u);
+  EXPECT_EQ(items[0x20220005], 2u);
+  EXPECT_EQ(items[0x20220021], 12u);
+  EXPECT_EQ(items[0x20220022], 40u);
+  EXPECT_EQ(items[0x20220031], 153u);
+  EXPECT_EQ(items[0x20220032], 76u);
+  EXPECT_EQ(poll_back(ubx::kCfgOdo, poll(ubx::kCfgOdo)).payload, payload_of(frame(odo)));
+
+  ubx::CfgInf inf;
+  ubx::CfgInfBlock& b = inf.blocks.emplace_back();
+  b.protocol_id = 0;  // UBX
+  b.inf_msg_mask[ubx::kPortUart1] = 0x1F;
+  b.inf_msg_mask[ubx::kPortUsb] = 0x03;
+  EXPECT_TRUE(only_ack(send(d, frame(inf)), ubx::kCfgInf));
+  items = valget({0x20920002, 0x20920004, 0x20920007});
+  EXPECT_EQ(items[0x20920002], 0x1Fu) << "CFG-INFMSG-UBX_UART1";
+  EXPECT_EQ(items[0x20920004], 0x03u) << "CFG-INFMSG-UBX_USB";
+  EXPECT_EQ(items[0x20920007], 0x07u) << "CFG-INFMSG-NMEA_UART1 untouched (power-up 0x07)";
+  EXPECT_EQ(poll_back(ubx::kCfgInf, frame(ubx::CfgInfPoll{0})).payload, payload_of(frame(inf)));
+  EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgInfPoll{2})), ubx::kCfgInf, true)) << "protocol 2: no items";
+}
+
 // The F9P's time mode (F9 interface description CFG-TMODE-*, UBX-NAV-SVIN): survey-in set by
 // its items (IDs from the description) reports its progress, finishes after the minimum
 // duration with the mean of the 3D fixes, and starts again after a reset.
