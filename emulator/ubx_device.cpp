@@ -428,6 +428,7 @@ const UbxDevice::Command UbxDevice::kCommands[] = {
     {kCfgInf, Command::kF9, nullptr, &UbxDevice::handle_cfg_inf},
     {kCfgItfm, Command::kF9, &UbxDevice::poll_cfg_itfm, &UbxDevice::handle_cfg_itfm},
     {kCfgOdo, Command::kF9, &UbxDevice::poll_cfg_odo, &UbxDevice::handle_cfg_odo},
+    {kCfgNmea, Command::kF9, &UbxDevice::poll_cfg_nmea, &UbxDevice::handle_cfg_nmea},
     {kCfgGnss, Command::kBoth, &UbxDevice::poll_cfg_gnss, &UbxDevice::handle_cfg_gnss},
     {kCfgCfg, Command::kBoth, nullptr, &UbxDevice::handle_cfg_cfg},
     {kCfgRst, Command::kBoth, nullptr, &UbxDevice::handle_cfg_rst},
@@ -814,7 +815,7 @@ void UbxDevice::handle_cfg_tmode3(Payload p, std::uint8_t, Bytes& out) {
   config_.set_ram(v) ? ack(kCfgTmode3, out) : nak(kCfgTmode3, out);
 }
 
-// On the F9 CFG-INF, CFG-ITFM and CFG-ODO are views of configuration items too (F9 interface
+// On the F9 CFG-INF, CFG-ITFM, CFG-ODO and CFG-NMEA are views of configuration items too (F9 interface
 // description, "Legacy UBX-CFG message fields reference"); the u-blox 8 keeps them as legacy
 // settings (emulator/ubx_legacy_cfg.hpp).
 //
@@ -877,12 +878,30 @@ void UbxDevice::handle_cfg_itfm(Payload p, std::uint8_t, Bytes& out) {
   config_.set_ram(v) ? ack(kCfgItfm, out) : nak(kCfgItfm, out);
 }
 
+// Single-bit fields of a legacy message that are L items of their own: the bit and the item.
+namespace {
+struct BitItem {
+  unsigned bit;
+  const char* key;
+};
+
+std::uint32_t bits_of_items(const UbxConfig& config, std::span<const BitItem> bits) {
+  std::uint32_t v = 0;
+  for (const BitItem& b : bits) v |= static_cast<std::uint32_t>(config.get(item(b.key)) & 1) << b.bit;
+  return v;
+}
+
+void items_of_bits(std::uint32_t value, std::span<const BitItem> bits, std::vector<CfgKeyValue>& v) {
+  for (const BitItem& b : bits) v.push_back({item(b.key), value >> b.bit & 1u});
+}
+}  // namespace
+
 // CFG-ODO (UBX-13003221 "UBX-CFG-ODO"): flags useODO bit 0, useCOG 1, outLPVel 2, outLPCog 3;
 // odoCfg profile bits 0..2; then the COG filter's speed and accuracy limits and the two
 // low-pass gains, each an item of its own.
 namespace {
-constexpr const char* kOdoFlagKeys[] = {"CFG-ODO-USE_ODO", "CFG-ODO-USE_COG", "CFG-ODO-OUTLPVEL",
-                                        "CFG-ODO-OUTLPCOG"};
+constexpr BitItem kOdoFlags[] = {
+    {0, "CFG-ODO-USE_ODO"}, {1, "CFG-ODO-USE_COG"}, {2, "CFG-ODO-OUTLPVEL"}, {3, "CFG-ODO-OUTLPCOG"}};
 constexpr std::pair<std::uint8_t CfgOdo::*, const char*> kOdoBytes[] = {
     {&CfgOdo::cog_max_speed_0p1mps, "CFG-ODO-COGMAXSPEED"},
     {&CfgOdo::cog_max_pos_acc_m, "CFG-ODO-COGMAXPOSACC"},
@@ -893,8 +912,7 @@ constexpr std::pair<std::uint8_t CfgOdo::*, const char*> kOdoBytes[] = {
 
 void UbxDevice::poll_cfg_odo(std::uint8_t, Bytes& out) {
   CfgOdo m;
-  for (std::size_t bit = 0; bit < std::size(kOdoFlagKeys); ++bit)
-    m.flags = static_cast<std::uint8_t>(m.flags | (config_.get(item(kOdoFlagKeys[bit])) & 1) << bit);
+  m.flags = static_cast<std::uint8_t>(bits_of_items(config_, kOdoFlags));
   m.odo_cfg = static_cast<std::uint8_t>(config_.get(item("CFG-ODO-PROFILE")) & 0x7);
   for (const auto& [member, key] : kOdoBytes) m.*member = static_cast<std::uint8_t>(config_.get(item(key)));
   append(m, out);
@@ -905,10 +923,63 @@ void UbxDevice::handle_cfg_odo(Payload p, std::uint8_t, Bytes& out) {
   CfgOdo m;
   if (!decode(p, m)) return nak(kCfgOdo, out);
   std::vector<CfgKeyValue> v{{item("CFG-ODO-PROFILE"), m.odo_cfg & 0x7u}};
-  for (std::size_t bit = 0; bit < std::size(kOdoFlagKeys); ++bit)
-    v.push_back({item(kOdoFlagKeys[bit]), m.flags >> bit & 1u});
+  items_of_bits(m.flags, kOdoFlags, v);
   for (const auto& [member, key] : kOdoBytes) v.push_back({item(key), m.*member});
   config_.set_ram(v) ? ack(kCfgOdo, out) : nak(kCfgOdo, out);
+}
+
+// CFG-NMEA (UBX-13003221 "UBX-CFG-NMEA"; on the F9 the CFG-NMEA-* items): filter bits 0..5,
+// the version as two hex digits (0x41: 4.1; the item as 41), numSV, flags bits 0..3; the
+// 12-byte form adds gnssToFilter (GPS 0, SBAS 1, Galileo 2, QZSS 4, GLONASS 5, BeiDou 6),
+// svNumbering, mainTalkerId, gsvTalkerId and version; the 20-byte form bdsTalkerId. A shorter
+// set form sets only the fields it has. The poll gives the 20-byte form.
+namespace {
+constexpr BitItem kNmeaFilter[] = {{0, "CFG-NMEA-OUT_INVFIX"},  {1, "CFG-NMEA-OUT_MSKFIX"},
+                                              {2, "CFG-NMEA-OUT_INVTIME"}, {3, "CFG-NMEA-OUT_INVDATE"},
+                                              {4, "CFG-NMEA-OUT_ONLYGPS"}, {5, "CFG-NMEA-OUT_FROZENCOG"}};
+constexpr BitItem kNmeaFlags[] = {
+    {0, "CFG-NMEA-COMPAT"}, {1, "CFG-NMEA-CONSIDER"}, {2, "CFG-NMEA-LIMIT82"}, {3, "CFG-NMEA-HIGHPREC"}};
+constexpr BitItem kNmeaGnssFilter[] = {{0, "CFG-NMEA-FILT_GPS"},  {1, "CFG-NMEA-FILT_SBAS"},
+                                                  {2, "CFG-NMEA-FILT_GAL"},  {4, "CFG-NMEA-FILT_QZSS"},
+                                                  {5, "CFG-NMEA-FILT_GLO"},  {6, "CFG-NMEA-FILT_BDS"}};
+}  // namespace
+
+void UbxDevice::poll_cfg_nmea(std::uint8_t, Bytes& out) {
+  const auto get = [&](const char* key) { return static_cast<std::uint8_t>(config_.get(item(key))); };
+  CfgNmea m;
+  m.filter = static_cast<std::uint8_t>(bits_of_items(config_, kNmeaFilter));
+  const std::uint8_t version = get("CFG-NMEA-PROTVER");
+  m.nmea_version = static_cast<std::uint8_t>(version / 10 << 4 | version % 10);
+  m.num_sv = get("CFG-NMEA-MAXSVS");
+  m.flags = static_cast<std::uint8_t>(bits_of_items(config_, kNmeaFlags));
+  m.has_v0 = m.has_v1 = true;
+  m.gnss_to_filter = bits_of_items(config_, kNmeaGnssFilter);
+  m.sv_numbering = get("CFG-NMEA-SVNUMBERING");
+  m.main_talker_id = get("CFG-NMEA-MAINTALKERID");
+  m.gsv_talker_id = get("CFG-NMEA-GSVTALKERID");
+  m.version = 1;
+  const auto bds = static_cast<std::uint16_t>(config_.get(item("CFG-NMEA-BDSTALKERID")));
+  m.bds_talker_id = {static_cast<std::uint8_t>(bds & 0xFF), static_cast<std::uint8_t>(bds >> 8)};
+  append(m, out);
+  ack(kCfgNmea, out);
+}
+
+void UbxDevice::handle_cfg_nmea(Payload p, std::uint8_t, Bytes& out) {
+  CfgNmea m;
+  if (!decode(p, m)) return nak(kCfgNmea, out);
+  std::vector<CfgKeyValue> v{{item("CFG-NMEA-PROTVER"), (m.nmea_version >> 4) * 10u + (m.nmea_version & 0xFu)},
+                             {item("CFG-NMEA-MAXSVS"), m.num_sv}};
+  items_of_bits(m.filter, kNmeaFilter, v);
+  items_of_bits(m.flags, kNmeaFlags, v);
+  if (m.has_v0) {
+    items_of_bits(m.gnss_to_filter, kNmeaGnssFilter, v);
+    v.insert(v.end(), {{item("CFG-NMEA-SVNUMBERING"), m.sv_numbering},
+                       {item("CFG-NMEA-MAINTALKERID"), m.main_talker_id},
+                       {item("CFG-NMEA-GSVTALKERID"), m.gsv_talker_id}});
+  }
+  if (m.has_v1)
+    v.push_back({item("CFG-NMEA-BDSTALKERID"), std::uint64_t{m.bds_talker_id[0]} | std::uint64_t{m.bds_talker_id[1]} << 8});
+  config_.set_ram(v) ? ack(kCfgNmea, out) : nak(kCfgNmea, out);
 }
 
 void UbxDevice::poll_cfg_gnss(std::uint8_t, Bytes& out) {

@@ -108,6 +108,8 @@ class UbxDevice final : public GnssDevice {
   void handle_cfg_itfm(Payload payload, std::uint8_t port, Bytes& out);
   void poll_cfg_odo(std::uint8_t port, Bytes& out);
   void handle_cfg_odo(Payload payload, std::uint8_t port, Bytes& out);
+  void poll_cfg_nmea(std::uint8_t port, Bytes& out);
+  void handle_cfg_nmea(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_tmode3(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_gnss(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_cfg(Payload payload, std::uint8_t port, Bytes& out);

@@ -59,7 +59,7 @@ Bytes power_up(MsgId id, std::uint8_t index, bool protocol27) {
   if (id == kCfgSbas) return encoded(CfgSbas{1, 3, 3, 0, 0});  // on, ranging + corrections, 3 SBAS
   if (id == kCfgNmea) {
     CfgNmea m;
-    m.nmea_version = protocol27 ? 0x41 : 0x40;
+    m.nmea_version = 0x40;
     m.has_v0 = m.has_v1 = true;
     m.version = 1;
     return encoded(m);
@@ -102,7 +102,7 @@ namespace {
 
 // The messages, which parts have them (UBX-13003221 32.10 for the u-blox 8 standard-precision
 // part; the F9 HPG interface descriptions for the F9P: no power-save, SBAS or RXM messages, and
-// CFG-INF, ITFM, ODO and TMODE3 are views of its configuration items, emulator/ubx_device.cpp),
+// CFG-INF, ITFM, NMEA, ODO and TMODE3 are views of its configuration items, emulator/ubx_device.cpp),
 // whether a shorter set form extends into the longer one (CFG-NMEA
 // 4/12/20 bytes, CFG-NAVX5 40/44, CFG-PM2 44/48), whether they can be polled, and how a set is
 // checked.
@@ -116,7 +116,7 @@ constexpr struct {
     {kCfgRxm, true, false, false, true, &decodes<CfgRxm>},
     {kCfgAnt, true, true, false, true, &decodes<CfgAnt>},
     {kCfgSbas, true, false, false, true, &decodes<CfgSbas>},
-    {kCfgNmea, true, true, true, true, &decodes<CfgNmea>},
+    {kCfgNmea, true, false, true, true, &decodes<CfgNmea>},
     {kCfgUsb, true, true, false, true, &decodes<CfgUsb>},
     {kCfgOdo, true, false, false, true, &decodes<CfgOdo>},
     {kCfgNavx5, true, true, true, true, &decodes<CfgNavx5>},

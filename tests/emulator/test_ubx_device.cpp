@@ -568,6 +568,66 @@ TEST_F(UbxDeviceTest, LegacyInfItfmOdoAreItemsOnTheF9) {
   EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgInfPoll{2})), ubx::kCfgInf, true)) << "protocol 2: no items";
 }
 
+// CFG-NMEA on the F9P is a view of the CFG-NMEA-* items (F9 interface description, legacy field
+// reference; IDs from the description) and acts like them: the 20-byte form sets every item, the
+// 4-byte form only its own; the output follows the main talker ID (3: GN) and the version (0x23:
+// NMEA 2.3, whose RMC has the mode indicator but no navigational status field).
+TEST_F(UbxDeviceTest, CfgNmeaIsTheNmeaItemsOnTheF9AndActs) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  ubx::CfgNmea m;
+  m.filter = 0x01;        // posFilt
+  m.nmea_version = 0x23;  // 2.3
+  m.num_sv = 12;
+  m.flags = 0x02;  // consider
+  m.has_v0 = m.has_v1 = true;
+  m.gnss_to_filter = 0x21;  // GPS, GLONASS
+  m.sv_numbering = 1;
+  m.main_talker_id = 3;  // GN
+  m.gsv_talker_id = 1;
+  m.version = 1;
+  m.bds_talker_id = {'G', 'B'};
+  EXPECT_TRUE(only_ack(send(d, frame(m)), ubx::kCfgNmea));
+  ubx::CfgValgetRequest req;
+  req.keys = {0x20930001, 0x20930002, 0x10930004, 0x20930007, 0x10930011, 0x10930016, 0x10930012,
+              0x10930021, 0x20930031, 0x20930032, 0x30930033};
+  std::vector<Frame> f = frames_of(send(d, frame(req)));
+  ubx::CfgValgetResponse r;
+  ASSERT_TRUE(f.size() == 2 && ubx::decode(f[0].payload, r));
+  std::map<std::uint32_t, std::uint64_t> items;
+  for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+  EXPECT_EQ(items[0x20930001], 23u) << "PROTVER";
+  EXPECT_EQ(items[0x20930002], 12u) << "MAXSVS";
+  EXPECT_EQ(items[0x10930004], 1u) << "CONSIDER";
+  EXPECT_EQ(items[0x20930007], 1u) << "SVNUMBERING";
+  EXPECT_EQ(items[0x10930011], 1u) << "FILT_GPS";
+  EXPECT_EQ(items[0x10930016], 1u) << "FILT_GLO";
+  EXPECT_EQ(items[0x10930012], 0u) << "FILT_SBAS";
+  EXPECT_EQ(items[0x10930021], 1u) << "OUT_INVFIX";
+  EXPECT_EQ(items[0x20930031], 3u) << "MAINTALKERID";
+  EXPECT_EQ(items[0x20930032], 1u) << "GSVTALKERID";
+  EXPECT_EQ(items[0x30930033], 0x4247u) << "BDSTALKERID 'G' 'B'";
+  f = frames_of(send(d, poll(ubx::kCfgNmea)));
+  ASSERT_EQ(f.size(), 2u);
+  std::vector<std::uint8_t> sent = frame(m);
+  EXPECT_EQ(f[0].payload, std::vector<std::uint8_t>(sent.begin() + 6, sent.end() - 2)) << "the poll gives the set back";
+
+  std::string out;
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
+  std::smatch rmc;
+  ASSERT_TRUE(std::regex_search(out, rmc, std::regex(R"(\$GNRMC,[^*]*\*)"))) << out;
+  const auto commas = [](const std::string& sentence) { return std::count(sentence.begin(), sentence.end(), ','); };
+  EXPECT_EQ(commas(rmc.str()), 12) << "NMEA 2.3 RMC: mode, no status\n" << rmc.str();
+
+  // The 4-byte form: version 4.1 and the flags; the talker stays GN.
+  ubx::CfgNmea short_form;
+  short_form.nmea_version = 0x41;
+  EXPECT_TRUE(only_ack(send(d, frame(short_form)), ubx::kCfgNmea));
+  out.clear();
+  d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
+  ASSERT_TRUE(std::regex_search(out, rmc, std::regex(R"(\$GNRMC,[^*]*\*)"))) << out;
+  EXPECT_EQ(commas(rmc.str()), 13) << "NMEA 4.1 RMC: mode and status\n" << rmc.str();
+}
+
 // The F9P's time mode (F9 interface description CFG-TMODE-*, UBX-NAV-SVIN): survey-in set by
 // its items (IDs from the description) reports its progress, finishes after the minimum
 // duration with the mean of the 3D fixes, and starts again after a reset.
