@@ -1,6 +1,7 @@
 #include "emulator/ubx_device.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -311,7 +312,8 @@ void UbxDevice::refresh_time_mode() {
   if (survey_settings_ == settings) return;
   survey_settings_ = settings;
   if (settings[0] == kSurveyIn)
-    survey_.start({.min_duration_s = static_cast<double>(settings[1]), .acc_limit_m = static_cast<double>(settings[2]) * 1e-4});
+    survey_.start({.min_duration_s = static_cast<double>(settings[1]),
+                   .acc_limit_m = static_cast<double>(settings[2]) * 1e-4});  // 0.1 mm
   else
     survey_.stop();
   status_.svin = survey_.state();
@@ -429,6 +431,7 @@ const UbxDevice::Command UbxDevice::kCommands[] = {
     {kCfgItfm, Command::kF9, &UbxDevice::poll_cfg_itfm, &UbxDevice::handle_cfg_itfm},
     {kCfgOdo, Command::kF9, &UbxDevice::poll_cfg_odo, &UbxDevice::handle_cfg_odo},
     {kCfgNmea, Command::kF9, &UbxDevice::poll_cfg_nmea, &UbxDevice::handle_cfg_nmea},
+    {kCfgTp5, Command::kF9, nullptr, &UbxDevice::handle_cfg_tp5},
     {kCfgGnss, Command::kBoth, &UbxDevice::poll_cfg_gnss, &UbxDevice::handle_cfg_gnss},
     {kCfgCfg, Command::kBoth, nullptr, &UbxDevice::handle_cfg_cfg},
     {kCfgRst, Command::kBoth, nullptr, &UbxDevice::handle_cfg_rst},
@@ -463,6 +466,13 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_
   }
   nak(msg, out);  // a configuration message this receiver does not have, or a form it refuses
 }
+
+namespace {
+// The CFG-INFMSG item of a protocol (0 UBX, 1 NMEA) on a port.
+std::uint32_t infmsg_key(std::uint8_t protocol, std::uint8_t port) {
+  return item(std::string("CFG-INFMSG-") + (protocol == 1 ? "NMEA_" : "UBX_") + kPortNames[port]);
+}
+}  // namespace
 
 // INF-* as UBX and as NMEA TXT, each where the port's INF mask for that protocol has the type's
 // bit and the port outputs the protocol (F9 interface description CFG-INFMSG-UBX_/NMEA_<port>;
@@ -815,17 +825,13 @@ void UbxDevice::handle_cfg_tmode3(Payload p, std::uint8_t, Bytes& out) {
   config_.set_ram(v) ? ack(kCfgTmode3, out) : nak(kCfgTmode3, out);
 }
 
-// On the F9 CFG-INF, CFG-ITFM, CFG-ODO and CFG-NMEA are views of configuration items too (F9 interface
-// description, "Legacy UBX-CFG message fields reference"); the u-blox 8 keeps them as legacy
-// settings (emulator/ubx_legacy_cfg.hpp).
+// On the F9 CFG-INF, CFG-ITFM, CFG-ODO, CFG-NMEA and CFG-TP5 are views of configuration items too (F9
+// interface description, "Legacy UBX-CFG message fields reference"); the u-blox 8 keeps them as
+// legacy settings (emulator/ubx_legacy_cfg.hpp).
 //
 // CFG-INF: a block per protocol (0 UBX, 1 NMEA) with the INF mask of each port ID, the items
 // CFG-INFMSG-UBX_<port> / NMEA_<port>. The poll is the one-byte form naming the protocol; other
 // protocols have no items and are refused.
-std::uint32_t UbxDevice::infmsg_key(std::uint8_t protocol, std::uint8_t port) const {
-  return item(std::string("CFG-INFMSG-") + (protocol == 1 ? "NMEA_" : "UBX_") + kPortNames[port]);
-}
-
 void UbxDevice::handle_cfg_inf(Payload p, std::uint8_t, Bytes& out) {
   CfgInfPoll poll;
   if (decode(p, poll)) {
@@ -935,13 +941,13 @@ void UbxDevice::handle_cfg_odo(Payload p, std::uint8_t, Bytes& out) {
 // set form sets only the fields it has. The poll gives the 20-byte form.
 namespace {
 constexpr BitItem kNmeaFilter[] = {{0, "CFG-NMEA-OUT_INVFIX"},  {1, "CFG-NMEA-OUT_MSKFIX"},
-                                              {2, "CFG-NMEA-OUT_INVTIME"}, {3, "CFG-NMEA-OUT_INVDATE"},
-                                              {4, "CFG-NMEA-OUT_ONLYGPS"}, {5, "CFG-NMEA-OUT_FROZENCOG"}};
+                                   {2, "CFG-NMEA-OUT_INVTIME"}, {3, "CFG-NMEA-OUT_INVDATE"},
+                                   {4, "CFG-NMEA-OUT_ONLYGPS"}, {5, "CFG-NMEA-OUT_FROZENCOG"}};
 constexpr BitItem kNmeaFlags[] = {
     {0, "CFG-NMEA-COMPAT"}, {1, "CFG-NMEA-CONSIDER"}, {2, "CFG-NMEA-LIMIT82"}, {3, "CFG-NMEA-HIGHPREC"}};
-constexpr BitItem kNmeaGnssFilter[] = {{0, "CFG-NMEA-FILT_GPS"},  {1, "CFG-NMEA-FILT_SBAS"},
-                                                  {2, "CFG-NMEA-FILT_GAL"},  {4, "CFG-NMEA-FILT_QZSS"},
-                                                  {5, "CFG-NMEA-FILT_GLO"},  {6, "CFG-NMEA-FILT_BDS"}};
+constexpr BitItem kNmeaGnssFilter[] = {{0, "CFG-NMEA-FILT_GPS"}, {1, "CFG-NMEA-FILT_SBAS"},
+                                       {2, "CFG-NMEA-FILT_GAL"}, {4, "CFG-NMEA-FILT_QZSS"},
+                                       {5, "CFG-NMEA-FILT_GLO"}, {6, "CFG-NMEA-FILT_BDS"}};
 }  // namespace
 
 void UbxDevice::poll_cfg_nmea(std::uint8_t, Bytes& out) {
@@ -980,6 +986,65 @@ void UbxDevice::handle_cfg_nmea(Payload p, std::uint8_t, Bytes& out) {
   if (m.has_v1)
     v.push_back({item("CFG-NMEA-BDSTALKERID"), std::uint64_t{m.bds_talker_id[0]} | std::uint64_t{m.bds_talker_id[1]} << 8});
   config_.set_ram(v) ? ack(kCfgNmea, out) : nak(kCfgNmea, out);
+}
+
+// CFG-TP5 (UBX-13003221 "UBX-CFG-TP5"; on the F9 the CFG-TP-*_TP1 items, the part having one
+// time pulse: tpIdx 1 has no items and is refused). flags: active bit 0, lockGnssFreq 1,
+// lockedOtherSet 2, isFreq 3, isLength 4, alignToTow 5, polarity 6, gridUtcGnss bits 7..10.
+// isFreq says whether the two frequency/period fields are Hz (the FREQ items) or us (PERIOD);
+// isLength whether the two pulse fields are us (LEN) or a duty ratio in 2^-32 (DUTY, an R8 in %).
+// The one-byte poll names the time pulse; the empty poll is the first.
+namespace {
+constexpr BitItem kTp5Flags[] = {{0, "CFG-TP-TP1_ENA"},       {1, "CFG-TP-SYNC_GNSS_TP1"},
+                                 {2, "CFG-TP-USE_LOCKED_TP1"}, {3, "CFG-TP-PULSE_DEF"},
+                                 {4, "CFG-TP-PULSE_LENGTH_DEF"}, {5, "CFG-TP-ALIGN_TO_TOW_TP1"},
+                                 {6, "CFG-TP-POL_TP1"}};
+constexpr double kTwoPow32 = 4294967296.0;
+}  // namespace
+
+void UbxDevice::handle_cfg_tp5(Payload p, std::uint8_t, Bytes& out) {
+  const auto get = [&](const char* key) { return config_.get(item(key)); };
+  const auto duty_pct = [&](const char* key) { return std::bit_cast<double>(get(key)); };
+  if (p.size() <= 1) {  // a poll
+    if (!p.empty() && p[0] != 0) return nak(kCfgTp5, out);
+    CfgTp5 m;
+    m.flags = bits_of_items(config_, kTp5Flags) | static_cast<std::uint32_t>(get("CFG-TP-TIMEGRID_TP1") & 0xF) << 7;
+    const bool is_freq = get("CFG-TP-PULSE_DEF") == 1, is_length = get("CFG-TP-PULSE_LENGTH_DEF") == 1;
+    m.ant_cable_delay_ns = static_cast<std::int16_t>(static_cast<std::uint16_t>(get("CFG-TP-ANT_CABLEDELAY")));
+    m.freq_period_hz_or_us = static_cast<std::uint32_t>(get(is_freq ? "CFG-TP-FREQ_TP1" : "CFG-TP-PERIOD_TP1"));
+    m.freq_period_lock_hz_or_us =
+        static_cast<std::uint32_t>(get(is_freq ? "CFG-TP-FREQ_LOCK_TP1" : "CFG-TP-PERIOD_LOCK_TP1"));
+    const auto ratio = [&](const char* key) {
+      return static_cast<std::uint32_t>(std::clamp(std::round(duty_pct(key) / 100.0 * kTwoPow32), 0.0, kTwoPow32 - 1));
+    };
+    m.pulse_len_ratio_us_or_2m32 =
+        is_length ? static_cast<std::uint32_t>(get("CFG-TP-LEN_TP1")) : ratio("CFG-TP-DUTY_TP1");
+    m.pulse_len_ratio_lock_us_or_2m32 =
+        is_length ? static_cast<std::uint32_t>(get("CFG-TP-LEN_LOCK_TP1")) : ratio("CFG-TP-DUTY_LOCK_TP1");
+    m.user_config_delay_ns = static_cast<std::int32_t>(static_cast<std::uint32_t>(get("CFG-TP-USER_DELAY_TP1")));
+    append(m, out);
+    return ack(kCfgTp5, out);
+  }
+  CfgTp5 m;
+  if (!decode(p, m) || m.tp_idx != 0) return nak(kCfgTp5, out);
+  const bool is_freq = (m.flags & 0x08) != 0, is_length = (m.flags & 0x10) != 0;
+  std::vector<CfgKeyValue> v{
+      {item("CFG-TP-TIMEGRID_TP1"), m.flags >> 7 & 0xF},
+      {item("CFG-TP-ANT_CABLEDELAY"), static_cast<std::uint16_t>(m.ant_cable_delay_ns)},
+      {item(is_freq ? "CFG-TP-FREQ_TP1" : "CFG-TP-PERIOD_TP1"), m.freq_period_hz_or_us},
+      {item(is_freq ? "CFG-TP-FREQ_LOCK_TP1" : "CFG-TP-PERIOD_LOCK_TP1"), m.freq_period_lock_hz_or_us},
+      {item("CFG-TP-USER_DELAY_TP1"), static_cast<std::uint32_t>(m.user_config_delay_ns)}};
+  items_of_bits(m.flags, kTp5Flags, v);
+  const auto duty_item = [](std::uint32_t ratio_2m32) {
+    return std::bit_cast<std::uint64_t>(static_cast<double>(ratio_2m32) / kTwoPow32 * 100.0);
+  };
+  if (is_length)
+    v.insert(v.end(), {{item("CFG-TP-LEN_TP1"), m.pulse_len_ratio_us_or_2m32},
+                       {item("CFG-TP-LEN_LOCK_TP1"), m.pulse_len_ratio_lock_us_or_2m32}});
+  else
+    v.insert(v.end(), {{item("CFG-TP-DUTY_TP1"), duty_item(m.pulse_len_ratio_us_or_2m32)},
+                       {item("CFG-TP-DUTY_LOCK_TP1"), duty_item(m.pulse_len_ratio_lock_us_or_2m32)}});
+  config_.set_ram(v) ? ack(kCfgTp5, out) : nak(kCfgTp5, out);
 }
 
 void UbxDevice::poll_cfg_gnss(std::uint8_t, Bytes& out) {

@@ -102,7 +102,6 @@ class UbxDevice final : public GnssDevice {
   void handle_cfg_rate(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_nav5(Payload payload, std::uint8_t port, Bytes& out);
   void poll_cfg_tmode3(std::uint8_t port, Bytes& out);
-  std::uint32_t infmsg_key(std::uint8_t protocol, std::uint8_t port) const;
   void handle_cfg_inf(Payload payload, std::uint8_t port, Bytes& out);
   void poll_cfg_itfm(std::uint8_t port, Bytes& out);
   void handle_cfg_itfm(Payload payload, std::uint8_t port, Bytes& out);
@@ -110,6 +109,7 @@ class UbxDevice final : public GnssDevice {
   void handle_cfg_odo(Payload payload, std::uint8_t port, Bytes& out);
   void poll_cfg_nmea(std::uint8_t port, Bytes& out);
   void handle_cfg_nmea(Payload payload, std::uint8_t port, Bytes& out);
+  void handle_cfg_tp5(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_tmode3(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_gnss(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_cfg(Payload payload, std::uint8_t port, Bytes& out);

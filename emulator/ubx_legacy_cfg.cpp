@@ -101,9 +101,9 @@ Bytes power_up(MsgId id, std::uint8_t index, bool protocol27) {
 namespace {
 
 // The messages, which parts have them (UBX-13003221 32.10 for the u-blox 8 standard-precision
-// part; the F9 HPG interface descriptions for the F9P: no power-save, SBAS or RXM messages, and
-// CFG-INF, ITFM, NMEA, ODO and TMODE3 are views of its configuration items, emulator/ubx_device.cpp),
-// whether a shorter set form extends into the longer one (CFG-NMEA
+// part; the F9 HPG interface descriptions for the F9P: no power-save, SBAS or RXM messages,
+// and CFG-INF, ITFM, NMEA, ODO, TMODE3 and TP5 are views of its configuration items,
+// emulator/ubx_device.cpp), whether a shorter set form extends into the longer one (CFG-NMEA
 // 4/12/20 bytes, CFG-NAVX5 40/44, CFG-PM2 44/48), whether they can be polled, and how a set is
 // checked.
 constexpr struct {
@@ -120,7 +120,7 @@ constexpr struct {
     {kCfgUsb, true, true, false, true, &decodes<CfgUsb>},
     {kCfgOdo, true, false, false, true, &decodes<CfgOdo>},
     {kCfgNavx5, true, true, true, true, &decodes<CfgNavx5>},
-    {kCfgTp5, true, true, false, true, &decodes<CfgTp5>},
+    {kCfgTp5, true, false, false, true, &decodes<CfgTp5>},
     {kCfgRinv, true, true, false, true, &decodes<CfgRinv>},
     {kCfgItfm, true, false, false, true, &decodes<CfgItfm>},
     {kCfgPm2, true, false, true, true, &decodes<CfgPm2>},

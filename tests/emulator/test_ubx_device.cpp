@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <map>
 #include <regex>
@@ -626,6 +627,66 @@ TEST_F(UbxDeviceTest, CfgNmeaIsTheNmeaItemsOnTheF9AndActs) {
   d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
   ASSERT_TRUE(std::regex_search(out, rmc, std::regex(R"(\$GNRMC,[^*]*\*)"))) << out;
   EXPECT_EQ(commas(rmc.str()), 13) << "NMEA 4.1 RMC: mode and status\n" << rmc.str();
+}
+
+// CFG-TP5 on the F9P is a view of the CFG-TP-*_TP1 items (F9 interface description, legacy
+// field reference; IDs from the description). At power-up it reads the items' defaults: 1 s
+// period, 100 ms pulse once locked, 50 ns cable delay, flags active, lockGnssFreq,
+// lockedOtherSet, isLength, alignToTow, rising edge (0x77). A set in frequency and duty-ratio
+// form writes FREQ and DUTY (25 % = 2^30 in 2^-32 units) and reads back; the second time pulse,
+// which has no items on the part, is refused.
+TEST_F(UbxDeviceTest, CfgTp5IsTheTimePulseItemsOnTheF9) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  const auto poll_tp5 = [&](std::vector<std::uint8_t> request) -> std::optional<ubx::CfgTp5> {
+    const std::vector<Frame> f = frames_of(send(d, request));
+    ubx::CfgTp5 m;
+    if (f.size() != 2 || !is_ack(f[1], ubx::kCfgTp5) || !ubx::decode(f[0].payload, m)) return std::nullopt;
+    return m;
+  };
+  std::optional<ubx::CfgTp5> tp = poll_tp5(poll(ubx::kCfgTp5));
+  ASSERT_TRUE(tp);
+  EXPECT_EQ(tp->flags, 0x77u);
+  EXPECT_EQ(tp->freq_period_hz_or_us, 1'000'000u);
+  EXPECT_EQ(tp->freq_period_lock_hz_or_us, 1'000'000u);
+  EXPECT_EQ(tp->pulse_len_ratio_us_or_2m32, 0u);
+  EXPECT_EQ(tp->pulse_len_ratio_lock_us_or_2m32, 100'000u);
+  EXPECT_EQ(tp->ant_cable_delay_ns, 50);
+
+  ubx::CfgTp5 set;
+  set.flags = 0x01 | 0x02 | 0x08 | 0x20 | 0x40 | 1u << 7;  // active, lock, isFreq, align, rising, GPS grid
+  set.ant_cable_delay_ns = -20;
+  set.freq_period_hz_or_us = 10;
+  set.freq_period_lock_hz_or_us = 1000;
+  set.pulse_len_ratio_us_or_2m32 = 1u << 30;       // 25 %
+  set.pulse_len_ratio_lock_us_or_2m32 = 3u << 30;  // 75 %
+  set.user_config_delay_ns = -7;
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgTp5));
+  ubx::CfgValgetRequest req;
+  req.keys = {0x40050024, 0x40050025, 0x20050023, 0x20050030, 0x5005002a, 0x5005002b, 0x10050008,
+              0x10050009, 0x2005000c, 0x30050001, 0x40050006};
+  const std::vector<Frame> f = frames_of(send(d, frame(req)));
+  ubx::CfgValgetResponse r;
+  ASSERT_TRUE(f.size() == 2 && ubx::decode(f[0].payload, r));
+  std::map<std::uint32_t, std::uint64_t> items;
+  for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+  EXPECT_EQ(items[0x40050024], 10u) << "FREQ_TP1";
+  EXPECT_EQ(items[0x40050025], 1000u) << "FREQ_LOCK_TP1";
+  EXPECT_EQ(items[0x20050023], 1u) << "PULSE_DEF frequency";
+  EXPECT_EQ(items[0x20050030], 0u) << "PULSE_LENGTH_DEF ratio";
+  EXPECT_EQ(std::bit_cast<double>(items[0x5005002a]), 25.0) << "DUTY_TP1 %";
+  EXPECT_EQ(std::bit_cast<double>(items[0x5005002b]), 75.0) << "DUTY_LOCK_TP1 %";
+  EXPECT_EQ(items[0x10050008], 1u) << "SYNC_GNSS_TP1";
+  EXPECT_EQ(items[0x10050009], 0u) << "USE_LOCKED_TP1";
+  EXPECT_EQ(items[0x2005000c], 1u) << "TIMEGRID_TP1 GPS";
+  EXPECT_EQ(items[0x30050001], 0xFFECu) << "ANT_CABLEDELAY -20 ns";
+  EXPECT_EQ(items[0x40050006], 0xFFFFFFF9u) << "USER_DELAY_TP1 -7 ns";
+  tp = poll_tp5(raw_frame(ubx::kCfgTp5, {0}));
+  ASSERT_TRUE(tp);
+  EXPECT_EQ(frame(*tp), frame(set)) << "the poll gives the set back";
+
+  EXPECT_TRUE(only_ack(send(d, raw_frame(ubx::kCfgTp5, {1})), ubx::kCfgTp5, true)) << "TIMEPULSE2";
+  set.tp_idx = 1;
+  EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgTp5, true)) << "TIMEPULSE2";
 }
 
 // The F9P's time mode (F9 interface description CFG-TMODE-*, UBX-NAV-SVIN): survey-in set by
