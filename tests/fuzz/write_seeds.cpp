@@ -163,6 +163,22 @@ void ubx_seeds(const fs::path& dir) {
     ubx::append_poll(id, legacy);
   write_ubx(dir, "cfg-legacy", legacy);
 
+  // The time mode and output filters: survey-in by items and by CFG-TMODE3, NAV-SVIN polled;
+  // a tight PDOP mask; epochs on UTC's grid at 700 ms.
+  std::vector<std::uint8_t> modes;
+  ubx::CfgValset survey;
+  survey.values = {{0x20030001, 1}, {0x40030010, 2}, {0x40030011, 100000}, {0x301100b1, 15}};
+  ubx::append(survey, modes);
+  ubx::CfgTmode3 tmode3;
+  tmode3.flags = 1;
+  tmode3.svin_min_dur_s = 3;
+  tmode3.svin_acc_limit_0p1mm = 50000;
+  ubx::append(tmode3, modes);
+  ubx::append(ubx::CfgRate{700, 1, ubx::CfgRate::kTimeRefUtc}, modes);
+  for (const ubx::MsgId id : {ubx::kNavSvin, ubx::kCfgTmode3, ubx::kCfgNmea, ubx::kCfgOdo, ubx::kNavPvt})
+    ubx::append_poll(id, modes);
+  write_ubx(dir, "time-mode", modes);
+
   // Aiding data, the navigation database and its backup: the AID polls of all satellites and of
   // one, the MGA-DBD dump, UPD-SOS poll, create and clear, a reset between, RXM-MEASX.
   std::vector<std::uint8_t> aiding;
