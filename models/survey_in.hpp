@@ -2,7 +2,7 @@
 // Survey-in of a base station's position (u-blox time mode "survey-in": F9 interface
 // description, CFG-TMODE-MODE 1 and UBX-NAV-SVIN): the mean of the 3D fixes since the survey
 // began, finished once it has lasted the minimum duration and the mean is accurate to the
-// limit. The receiver then holds the mean as its fixed position.
+// limit; the mean is then the base station's surveyed position.
 //
 // The accuracy of the mean. The fixes' errors are not white: the atmosphere and multipath
 // change over minutes (models/measurement.hpp). For an error with autocorrelation
@@ -19,14 +19,14 @@
 namespace navemu {
 
 struct SurveyInParams {
-  double min_duration_s = 0.0;       // CFG-TMODE-SVIN_MIN_DUR
-  double acc_limit_m = 0.0;          // CFG-TMODE-SVIN_ACC_LIMIT
+  double min_duration_s = 0.0;        // CFG-TMODE-SVIN_MIN_DUR
+  double acc_limit_m = 0.0;           // CFG-TMODE-SVIN_ACC_LIMIT
   double error_correlation_s = 60.0;  // tau: the multipath correlation time (models/measurement.hpp)
 };
 
 struct SurveyInState {
-  bool active = false;  // in progress
-  bool valid = false;   // finished: mean_ecef_m is the base position
+  bool active = false;      // in progress
+  bool valid = false;       // finished: mean_ecef_m is the base position
   double duration_s = 0.0;  // from the first fix used to the last
   std::uint32_t obs = 0;    // fixes used
   Vec3 mean_ecef_m = Vec3::Zero();

@@ -104,6 +104,23 @@ bool is_nak(const Frame& f, ubx::MsgId acked) {
   return ::testing::AssertionSuccess();
 }
 
+// The payload of a whole frame (6 header bytes, 2 checksum bytes).
+std::vector<std::uint8_t> payload_of(const std::vector<std::uint8_t>& f) {
+  return std::vector<std::uint8_t>(f.begin() + 6, f.end() - 2);
+}
+
+// VALGET of `keys` from the RAM layer (the values, then ACK-ACK): each key's value.
+std::map<std::uint32_t, std::uint64_t> valget_items(UbxDevice& d, std::vector<std::uint32_t> keys) {
+  ubx::CfgValgetRequest req;
+  req.keys = std::move(keys);
+  const std::vector<Frame> f = frames_of(send(d, frame(req)));
+  ubx::CfgValgetResponse r;
+  EXPECT_TRUE(f.size() == 2 && ubx::decode(f[0].payload, r) && is_ack(f[1], ubx::kCfgValget));
+  std::map<std::uint32_t, std::uint64_t> items;
+  for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+  return items;
+}
+
 const NavData& empty_nav() {
   static const NavData nav;
   return nav;
@@ -502,19 +519,6 @@ TEST_F(UbxDeviceTest, OutputFiltersDecideValidity) {
 // without items is refused.
 TEST_F(UbxDeviceTest, LegacyInfItfmOdoAreItemsOnTheF9) {
   UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
-  const auto valget = [&](std::vector<std::uint32_t> keys) {
-    ubx::CfgValgetRequest req;
-    req.keys = std::move(keys);
-    const std::vector<Frame> f = frames_of(send(d, frame(req)));
-    std::map<std::uint32_t, std::uint64_t> items;
-    ubx::CfgValgetResponse r;
-    EXPECT_TRUE(f.size() == 2 && ubx::decode(f[0].payload, r));
-    for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
-    return items;
-  };
-  const auto payload_of = [](const std::vector<std::uint8_t>& f) {  // a frame's payload
-    return std::vector<std::uint8_t>(f.begin() + 6, f.end() - 2);
-  };
   const auto poll_back = [&](ubx::MsgId id, const std::vector<std::uint8_t>& request) {
     const std::vector<Frame> f = frames_of(send(d, request));
     EXPECT_EQ(f.size(), 2u);
@@ -526,7 +530,7 @@ TEST_F(UbxDeviceTest, LegacyInfItfmOdoAreItemsOnTheF9) {
   itfm.config = 0x3 | 0xF << 4 | 0x16B156u << 9 | 0x80000000u;  // bb 3, cw 15, enabled
   itfm.config2 = 0x31E | 2u << 12;                                 // external antenna
   EXPECT_TRUE(only_ack(send(d, frame(itfm)), ubx::kCfgItfm));
-  auto items = valget({0x20410001, 0x20410002, 0x1041000d, 0x20410010, 0x10410013});
+  auto items = valget_items(d, {0x20410001, 0x20410002, 0x1041000d, 0x20410010, 0x10410013});
   EXPECT_EQ(items[0x20410001], 3u);
   EXPECT_EQ(items[0x20410002], 15u);
   EXPECT_EQ(items[0x1041000d], 1u);
@@ -542,7 +546,7 @@ TEST_F(UbxDeviceTest, LegacyInfItfmOdoAreItemsOnTheF9) {
   odo.vel_lp_gain = 153;
   odo.cog_lp_gain = 76;
   EXPECT_TRUE(only_ack(send(d, frame(odo)), ubx::kCfgOdo));
-  items = valget({0x10220001, 0x10220002, 0x10220003, 0x10220004, 0x20220005, 0x20220021, 0x20220022,
+  items = valget_items(d, {0x10220001, 0x10220002, 0x10220003, 0x10220004, 0x20220005, 0x20220021, 0x20220022,
                   0x20220031, 0x20220032});
   EXPECT_EQ(items[0x10220001], 1u);
   EXPECT_EQ(items[0x10220002], 0u);
@@ -561,7 +565,7 @@ TEST_F(UbxDeviceTest, LegacyInfItfmOdoAreItemsOnTheF9) {
   b.inf_msg_mask[ubx::kPortUart1] = 0x1F;
   b.inf_msg_mask[ubx::kPortUsb] = 0x03;
   EXPECT_TRUE(only_ack(send(d, frame(inf)), ubx::kCfgInf));
-  items = valget({0x20920002, 0x20920004, 0x20920007});
+  items = valget_items(d, {0x20920002, 0x20920004, 0x20920007});
   EXPECT_EQ(items[0x20920002], 0x1Fu) << "CFG-INFMSG-UBX_UART1";
   EXPECT_EQ(items[0x20920004], 0x03u) << "CFG-INFMSG-UBX_USB";
   EXPECT_EQ(items[0x20920007], 0x07u) << "CFG-INFMSG-NMEA_UART1 untouched (power-up 0x07)";
@@ -588,14 +592,9 @@ TEST_F(UbxDeviceTest, CfgNmeaIsTheNmeaItemsOnTheF9AndActs) {
   m.version = 1;
   m.bds_talker_id = {'G', 'B'};
   EXPECT_TRUE(only_ack(send(d, frame(m)), ubx::kCfgNmea));
-  ubx::CfgValgetRequest req;
-  req.keys = {0x20930001, 0x20930002, 0x10930004, 0x20930007, 0x10930011, 0x10930016, 0x10930012,
-              0x10930021, 0x20930031, 0x20930032, 0x30930033};
-  std::vector<Frame> f = frames_of(send(d, frame(req)));
-  ubx::CfgValgetResponse r;
-  ASSERT_TRUE(f.size() == 2 && ubx::decode(f[0].payload, r));
-  std::map<std::uint32_t, std::uint64_t> items;
-  for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+  std::map<std::uint32_t, std::uint64_t> items =
+      valget_items(d, {0x20930001, 0x20930002, 0x10930004, 0x20930007, 0x10930011, 0x10930016, 0x10930012,
+                       0x10930021, 0x20930031, 0x20930032, 0x30930033});
   EXPECT_EQ(items[0x20930001], 23u) << "PROTVER";
   EXPECT_EQ(items[0x20930002], 12u) << "MAXSVS";
   EXPECT_EQ(items[0x10930004], 1u) << "CONSIDER";
@@ -607,10 +606,9 @@ TEST_F(UbxDeviceTest, CfgNmeaIsTheNmeaItemsOnTheF9AndActs) {
   EXPECT_EQ(items[0x20930031], 3u) << "MAINTALKERID";
   EXPECT_EQ(items[0x20930032], 1u) << "GSVTALKERID";
   EXPECT_EQ(items[0x30930033], 0x4247u) << "BDSTALKERID 'G' 'B'";
-  f = frames_of(send(d, poll(ubx::kCfgNmea)));
+  const std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgNmea)));
   ASSERT_EQ(f.size(), 2u);
-  std::vector<std::uint8_t> sent = frame(m);
-  EXPECT_EQ(f[0].payload, std::vector<std::uint8_t>(sent.begin() + 6, sent.end() - 2)) << "the poll gives the set back";
+  EXPECT_EQ(f[0].payload, payload_of(frame(m))) << "the poll gives the set back";
 
   std::string out;
   d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, out);
@@ -661,14 +659,9 @@ TEST_F(UbxDeviceTest, CfgTp5IsTheTimePulseItemsOnTheF9) {
   set.pulse_len_ratio_lock_us_or_2m32 = 3u << 30;  // 75 %
   set.user_config_delay_ns = -7;
   EXPECT_TRUE(only_ack(send(d, frame(set)), ubx::kCfgTp5));
-  ubx::CfgValgetRequest req;
-  req.keys = {0x40050024, 0x40050025, 0x20050023, 0x20050030, 0x5005002a, 0x5005002b, 0x10050008,
-              0x10050009, 0x2005000c, 0x30050001, 0x40050006};
-  const std::vector<Frame> f = frames_of(send(d, frame(req)));
-  ubx::CfgValgetResponse r;
-  ASSERT_TRUE(f.size() == 2 && ubx::decode(f[0].payload, r));
-  std::map<std::uint32_t, std::uint64_t> items;
-  for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+  std::map<std::uint32_t, std::uint64_t> items =
+      valget_items(d, {0x40050024, 0x40050025, 0x20050023, 0x20050030, 0x5005002a, 0x5005002b, 0x10050008,
+                       0x10050009, 0x2005000c, 0x30050001, 0x40050006});
   EXPECT_EQ(items[0x40050024], 10u) << "FREQ_TP1";
   EXPECT_EQ(items[0x40050025], 1000u) << "FREQ_LOCK_TP1";
   EXPECT_EQ(items[0x20050023], 1u) << "PULSE_DEF frequency";
@@ -771,15 +764,9 @@ TEST_F(UbxDeviceTest, CfgTmode3IsTheTimeModeItemsOnTheF9) {
   }
   UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
   EXPECT_TRUE(only_ack(send(d, frame(llh)), ubx::kCfgTmode3));
-  ubx::CfgValgetRequest req;
-  req.keys = {0x20030001, 0x20030002, 0x40030009, 0x4003000a, 0x4003000b, 0x2003000c,
-              0x2003000d, 0x2003000e, 0x4003000f, 0x40030010, 0x40030011};
-  std::vector<Frame> f = frames_of(send(d, frame(req)));
-  ASSERT_EQ(f.size(), 2u);
-  ubx::CfgValgetResponse r;
-  ASSERT_TRUE(ubx::decode(f[0].payload, r));
-  std::map<std::uint32_t, std::uint64_t> items;
-  for (const ubx::CfgKeyValue& kv : r.values) items[kv.key_id] = kv.value;
+  std::map<std::uint32_t, std::uint64_t> items =
+      valget_items(d, {0x20030001, 0x20030002, 0x40030009, 0x4003000a, 0x4003000b, 0x2003000c, 0x2003000d,
+                       0x2003000e, 0x4003000f, 0x40030010, 0x40030011});
   EXPECT_EQ(items[0x20030001], 2u) << "MODE fixed";
   EXPECT_EQ(items[0x20030002], 1u) << "POS_TYPE LLH";
   EXPECT_EQ(items[0x40030009], 323'000'123u);
@@ -792,7 +779,7 @@ TEST_F(UbxDeviceTest, CfgTmode3IsTheTimeModeItemsOnTheF9) {
   EXPECT_EQ(items[0x40030010], 120u);
   EXPECT_EQ(items[0x40030011], 20'000u);
 
-  f = frames_of(send(d, poll(ubx::kCfgTmode3)));
+  std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgTmode3)));
   ASSERT_EQ(f.size(), 2u);
   EXPECT_TRUE(is_ack(f[1], ubx::kCfgTmode3));
   ubx::CfgTmode3 back;
