@@ -50,6 +50,7 @@ GnssChannel::GnssChannel(std::unique_ptr<NavData> nav, const ReceiverParams& rec
 
 void GnssChannel::begin(GpsTime start) {
   start_ = start;
+  receiver_->set_event_origin(start);
   offset_ns_ = device_->grid_offset_ns(start);
   k_ = first_index_at_or_after(start, period_ns_, offset_ns_);
 }

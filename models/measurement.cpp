@@ -138,6 +138,7 @@ struct MeasurementGenerator::State {
   SatTable<double> below_horizon_until_s;  // no orbit evaluation before then
   Vec3 below_horizon_from = Vec3::Zero();  // the receiver's place when those were decided
   std::optional<GpsTime> last;
+  std::optional<GpsTime> event_origin;  // the events' times count from here
   std::vector<SatId> sat_ids;  // the satellites with records, in SatId order
   SatTable<std::vector<const GpsEphemeris*>> records;  // each satellite's broadcast records
   // Each satellite's record choice with the span of times it holds for (the records change only
@@ -209,6 +210,8 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
 
 MeasurementGenerator::~MeasurementGenerator() = default;
 
+void MeasurementGenerator::set_event_origin(GpsTime start) { state_->event_origin = start; }
+
 EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx,
                                                  const Vec3& v_rx) {
   EpochMeasurements out;
@@ -242,6 +245,13 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   // The receiver's time tag runs ahead of GPS time by its clock bias.
   out.t_true = t_receiver.plus_s(-out.rx_clock_bias_s);
   const double t_s = out.t_true.seconds();
+  // The jammers on at this instant, by band.
+  if (!st.event_origin) st.event_origin = out.t_true;
+  out.interference = {};
+  const double t_event_s = seconds_between(out.t_true, *st.event_origin);
+  for (const JammingEvent& j : cfg_.jamming)
+    if (const auto js = ramped_j_over_s_db(j.j_over_s_db, event_level(j.window, t_event_s)))
+      out.interference[static_cast<std::size_t>(j.band)].add(*js, j.kind);
 
   const Geodetic geo = geodetic_from_ecef(p_rx);
   const ReceiverPlace rx{p_rx, v_rx, R_enu_from_ecef(geo)};
@@ -279,7 +289,9 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     SignalEnvironment env;
     if (cfg_.environment && g.dir.el_rad > 0.0)
       env = cfg_.environment->evaluate(p_rx, (g.sat.p_ecef_m - p_rx).normalized());
-    const double cn0_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db;
+    // Without interference, and as tracked (the effective C/N0 under the jammers on L1).
+    const double cn0_clear_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db;
+    const double cn0_l1 = effective_cn0_dbhz(cn0_clear_l1, out.interference[0], kBandChipRate_Hz[0]);
     // Tracked while above the threshold; a signal that returns (rises, or comes back above the
     // threshold) is re-acquired only after the receiver's re-acquisition time.
     const bool receivable = g.dir.el_rad > 0.0 && env.received &&
@@ -372,7 +384,9 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
       const double gm = gamma(band);
       const double lambda = wavelength_m(band);
       SignalObs so;
-      so.cn0_dbhz = cn0_l1 + kCn0OffsetDb[static_cast<std::size_t>(b)];
+      so.cn0_dbhz = effective_cn0_dbhz(cn0_clear_l1 + kCn0OffsetDb[static_cast<std::size_t>(b)],
+                                       out.interference[static_cast<std::size_t>(b)],
+                                       kBandChipRate_Hz[static_cast<std::size_t>(b)]);
       const TrackingNoise noise =
           on.noise ? tracking_noise(so.cn0_dbhz, cfg_.tracking) : TrackingNoise{};
       const double code_sigma = noise.code_m;

@@ -21,6 +21,7 @@
 #include "models/atmosphere.hpp"
 #include "models/ephemeris.hpp"
 #include "models/geodesy.hpp"
+#include "models/interference.hpp"
 #include "models/random.hpp"
 #include "models/receiver_clock.hpp"
 #include "models/sat_errors.hpp"
@@ -42,6 +43,18 @@ enum class ReceiverMode {
 enum class IonoModel {
   kKlobuchar,  // the broadcast model of the navigation file (default when it carries one)
   kPaperVtec,  // the paper's mapping of a configured vertical TEC
+};
+
+// The signals generated, by band: L1 C/A, L2C (the CL pilot) and the L5 pilot (Q).
+enum class Band { kL1 = 0, kL2 = 1, kL5 = 2 };
+
+// A jammer switched on for a while (issue "impairments"): its J/S at the antenna on one band at
+// full level, its spectrum, and when (EventWindow: seconds from the scenario's start, ramps).
+struct JammingEvent {
+  EventWindow window;
+  double j_over_s_db = 0.0;
+  InterferenceKind kind = InterferenceKind::kWideband;
+  Band band = Band::kL1;
 };
 
 enum class SatErrorModel {
@@ -104,15 +117,19 @@ struct MeasurementConfig {
   // code, carrier and Doppler, and the composite C/N0 per satellite; replaces the statistical
   // multipath. None: open sky.
   std::shared_ptr<const SignalEnvironmentModel> environment;
+  // Jammers (models/interference.hpp): they lower every signal's C/N0 on their band by the
+  // effective-C/N0 formula; signals below the tracking threshold lose lock.
+  std::vector<JammingEvent> jamming;
   std::uint64_t seed = 1;
 };
 
-// The signals generated, by band: L1 C/A, L2C (the CL pilot) and the L5 pilot (Q).
-enum class Band { kL1 = 0, kL2 = 1, kL5 = 2 };
 inline constexpr std::array<SignalId, 3> kBandSignals = {kGpsL1CA, kGpsL2CL, kGpsL5Q};
 inline constexpr std::array<double, 3> kBandFreq_Hz = {carrier_frequency_hz(kBandSignals[0]),
                                                        carrier_frequency_hz(kBandSignals[1]),
                                                        carrier_frequency_hz(kBandSignals[2])};
+// Their spreading codes' chip rates (IS-GPS-200 3.3.2: C/A 1.023 Mchip/s; L2C's CM and CL
+// time-multiplexed, 1.023 Mchip/s together; IS-GPS-705 3.3.2: L5 10.23 Mchip/s).
+inline constexpr std::array<double, 3> kBandChipRate_Hz = {1.023e6, 1.023e6, 10.23e6};
 
 struct SignalObs {
   double pseudorange_m = 0.0;
@@ -149,6 +166,7 @@ struct EpochMeasurements {
   double rx_clock_bias_s = 0.0;
   double rx_clock_drift_sps = 0.0;
   std::vector<SatMeasurement> sats;  // tracked satellites above the horizon, by SatId
+  std::array<BandInterference, 3> interference{};  // by Band, at t_true
 };
 
 // Receiver classes: tracking loops, antenna and site as they differ between a geodetic receiver
@@ -179,6 +197,8 @@ class MeasurementGenerator {
   SolverOptions solver_options() const;
 
   const MeasurementConfig& config() const { return cfg_; }
+  // The scenario's start, from which the events' times count; unset: the first epoch's time.
+  void set_event_origin(GpsTime start);
 
  private:
   struct State;

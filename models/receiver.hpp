@@ -88,6 +88,8 @@ class Receiver {
   const NavEngineSettings& engine() const { return engine_; }
   // The raw measurements of the last update (tracked satellites), for raw-data output.
   const EpochMeasurements& measurements() const { return meas_; }
+  // The scenario's start, from which scheduled events count (MeasurementGenerator).
+  void set_event_origin(GpsTime start) { gen_.set_event_origin(start); }
 
  private:
   ReceiverParams p_;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -269,6 +270,66 @@ TEST(Measurement, RisingSatelliteIsTrackedAfterTheReacquisitionTime) {
     }
   }
   EXPECT_GT(risers, 0);
+}
+
+// A jammer lowers every tracked signal's C/N0 on its band by the effective-C/N0 formula
+// (models/interference.hpp), written out here: over a sweep of wideband J/S on L1, each
+// satellite's C/N0 is the clear one's (same seed, no jammer) combined with (J/S)/(2 Rc) within
+// 1 dB (to rounding); L2 and L5 keep theirs. Signals that fall below the tracking threshold are
+// lost, and come back the re-acquisition time after the jammer goes.
+TEST(Measurement, JammingLowersCn0ByTheFormulaAndLosesWeakSignals) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig clear_cfg = all_off();
+  clear_cfg.dual_frequency_signals = true;
+  MeasurementGenerator clear(nav, clear_cfg);
+  const auto ref = clear.generate(kStart, ecef_from_geodetic(kSite));
+  ASSERT_GE(ref.sats.size(), 6u);
+  std::size_t previous = ref.sats.size();
+  for (double js = 0.0; js <= 50.0; js += 5.0) {
+    MeasurementConfig c = clear_cfg;
+    c.jamming = {JammingEvent{{0.0, 100.0, 0.0}, js, InterferenceKind::kWideband, Band::kL1}};
+    MeasurementGenerator gen(nav, c);
+    gen.set_event_origin(kStart);
+    const auto e = gen.generate(kStart, ecef_from_geodetic(kSite));
+    std::size_t matched = 0;
+    for (const SatMeasurement& m : e.sats) {
+      const auto r = std::find_if(ref.sats.begin(), ref.sats.end(), [&](const SatMeasurement& x) { return x.sat == m.sat; });
+      ASSERT_NE(r, ref.sats.end());
+      const double cn0 = r->signals[0]->cn0_dbhz;
+      const double expected = -10.0 * std::log10(std::pow(10.0, -cn0 / 10.0) + std::pow(10.0, js / 10.0) / (2.0 * 1.023e6));
+      EXPECT_NEAR(m.signals[0]->cn0_dbhz, expected, 1e-6) << "J/S " << js << " dB";
+      EXPECT_GE(m.signals[0]->cn0_dbhz, c.tracking.tracking_threshold_dbhz);
+      EXPECT_EQ(m.signals[1]->cn0_dbhz, r->signals[1]->cn0_dbhz) << "L2 has no jammer";
+      EXPECT_EQ(m.signals[2]->cn0_dbhz, r->signals[2]->cn0_dbhz) << "L5 has no jammer";
+      ++matched;
+    }
+    // Every clear signal that stays above the threshold under the jammer is still tracked.
+    std::size_t expected_tracked = 0;
+    for (const SatMeasurement& r : ref.sats) {
+      const double cn0 = r.signals[0]->cn0_dbhz;
+      if (-10.0 * std::log10(std::pow(10.0, -cn0 / 10.0) + std::pow(10.0, js / 10.0) / 2.046e6) >=
+          c.tracking.tracking_threshold_dbhz)
+        ++expected_tracked;
+    }
+    EXPECT_EQ(matched, expected_tracked) << "J/S " << js << " dB";
+    EXPECT_LE(matched, previous);
+    previous = matched;
+    EXPECT_NEAR(e.interference[0].j_over_s, std::pow(10.0, js / 10.0), 1e-6 * std::pow(10.0, js / 10.0));
+    EXPECT_FALSE(e.interference[1].any());
+  }
+  EXPECT_EQ(previous, 0u) << "J/S 50 dB leaves 13 dB-Hz: nothing is tracked";
+
+  // 45 dB from 10 s to 20 s: nothing tracked then; everything back 1 s (re-acquisition) later.
+  MeasurementConfig c = all_off();
+  c.jamming = {JammingEvent{{10.0, 10.0, 0.0}, 45.0, InterferenceKind::kWideband, Band::kL1}};
+  MeasurementGenerator gen(nav, c);
+  std::map<double, std::size_t> tracked;
+  for (double t = 0.0; t <= 25.0; t += 0.5) tracked[t] = gen.generate(kStart.plus_s(t), ecef_from_geodetic(kSite)).sats.size();
+  EXPECT_EQ(tracked[9.5], ref.sats.size()) << "the first epoch is the events' origin";
+  EXPECT_EQ(tracked[10.0], 0u);
+  EXPECT_EQ(tracked[19.5], 0u);
+  EXPECT_EQ(tracked[20.5], 0u) << "re-acquiring";
+  EXPECT_EQ(tracked[21.0], ref.sats.size());
 }
 
 // The built-in constellation never runs out: over three days (the data made for the start hold
