@@ -101,6 +101,20 @@ void print_truth(const RunConfig& cfg, const TruthSource& truth, std::ostream& l
                cfg.truth.udp_address);
 }
 
+// The scheduled events, at the times they will happen (they count from the scheduler's start).
+void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
+  if (!cfg.gnss_enabled) return;
+  constexpr const char* kKinds[] = {"CW", "matched-spectrum", "wideband"};
+  constexpr const char* kBands[] = {"L1", "L2", "L5"};
+  for (std::size_t i = 0; i < cfg.jamming.size(); ++i) {
+    const JammingEvent& j = cfg.jamming[i];
+    const GpsTime from = start.plus_s(j.window.start_s);
+    fmt::print(log, "navemu: event {}: jamming, {} on {}, J/S {} dB, from {} ({}) for {} s, ramps {} s\n", i + 1,
+               kKinds[static_cast<int>(j.kind)], kBands[static_cast<int>(j.band)], j.j_over_s_db,
+               format_iso_utc(from), format_week_tow(from), j.window.duration_s, j.window.ramp_s);
+  }
+}
+
 }  // namespace
 
 std::int64_t realtime_ns() {
@@ -181,6 +195,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // Setting up took time: in real time the run begins with the first events still ahead (none
   // is skipped as late at start), and the duration counts from there.
   if (clock->realtime()) start = GpsTime{start.ns + std::max<std::int64_t>(0, wall0 - clock->mono_of(start))};
+  print_events(cfg, start, log);
   SchedulerOptions so;
   so.start = start;
   so.end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};

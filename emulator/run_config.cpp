@@ -350,6 +350,35 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
 
 std::filesystem::path default_run_config() { return config_dir() / "default.yaml"; }
 
+namespace {
+
+// One entry of `events:` (configs/default.yaml documents them). Jamming is the one type so far.
+JammingEvent event(YamlMap& m) {
+  const std::optional<std::string> type = m.text("type");
+  if (!type) m.fail("type", "missing: the event's type (jamming)");
+  if (*type != "jamming") m.fail("type", fmt::format("'{}' is not an event type navemu knows (jamming)", *type));
+  JammingEvent e;
+  e.window.start_s = m.positive("start_s", true).value_or(0.0);
+  const std::optional<double> duration = m.positive("duration_s");
+  if (!duration) m.fail("duration_s", "missing: how long the event lasts, s");
+  e.window.duration_s = *duration;
+  e.window.ramp_s = m.positive("ramp_s", true).value_or(0.0);
+  if (2.0 * e.window.ramp_s > e.window.duration_s)
+    m.fail("ramp_s", "ramp-in and ramp-out together would last longer than duration_s");
+  const std::optional<double> js = m.number("j_over_s_db");
+  if (!js) m.fail("j_over_s_db", "missing: the jammer-to-signal ratio at full power, dB");
+  e.j_over_s_db = *js;
+  e.kind = choice<InterferenceKind>(m, "kind", {{"cw", InterferenceKind::kCw},
+                                                {"matched", InterferenceKind::kMatchedSpectrum},
+                                                {"wideband", InterferenceKind::kWideband}})
+               .value_or(e.kind);
+  e.band = choice<Band>(m, "band", {{"L1", Band::kL1}, {"L2", Band::kL2}, {"L5", Band::kL5}}).value_or(e.band);
+  m.reject_unknown_keys();
+  return e;
+}
+
+}  // namespace
+
 RunConfig load_run_config(const std::filesystem::path& file) {
   YamlMap root = load_yaml_file(file);
   if (root.empty())
@@ -396,6 +425,8 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   c.imu_can = can_settings(imu.map("can"));
   for (YamlMap& o : imu.map_list("outputs")) c.imu_outputs.push_back(can_output(o, false));
   imu.reject_unknown_keys();
+
+  for (YamlMap& e : root.map_list("events")) c.jamming.push_back(event(e));
 
   YamlMap rt = root.map("realtime");
   c.sched_fifo = rt.boolean("sched_fifo").value_or(false);

@@ -154,6 +154,9 @@ struct RunConfig {
   SceneSpec gnss_scene;
   std::optional<double> gnss_ideal_sigma_m;  // the paper's low-fidelity receiver: truth + noise
 
+  // Scheduled impairments (`events:`): jammers so far.
+  std::vector<JammingEvent> jamming;
+
   bool imu_enabled = true;
   std::string imu_profile = "paper_phidget";
   std::string imu_log;  // CSV of the samples during `run`; empty: none

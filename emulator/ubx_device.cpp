@@ -245,11 +245,18 @@ void UbxDevice::refresh() {
   if (protocol27_) {
     refresh_time_mode();
     status_.jamming_monitor = flag(item("CFG-ITFM-ENABLE"), true);
+    if (const std::uint32_t bb = item("CFG-ITFM-BBTHRESHOLD")) status_.itfm_bb_threshold_db = static_cast<double>(config_.get(bb));
+    if (const std::uint32_t cw = item("CFG-ITFM-CWTHRESHOLD")) status_.itfm_cw_threshold_db = static_cast<double>(config_.get(cw));
     status_.odometer = flag(item("CFG-ODO-USE_ODO"), false);
   } else {
     CfgItfm itfm;
     CfgOdo odo;
-    status_.jamming_monitor = decode(legacy_.current(kCfgItfm), itfm) && (itfm.config & CfgItfm::kEnable);
+    const bool itfm_set = decode(legacy_.current(kCfgItfm), itfm);
+    status_.jamming_monitor = itfm_set && (itfm.config & CfgItfm::kEnable);
+    if (itfm_set) {  // bbThreshold bits 0..3, cwThreshold bits 4..8 (UBX-13003221 "UBX-CFG-ITFM")
+      status_.itfm_bb_threshold_db = static_cast<double>(itfm.config & 0xF);
+      status_.itfm_cw_threshold_db = static_cast<double>(itfm.config >> 4 & 0x1F);
+    }
     status_.odometer = decode(legacy_.current(kCfgOdo), odo) && (odo.flags & CfgOdo::kUseOdo);
   }
   status_.gnss_enabled = protocol27_ ? static_cast<std::uint8_t>((flag(item("CFG-SIGNAL-GPS_ENA"), true) ? 0x01 : 0) |

@@ -427,33 +427,48 @@ void emit_nav_hpposllh(const EpochView& e, std::vector<std::uint8_t>& out) {
 }
 
 // The RF front end as MON-HW (u-blox 8, UBX-13003221 "UBX-MON-HW") and MON-RF (F9, one block per
-// band) report it. navemu models no RF interference yet, so these are an active antenna's
-// open-sky readings, per band as a ZED-F9T reports them in ../shared/data
-// (receiver_logs/nav-solutions/F9T-L2-5min.ubx, MON-RF): antenna OK and powered, CW jamming
-// indicator near 10 of 255, noise and AGC mid-range.
-struct FrontEndReading {
-  std::uint16_t noise_per_ms, agc_cnt;  // agcCnt of 8191
-  std::uint8_t jam_ind;
+// band) report it: the open-sky readings of an active antenna, per band as a ZED-F9T reports
+// them in ../shared/data (receiver_logs/nav-solutions/F9T-L2-5min.ubx, MON-RF): antenna OK and
+// powered, CW jamming indicator near 10 of 255, noise and AGC mid-range; moved by the jammers
+// on the band (models/interference.hpp).
+struct FrontEndBlock {
+  FrontEndReading open_sky;
+  Band band;
   std::int8_t ofs_i;
   std::uint8_t mag_i;
   std::int8_t ofs_q;
   std::uint8_t mag_q;
 };
-constexpr FrontEndReading kFrontEnd[2] = {{81, 5265, 11, 11, 171, 1, 167},   // L1
-                                          {54, 4914, 9, 8, 154, 7, 154}};   // L2
+constexpr FrontEndBlock kFrontEnd[2] = {{{81, 5265, 11}, Band::kL1, 11, 171, 1, 167},
+                                        {{54, 4914, 9}, Band::kL2, 8, 154, 7, 154}};
 
-// jammingState (MON-HW flags bits 2..3, MON-RF flags bits 0..1): 0 "unknown or feature
-// disabled" unless the jamming/interference monitor is on (CFG-ITFM-ENABLE), then 1 "ok".
-std::uint8_t jamming_state(const EpochView& e) { return e.status.jamming_monitor ? 1 : 0; }
+FrontEndMonitor monitor_of(const FrontEndBlock& b, const EpochView& e) {
+  const auto i = static_cast<std::size_t>(b.band);
+  return front_end_monitor(b.open_sky, e.meas.interference[i], kBandChipRate_Hz[i]);
+}
+
+// jammingState (MON-HW flags bits 2..3, MON-RF flags bits 0..1; UBX-13003221 "UBX-MON-HW"):
+// 0 "unknown or feature disabled" unless the jamming/interference monitor is on
+// (CFG-ITFM-ENABLE); then 1 "ok", 2 "warning - interference visible but fix OK", 3 "critical -
+// interference visible and no fix". Visible: broadband J/N above bbThreshold or CW J/N above
+// cwThreshold (CFG-ITFM).
+std::uint8_t jamming_state(const EpochView& e, const FrontEndMonitor& m) {
+  if (!e.status.jamming_monitor) return 0;
+  const bool visible = m.broadband_j_over_n_db > e.status.itfm_bb_threshold_db ||
+                       m.cw_j_over_n_db > e.status.itfm_cw_threshold_db;
+  if (!visible) return 1;
+  return e.fix.fix >= FixType::k2D ? 2 : 3;
+}
 
 void emit_mon_hw(const EpochView& e, std::vector<std::uint8_t>& out) {
+  const FrontEndMonitor fe = monitor_of(kFrontEnd[0], e);
   MonHw m;
   m.a_status = MonHw::kAntOk;
   m.a_power = 1;
-  m.noise_per_ms = kFrontEnd[0].noise_per_ms;
-  m.agc_cnt = kFrontEnd[0].agc_cnt;
-  m.jam_ind = kFrontEnd[0].jam_ind;
-  m.flags = static_cast<std::uint8_t>(jamming_state(e) << 2);
+  m.noise_per_ms = fe.reading.noise_per_ms;
+  m.agc_cnt = fe.reading.agc_cnt;
+  m.jam_ind = fe.reading.jam_ind;
+  m.flags = static_cast<std::uint8_t>(jamming_state(e, fe) << 2);
   append(m, out);
 }
 
@@ -462,14 +477,15 @@ void emit_mon_rf(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.blocks.resize(2);  // L1 and L2 front ends of the ZED-F9P
   for (std::uint8_t b = 0; b < 2; ++b) {
     MonRfBlock& k = m.blocks[b];
-    const FrontEndReading& r = kFrontEnd[b];
+    const FrontEndBlock& r = kFrontEnd[b];
+    const FrontEndMonitor fe = monitor_of(r, e);
     k.block_id = b;
-    k.flags = jamming_state(e);
+    k.flags = jamming_state(e, fe);
     k.ant_status = MonHw::kAntOk;
     k.ant_power = 1;
-    k.noise_per_ms = r.noise_per_ms;
-    k.agc_cnt = r.agc_cnt;
-    k.jam_ind = r.jam_ind;
+    k.noise_per_ms = fe.reading.noise_per_ms;
+    k.agc_cnt = fe.reading.agc_cnt;
+    k.jam_ind = fe.reading.jam_ind;
     k.ofs_i = r.ofs_i;
     k.mag_i = r.mag_i;
     k.ofs_q = r.ofs_q;

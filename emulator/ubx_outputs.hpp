@@ -43,6 +43,9 @@ struct UbxPortTraffic {
 struct UbxDeviceStatus {
   std::array<UbxPortTraffic, ubx::kNumPorts> ports{};  // by u-blox port ID
   bool jamming_monitor = false;  // CFG-ITFM-ENABLE: jammingState reported (MON-HW, MON-RF)
+  // CFG-ITFM-BBTHRESHOLD, -CWTHRESHOLD: J/N above which broadband / CW jamming is "visible"
+  // (CFG-ITFM bbThreshold, cwThreshold on the u-blox 8); the part's defaults.
+  double itfm_bb_threshold_db = 3.0, itfm_cw_threshold_db = 15.0;
   bool odometer = false;         // CFG-ODO-USE_ODO
   double odo_distance_m = 0.0;   // since the last NAV-RESETODO
   double odo_total_m = 0.0;      // since the last cold start

@@ -102,6 +102,8 @@ TEST(SteadyStateAllocation, OfflineUbxEveryMessage) {
   ASSERT_TRUE(cfg.gnss.ubx);
   cfg.gnss.ubx->messages.clear();
   for (const std::string& m : known_ubx_outputs()) cfg.gnss.ubx->messages.emplace_back(m, 1);
+  // With a jammer that comes and goes in both runs: satellites lost and re-acquired.
+  cfg.jamming = {JammingEvent{{100.0, 300.0, 60.0}, 40.0, InterferenceKind::kWideband, Band::kL1}};
   expect_offline_steady_state(cfg, "ublox-f9p");
 }
 

@@ -113,6 +113,41 @@ TEST(RunConfig, BadCanSettingsNameTheKey) {
             std::string::npos);
 }
 
+// `events:` schedules jammers; a bad entry names its line and key.
+TEST(RunConfig, JammingEventsAndTheirErrors) {
+  const RunConfig c = load_run_config(write_temp(
+      "events.yaml",
+      "events:\n"
+      "  - {type: jamming, start_s: 60, duration_s: 120, ramp_s: 30, j_over_s_db: 40}\n"
+      "  - {type: jamming, duration_s: 5, j_over_s_db: 55.5, kind: cw, band: L5}\n"));
+  ASSERT_EQ(c.jamming.size(), 2u);
+  EXPECT_EQ(c.jamming[0].window.start_s, 60.0);
+  EXPECT_EQ(c.jamming[0].window.duration_s, 120.0);
+  EXPECT_EQ(c.jamming[0].window.ramp_s, 30.0);
+  EXPECT_EQ(c.jamming[0].j_over_s_db, 40.0);
+  EXPECT_EQ(c.jamming[0].kind, InterferenceKind::kWideband);
+  EXPECT_EQ(c.jamming[0].band, Band::kL1);
+  EXPECT_EQ(c.jamming[1].window.start_s, 0.0);
+  EXPECT_EQ(c.jamming[1].kind, InterferenceKind::kCw);
+  EXPECT_EQ(c.jamming[1].band, Band::kL5);
+  EXPECT_TRUE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).jamming.empty());
+
+  const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
+  const std::pair<const char*, const char*> cases[] = {
+      {"{type: spoofing, duration_s: 1, j_over_s_db: 1}", ":2: events[0].type: 'spoofing' is not an event type"},
+      {"{duration_s: 1, j_over_s_db: 1}", "events[0].type: missing"},
+      {"{type: jamming, j_over_s_db: 40}", "events[0].duration_s: missing"},
+      {"{type: jamming, duration_s: 10}", "events[0].j_over_s_db: missing"},
+      {"{type: jamming, duration_s: 10, ramp_s: 6, j_over_s_db: 40}", "events[0].ramp_s: ramp-in and ramp-out"},
+      {"{type: jamming, duration_s: 10, j_over_s_db: 40, kind: pulsed}", "events[0].kind: 'pulsed' is not one of cw, matched, wideband"},
+      {"{type: jamming, duration_s: 10, j_over_s_db: 40, band: E6}", "events[0].band: 'E6' is not one of L1, L2, L5"},
+      {"{type: jamming, start_s: -1, duration_s: 10, j_over_s_db: 40}", "events[0].start_s"},
+      {"{type: jamming, duration_s: 10, j_over_s_db: 40, power: 3}", "events[0].power"},
+  };
+  for (const auto& [entry, expected] : cases)
+    EXPECT_NE(err(entry).find(expected), std::string::npos) << entry << " -> " << err(entry);
+}
+
 // Each GNSS output stands for one of the receiver's ports: `port:` on pty, serial and file,
 // `receiver_port:` on tcp and udp (where `port` is the network port); UART1 when not given.
 TEST(RunConfig, GnssOutputsNameTheReceiverPortTheyStandFor) {

@@ -1675,6 +1675,65 @@ TEST_F(UbxDeviceTest, U8MonitorsFollowLegacyCfgItfmAndOdo) {
   EXPECT_EQ(jamming(), 0);
 }
 
+// A jammer on the band moves the front end's monitors (models/interference.hpp): on the F9P's
+// L1 block of MON-RF, the AGC falls and the noise level rises; the L2 block keeps its open-sky
+// readings. jammingState (UBX-13003221 "UBX-MON-HW"; F9 "UBX-MON-RF") is 2 "interference
+// visible but fix OK" with a fix and 3 "critical" without one, once J/N exceeds CFG-ITFM's
+// broadband threshold, else 1 "ok". A CW jammer raises jamInd against the CW threshold; the
+// u-blox 8 reports the same in MON-HW through its legacy CFG-ITFM.
+TEST_F(UbxDeviceTest, MonitorsShowTheJammerOnTheirBand) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  set_items(d, {{"CFG-ITFM-ENABLE", 1}});
+  EpochMeasurements jammed;
+  jammed.interference[0].add(40.0, InterferenceKind::kWideband);  // J/N 20.4 dB
+  const auto rf = [&](const ReceiverFix& fix, const EpochMeasurements& meas) {
+    std::string out;
+    d.encode_epoch(fix, meas, 0, out);
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kMonRf)));
+    ubx::MonRf r;
+    EXPECT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, r) && r.blocks.size() == 2);
+    return r;
+  };
+  const ubx::MonRf clear = rf(a_fix(kT0), EpochMeasurements{});
+  const ubx::MonRf with_fix = rf(a_fix(kT0), jammed);
+  EXPECT_EQ(clear.blocks[0].flags & ubx::MonRfBlock::kJammingStateMask, 1);
+  EXPECT_EQ(with_fix.blocks[0].flags & ubx::MonRfBlock::kJammingStateMask, 2);
+  EXPECT_EQ(with_fix.blocks[1].flags & ubx::MonRfBlock::kJammingStateMask, 1) << "no jammer on L2";
+  EXPECT_LT(with_fix.blocks[0].agc_cnt + 2000, clear.blocks[0].agc_cnt);
+  EXPECT_GT(with_fix.blocks[0].noise_per_ms, 50 * clear.blocks[0].noise_per_ms);
+  EXPECT_EQ(with_fix.blocks[0].jam_ind, clear.blocks[0].jam_ind) << "broadband, not CW";
+  EXPECT_EQ(with_fix.blocks[1].agc_cnt, clear.blocks[1].agc_cnt);
+  EXPECT_EQ(with_fix.blocks[1].noise_per_ms, clear.blocks[1].noise_per_ms);
+  ReceiverFix none = a_fix(kT0);
+  none.fix = FixType::kNone;
+  EXPECT_EQ(rf(none, jammed).blocks[0].flags & ubx::MonRfBlock::kJammingStateMask, 3);
+  set_items(d, {{"CFG-ITFM-BBTHRESHOLD", 15}});  // J/N 20.4 dB still above; J/N 10.4 dB not
+  EXPECT_EQ(rf(a_fix(kT0), jammed).blocks[0].flags & ubx::MonRfBlock::kJammingStateMask, 2);
+  EpochMeasurements weaker;
+  weaker.interference[0].add(30.0, InterferenceKind::kWideband);
+  EXPECT_EQ(rf(a_fix(kT0), weaker).blocks[0].flags & ubx::MonRfBlock::kJammingStateMask, 1);
+  EpochMeasurements cw;
+  cw.interference[0].add(30.0, InterferenceKind::kCw);  // CW J/N 10.4 dB: below 15 dB
+  const ubx::MonRf cw_rf = rf(a_fix(kT0), cw);
+  EXPECT_EQ(cw_rf.blocks[0].jam_ind, clear.blocks[0].jam_ind + 52);
+  EXPECT_EQ(cw_rf.blocks[0].flags & ubx::MonRfBlock::kJammingStateMask, 1);
+  set_items(d, {{"CFG-ITFM-CWTHRESHOLD", 10}});
+  EXPECT_EQ(rf(a_fix(kT0), cw).blocks[0].flags & ubx::MonRfBlock::kJammingStateMask, 2);
+
+  UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
+  ubx::CfgItfm itfm;
+  itfm.config = ubx::CfgItfm::kEnable | 3 | 15 << 4;  // bbThreshold 3 dB, cwThreshold 15 dB
+  ASSERT_TRUE(only_ack(send(m8, frame(itfm)), ubx::kCfgItfm));
+  std::string out;
+  m8.encode_epoch(a_fix(kT0), jammed, 0, out);
+  const std::vector<Frame> f = frames_of(send(m8, poll(ubx::kMonHw)));
+  ubx::MonHw hw;
+  ASSERT_TRUE(f.size() == 1 && ubx::decode(f[0].payload, hw));
+  EXPECT_EQ((hw.flags >> 2) & 0x03, 2);
+  EXPECT_EQ(hw.agc_cnt, with_fix.blocks[0].agc_cnt);
+  EXPECT_EQ(hw.noise_per_ms, with_fix.blocks[0].noise_per_ms);
+}
+
 // ---- NMEA input (emulator/ubx_nmea_input.cpp) ------------------------------------------------
 // Sentences from the u-blox 8 receiver description (UBX-13003221) "PUBX Messages" and the F9
 // interface descriptions' polls ($PUBX,00*33, $PUBX,04*37, $EIGPQ,RMC*3A); others with their
