@@ -306,11 +306,14 @@ struct Px4Run {
   Report rep;
   std::vector<UbxFrame> sent, received;
   std::string where;
+  std::string log;  // navemu's
 };
 
-void run_px4(const TempDir& dir, const ProfileFacts& facts, int baud, double run_s, Px4Run& out) {
+// `more_yaml` adds to navemu's configuration (e.g. `events:`); navemu's log goes into out.log.
+void run_px4(const TempDir& dir, const ProfileFacts& facts, int baud, double run_s, Px4Run& out,
+             const std::string& more_yaml = "") {
   const fs::path link = dir / "gps", capture = dir / "wire.ubx";
-  NavemuRun nav(dir, "navemu", navemu_config(facts.path, link, capture), run_s + 60.0);
+  NavemuRun nav(dir, "navemu", navemu_config(facts.path, link, capture) + more_yaml, run_s + 60.0);
   ASSERT_TRUE(nav.wait_for_pty(link, 10.0)) << nav.diagnostics();
   const fs::path report_path = dir / "px4.jsonl";
   Child px4({NAVEMU_PX4_HARNESS, "--device", link.string(), "--baud", std::to_string(baud),
@@ -320,6 +323,7 @@ void run_px4(const TempDir& dir, const ProfileFacts& facts, int baud, double run
   EXPECT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0)
       << "navemu-px4-gps: " << describe_status(st) << "\n" << tail(slurp(dir / "px4.stderr"));
   nav.stop_expecting_exit_0();
+  out.log = nav.err();
 
   out.rep = read_report(report_path);
   ASSERT_TRUE(out.rep.stop.has_value() && out.rep.summary.has_value())
@@ -535,6 +539,85 @@ std::vector<Px4Case> cases() {
     out.push_back({"ublox-f9p-hpg132", "u_blox9_F9P_L1L2", {}, fixed});
   }
   return out;
+}
+
+// A jammer as PX4's driver sees it (issue "impairments"): the F9P with a wideband jammer of J/S
+// 45 dB on L1 for 6 s. Every satellite's C/N0 falls to about 63.1 - 45 = 18 dB-Hz, below the
+// 28 dB-Hz tracking threshold, so from the event's start (+- one 200 ms epoch) the driver
+// reports no fix and no satellite, MON-RF's jamming state "critical" (3, interference visible
+// and no fix) and the noise up (of MON-RF the driver reads noise, jamInd and the flags only). After it, the satellites return after the
+// re-acquisition time (1 s) and the fix with them (+- one epoch), jamming state "ok" (1).
+TEST(Px4Jamming, TheDriverSeesTheJammerComeAndGo) {
+  if (!have_harness()) GTEST_SKIP() << kNoHarness;
+  const ProfileFacts facts = profile_facts("ublox-f9p-hpg132");
+  TempDir dir("px4-jamming");
+  Px4Run run;
+  constexpr double kOn_s = 8.0, kFor_s = 6.0, kReacquisition_s = 1.0, kEpoch_s = 0.2;
+  run_px4(dir, facts, facts.baud, 20.0, run,
+          fmt::format("events:\n  - {{type: jamming, start_s: {}, duration_s: {}, j_over_s_db: 45}}\n", kOn_s, kFor_s));
+  if (HasFatalFailure()) return;
+  // The event's start as navemu announced it: "event 1: jamming, ... (WEEK:TOW) for 6 s".
+  const std::size_t at = run.log.find("event 1: jamming");
+  ASSERT_NE(at, std::string::npos) << run.log;
+  int week = 0;
+  double tow_s = 0.0;
+  ASSERT_EQ(std::sscanf(run.log.c_str() + run.log.find('(', at), "(%d:%lf)", &week, &tow_s), 2) << run.log;
+  const GpsTime on = from_week_tow(week, tow_s), off = on.plus_s(kFor_s);
+
+  struct Seen {
+    double t_s;  // from the event's start
+    int fix, used, jamming, noise;
+  };
+  std::vector<Seen> seen;
+  for (const YAML::Node& g : run.rep.gps) {
+    const auto utc_us = g["time_utc_usec"].as<std::int64_t>();
+    if (utc_us == 0) continue;
+    seen.push_back({seconds_between(gps_from_unix_ns(utc_us * 1000), on), g["fix_type"].as<int>(),
+                    g["satellites_used"].as<int>(), g["jamming_state"].as<int>() & 0x03,
+                    g["noise_per_ms"].as<int>()});
+  }
+  ASSERT_FALSE(seen.empty()) << run.where;
+  ASSERT_LT(seen.front().t_s, -2.0) << "reports from before the jammer" << run.where;
+  ASSERT_GT(seen.back().t_s, kFor_s + kReacquisition_s + 2.0) << "reports from after it" << run.where;
+  const double end_s = seconds_between(off, on);
+  const Seen *before = nullptr, *during = nullptr;
+  int jammed = 0, recovered = 0;
+  std::optional<double> lost_at, back_at;
+  for (const Seen& s : seen) {
+    const std::string at_t = fmt::format(" at {:.1f} s from the jammer's start", s.t_s);
+    if (s.t_s < -kEpoch_s && s.fix == 3) {  // the last 3 s before (MON-RF arrives after the first fixes)
+      if (s.t_s > -3.0) {
+        EXPECT_EQ(s.jamming, 1) << at_t;
+      }
+      before = &s;
+    }
+    if (s.t_s >= -kEpoch_s / 2 && s.fix < 2 && !lost_at) lost_at = s.t_s;
+    if (s.t_s > end_s && s.fix == 3 && !back_at) back_at = s.t_s;
+    if (s.t_s >= kEpoch_s * 1.5 && s.t_s < end_s - kEpoch_s / 2) {  // MON-RF may lag one epoch
+      ++jammed;
+      EXPECT_LT(s.fix, 2) << at_t;
+      EXPECT_EQ(s.used, 0) << at_t;
+      EXPECT_EQ(s.jamming, 3) << at_t;
+      if (before) {
+        EXPECT_GT(s.noise, 10 * before->noise) << at_t;
+      }
+      during = &s;
+    }
+    if (s.t_s >= end_s + kReacquisition_s + 2 * kEpoch_s) {
+      ++recovered;
+      EXPECT_EQ(s.fix, 3) << at_t;
+      EXPECT_EQ(s.jamming, 1) << at_t;
+    }
+  }
+  ASSERT_TRUE(before && during) << "no 3D fix before the jammer, or no report during it" << run.where;
+  EXPECT_GE(jammed, 20) << run.where;
+  EXPECT_GE(recovered, 10) << run.where;
+  ASSERT_TRUE(lost_at && back_at) << run.where;
+  EXPECT_LE(*lost_at, kEpoch_s) << "fix lost at the jammer's start" << run.where;
+  EXPECT_NEAR(*back_at, end_s + kReacquisition_s, kEpoch_s + 1e-3) << "fix back after re-acquisition" << run.where;
+  std::printf("PX4 jamming: fix lost %.2f s after the jammer's start, back %.2f s after its end; %d jammed "
+              "reports, noise %d -> %d\n",
+              *lost_at, *back_at - end_s, jammed, before->noise, during->noise);
 }
 
 INSTANTIATE_TEST_SUITE_P(Profiles, Px4Driver, ::testing::ValuesIn(cases()),
