@@ -104,15 +104,24 @@ void print_truth(const RunConfig& cfg, const TruthSource& truth, std::ostream& l
 // The scheduled events, at the times they will happen (they count from the scheduler's start).
 void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
   if (!cfg.gnss_enabled) return;
+  const auto print = [&](const EventWindow& w, const std::string& what) {
+    const GpsTime from = start.plus_s(w.start_s);
+    fmt::print(log, "navemu: event: {}, from {} ({}) for {} s{}\n", what, format_iso_utc(from), format_week_tow(from),
+               w.duration_s, w.ramp_s > 0.0 ? fmt::format(", ramps {} s", w.ramp_s) : "");
+  };
+  const GnssEvents& ev = cfg.gnss_events;
   constexpr const char* kKinds[] = {"CW", "matched-spectrum", "wideband"};
   constexpr const char* kBands[] = {"L1", "L2", "L5"};
-  for (std::size_t i = 0; i < cfg.jamming.size(); ++i) {
-    const JammingEvent& j = cfg.jamming[i];
-    const GpsTime from = start.plus_s(j.window.start_s);
-    fmt::print(log, "navemu: event {}: jamming, {} on {}, J/S {} dB, from {} ({}) for {} s, ramps {} s\n", i + 1,
-               kKinds[static_cast<int>(j.kind)], kBands[static_cast<int>(j.band)], j.j_over_s_db,
-               format_iso_utc(from), format_week_tow(from), j.window.duration_s, j.window.ramp_s);
-  }
+  for (const JammingEvent& j : ev.jamming)
+    print(j.window, fmt::format("jamming, {} on {}, J/S {} dB", kKinds[static_cast<int>(j.kind)],
+                                kBands[static_cast<int>(j.band)], j.j_over_s_db));
+  for (const OutageEvent& o : ev.outages)
+    print(o.window, fmt::format("outage, azimuth {} to {} deg below {} deg elevation", o.az_from_deg, o.az_to_deg,
+                                o.below_el_deg));
+  for (const AntennaEvent& a : ev.antenna)
+    print(a.window, a.fault == AntennaFault::kOpen ? "antenna open" : "antenna short");
+  for (const SatelliteFaultEvent& f : ev.satellites)
+    print(f.window, fmt::format("satellite fault, {} clock error {} m", f.sat.rinex(), f.clock_error_m));
 }
 
 }  // namespace

@@ -352,29 +352,60 @@ std::filesystem::path default_run_config() { return config_dir() / "default.yaml
 
 namespace {
 
-// One entry of `events:` (configs/default.yaml documents them). Jamming is the one type so far.
-JammingEvent event(YamlMap& m) {
+// A required number of an event (`what` says what it is, for the error).
+double required(YamlMap& m, const std::string& key, const char* what) {
+  const std::optional<double> v = m.number(key);
+  if (!v) m.fail(key, fmt::format("missing: {}", what));
+  return *v;
+}
+
+// One entry of `events:` (configs/default.yaml documents them) into its list.
+void add_event(YamlMap& m, GnssEvents& out) {
   const std::optional<std::string> type = m.text("type");
-  if (!type) m.fail("type", "missing: the event's type (jamming)");
-  if (*type != "jamming") m.fail("type", fmt::format("'{}' is not an event type navemu knows (jamming)", *type));
-  JammingEvent e;
-  e.window.start_s = m.positive("start_s", true).value_or(0.0);
+  constexpr const char* kTypes = "jamming, outage, antenna, satellite";
+  if (!type) m.fail("type", fmt::format("missing: the event's type ({})", kTypes));
+  EventWindow w;
+  w.start_s = m.positive("start_s", true).value_or(0.0);
   const std::optional<double> duration = m.positive("duration_s");
   if (!duration) m.fail("duration_s", "missing: how long the event lasts, s");
-  e.window.duration_s = *duration;
-  e.window.ramp_s = m.positive("ramp_s", true).value_or(0.0);
-  if (2.0 * e.window.ramp_s > e.window.duration_s)
-    m.fail("ramp_s", "ramp-in and ramp-out together would last longer than duration_s");
-  const std::optional<double> js = m.number("j_over_s_db");
-  if (!js) m.fail("j_over_s_db", "missing: the jammer-to-signal ratio at full power, dB");
-  e.j_over_s_db = *js;
-  e.kind = choice<InterferenceKind>(m, "kind", {{"cw", InterferenceKind::kCw},
-                                                {"matched", InterferenceKind::kMatchedSpectrum},
-                                                {"wideband", InterferenceKind::kWideband}})
-               .value_or(e.kind);
-  e.band = choice<Band>(m, "band", {{"L1", Band::kL1}, {"L2", Band::kL2}, {"L5", Band::kL5}}).value_or(e.band);
+  w.duration_s = *duration;
+  const auto ramp = [&] {  // only where a level between on and off means something
+    w.ramp_s = m.positive("ramp_s", true).value_or(0.0);
+    if (2.0 * w.ramp_s > w.duration_s)
+      m.fail("ramp_s", "ramp-in and ramp-out together would last longer than duration_s");
+  };
+  if (*type == "jamming") {
+    ramp();
+    JammingEvent e{w, required(m, "j_over_s_db", "the jammer-to-signal ratio at full power, dB")};
+    e.kind = choice<InterferenceKind>(m, "kind", {{"cw", InterferenceKind::kCw},
+                                                  {"matched", InterferenceKind::kMatchedSpectrum},
+                                                  {"wideband", InterferenceKind::kWideband}})
+                 .value_or(e.kind);
+    e.band = choice<Band>(m, "band", {{"L1", Band::kL1}, {"L2", Band::kL2}, {"L5", Band::kL5}}).value_or(e.band);
+    out.jamming.push_back(e);
+  } else if (*type == "outage") {
+    OutageEvent e{w};
+    if (const auto az = m.number_list("azimuth_deg")) {
+      if (az->size() != 2 || (*az)[0] < 0.0 || (*az)[0] > 360.0 || (*az)[1] < 0.0 || (*az)[1] > 360.0)
+        m.fail("azimuth_deg", "must be [from, to], degrees 0..360 clockwise from north");
+      e.az_from_deg = (*az)[0];
+      e.az_to_deg = (*az)[1];
+    }
+    e.below_el_deg = m.positive("below_elevation_deg").value_or(e.below_el_deg);
+    out.outages.push_back(e);
+  } else if (*type == "antenna") {
+    const auto fault = choice<AntennaFault>(m, "fault", {{"open", AntennaFault::kOpen}, {"short", AntennaFault::kShort}});
+    if (!fault) m.fail("fault", "missing: open or short");
+    out.antenna.push_back({w, *fault});
+  } else if (*type == "satellite") {
+    ramp();
+    const std::optional<std::int64_t> prn = m.integer("prn", 1, 32);
+    if (!prn) m.fail("prn", "missing: the GPS satellite's PRN");
+    out.satellites.push_back({w, gps_sat(static_cast<int>(*prn)), required(m, "clock_error_m", "the range error at full level, m")});
+  } else {
+    m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, kTypes));
+  }
   m.reject_unknown_keys();
-  return e;
 }
 
 }  // namespace
@@ -426,7 +457,7 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   for (YamlMap& o : imu.map_list("outputs")) c.imu_outputs.push_back(can_output(o, false));
   imu.reject_unknown_keys();
 
-  for (YamlMap& e : root.map_list("events")) c.jamming.push_back(event(e));
+  for (YamlMap& e : root.map_list("events")) add_event(e, c.gnss_events);
 
   YamlMap rt = root.map("realtime");
   c.sched_fifo = rt.boolean("sched_fifo").value_or(false);

@@ -154,8 +154,7 @@ struct RunConfig {
   SceneSpec gnss_scene;
   std::optional<double> gnss_ideal_sigma_m;  // the paper's low-fidelity receiver: truth + noise
 
-  // Scheduled impairments (`events:`): jammers so far.
-  std::vector<JammingEvent> jamming;
+  GnssEvents gnss_events;  // `events:`, the scheduled impairments
 
   bool imu_enabled = true;
   std::string imu_profile = "paper_phidget";

@@ -75,7 +75,7 @@ ReceiverParams receiver_params(const RunConfig& cfg, std::ostream& log) {
   }
   antenna.lhcp_rejection_db = prof.antenna_lhcp_rejection_db;
   rp.measurement.seed = cfg.seed;
-  rp.measurement.jamming = cfg.jamming;
+  rp.measurement.events = cfg.gnss_events;
   rp.max_channels = prof.max_channels;
   rp.ideal_sigma_m = cfg.gnss_ideal_sigma_m;
   // The geoid of the MSL heights (GGA, NAV-PVT, NAV-POSLLH): read once per process.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "core/sat_table.hpp"
 #include "core/signal.hpp"
@@ -452,6 +453,16 @@ FrontEndMonitor monitor_of(const FrontEndBlock& b, const EpochView& e) {
 // (CFG-ITFM-ENABLE); then 1 "ok", 2 "warning - interference visible but fix OK", 3 "critical -
 // interference visible and no fix". Visible: broadband J/N above bbThreshold or CW J/N above
 // cwThreshold (CFG-ITFM).
+// The antenna supervisor's status and the antenna supply (MON-HW aStatus / aPower, MON-RF
+// antStatus / antPower; F9 interface description UBX-MON-HW aStatus 0=INIT 1=DONTKNOW 2=OK
+// 3=SHORT 4=OPEN, aPower 0=OFF 1=ON): OK and on; OPEN with the supply on; SHORT with the supply
+// off, the supervisor's power-down on a short (CFG-HW-ANT_CFG_PWRDOWN).
+std::pair<std::uint8_t, std::uint8_t> antenna_status(const EpochView& e) {
+  if (!e.meas.antenna_fault) return {MonHw::kAntOk, 1};
+  return *e.meas.antenna_fault == AntennaFault::kOpen ? std::pair<std::uint8_t, std::uint8_t>{MonHw::kAntOpen, 1}
+                                                      : std::pair<std::uint8_t, std::uint8_t>{MonHw::kAntShort, 0};
+}
+
 std::uint8_t jamming_state(const EpochView& e, const FrontEndMonitor& m) {
   if (!e.status.jamming_monitor) return 0;
   const bool visible = m.broadband_j_over_n_db > e.status.itfm_bb_threshold_db ||
@@ -463,8 +474,7 @@ std::uint8_t jamming_state(const EpochView& e, const FrontEndMonitor& m) {
 void emit_mon_hw(const EpochView& e, std::vector<std::uint8_t>& out) {
   const FrontEndMonitor fe = monitor_of(kFrontEnd[0], e);
   MonHw m;
-  m.a_status = MonHw::kAntOk;
-  m.a_power = 1;
+  std::tie(m.a_status, m.a_power) = antenna_status(e);
   m.noise_per_ms = fe.reading.noise_per_ms;
   m.agc_cnt = fe.reading.agc_cnt;
   m.jam_ind = fe.reading.jam_ind;
@@ -481,8 +491,7 @@ void emit_mon_rf(const EpochView& e, std::vector<std::uint8_t>& out) {
     const FrontEndMonitor fe = monitor_of(r, e);
     k.block_id = b;
     k.flags = jamming_state(e, fe);
-    k.ant_status = MonHw::kAntOk;
-    k.ant_power = 1;
+    std::tie(k.ant_status, k.ant_power) = antenna_status(e);
     k.noise_per_ms = fe.reading.noise_per_ms;
     k.agc_cnt = fe.reading.agc_cnt;
     k.jam_ind = fe.reading.jam_ind;

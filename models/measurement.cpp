@@ -248,10 +248,23 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   // The jammers on at this instant, by band.
   if (!st.event_origin) st.event_origin = out.t_true;
   out.interference = {};
+  out.antenna_fault.reset();
   const double t_event_s = seconds_between(out.t_true, *st.event_origin);
-  for (const JammingEvent& j : cfg_.jamming)
+  const GnssEvents& ev = cfg_.events;
+  for (const JammingEvent& j : ev.jamming)
     if (const auto js = ramped_j_over_s_db(j.j_over_s_db, event_level(j.window, t_event_s)))
       out.interference[static_cast<std::size_t>(j.band)].add(*js, j.kind);
+  for (const AntennaEvent& a : ev.antenna)
+    if (event_level(a.window, t_event_s) > 0.0) out.antenna_fault = a.fault;
+  const auto masked = [&](const AzEl& dir) {
+    for (const OutageEvent& o : ev.outages) {
+      if (event_level(o.window, t_event_s) <= 0.0 || dir.el_rad * kRadToDeg >= o.below_el_deg) continue;
+      const double span = std::fmod(o.az_to_deg - o.az_from_deg + 720.0, 360.0);
+      const double off = std::fmod(dir.az_rad * kRadToDeg - o.az_from_deg + 720.0, 360.0);
+      if (span == 0.0 || off <= span) return true;  // from == to (0, 360): every azimuth
+    }
+    return false;
+  };
 
   const Geodetic geo = geodetic_from_ecef(p_rx);
   const ReceiverPlace rx{p_rx, v_rx, R_enu_from_ecef(geo)};
@@ -294,7 +307,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     const double cn0_l1 = effective_cn0_dbhz(cn0_clear_l1, out.interference[0], kBandChipRate_Hz[0]);
     // Tracked while above the threshold; a signal that returns (rises, or comes back above the
     // threshold) is re-acquired only after the receiver's re-acquisition time.
-    const bool receivable = g.dir.el_rad > 0.0 && env.received &&
+    const bool receivable = g.dir.el_rad > 0.0 && env.received && !out.antenna_fault && !masked(g.dir) &&
                             cn0_l1 >= cfg_.tracking.tracking_threshold_dbhz;
     bool tracked = false;
     if (!receivable) {
@@ -350,6 +363,9 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
         m.sat_error_m = st.sat_errors.range_error_m(sat, t_s, g.sat.p_ecef_m, g.sat.v_ecef_mps, los);
       }
     }
+    // A satellite clock fault: on the range, not in the broadcast clock.
+    for (const SatelliteFaultEvent& f : ev.satellites)
+      if (f.sat == sat) m.sat_error_m += f.clock_error_m * event_level(f.window, t_event_s);
     // Multipath: the scene's composite-signal errors, or the statistical model in open sky.
     // The carrier error's rate of change is the Doppler error.
     double phase_mp_m = 0.0, doppler_mp_mps = 0.0;

@@ -48,13 +48,42 @@ enum class IonoModel {
 // The signals generated, by band: L1 C/A, L2C (the CL pilot) and the L5 pilot (Q).
 enum class Band { kL1 = 0, kL2 = 1, kL5 = 2 };
 
-// A jammer switched on for a while (issue "impairments"): its J/S at the antenna on one band at
-// full level, its spectrum, and when (EventWindow: seconds from the scenario's start, ramps).
+// Scheduled impairments, each acting through the signals (EventWindow: seconds from the
+// scenario's start; ramps where they apply).
+//
+// A jammer: its J/S at the antenna on one band at full level and its spectrum.
 struct JammingEvent {
   EventWindow window;
   double j_over_s_db = 0.0;
   InterferenceKind kind = InterferenceKind::kWideband;
   Band band = Band::kL1;
+};
+// A sky mask (a tunnel, an urban canyon): signals arriving from azimuths from az_from_deg
+// clockwise to az_to_deg and below below_el_deg are blocked. The defaults block everything.
+struct OutageEvent {
+  EventWindow window;
+  double az_from_deg = 0.0, az_to_deg = 360.0;
+  double below_el_deg = 90.0;
+};
+// The antenna open (cable cut) or shorted: no signal reaches the receiver; the antenna
+// supervisor reports it (u-blox MON-HW aStatus, MON-RF antStatus).
+enum class AntennaFault { kOpen, kShort };
+struct AntennaEvent {
+  EventWindow window;
+  AntennaFault fault = AntennaFault::kOpen;
+};
+// A satellite clock fault the broadcast data do not show: the satellite's ranges (code and
+// carrier) grow by clock_error_m times the event's level, so a ramp is a clock drifting off.
+struct SatelliteFaultEvent {
+  EventWindow window;
+  SatId sat;
+  double clock_error_m = 0.0;
+};
+struct GnssEvents {
+  std::vector<JammingEvent> jamming;
+  std::vector<OutageEvent> outages;
+  std::vector<AntennaEvent> antenna;
+  std::vector<SatelliteFaultEvent> satellites;
 };
 
 enum class SatErrorModel {
@@ -117,9 +146,10 @@ struct MeasurementConfig {
   // code, carrier and Doppler, and the composite C/N0 per satellite; replaces the statistical
   // multipath. None: open sky.
   std::shared_ptr<const SignalEnvironmentModel> environment;
-  // Jammers (models/interference.hpp): they lower every signal's C/N0 on their band by the
-  // effective-C/N0 formula; signals below the tracking threshold lose lock.
-  std::vector<JammingEvent> jamming;
+  // Impairments. Jammers (models/interference.hpp) lower every signal's C/N0 on their band by
+  // the effective-C/N0 formula, and signals below the tracking threshold lose lock; sky masks
+  // and antenna faults block signals; satellite faults add to one satellite's ranges.
+  GnssEvents events;
   std::uint64_t seed = 1;
 };
 
@@ -167,6 +197,7 @@ struct EpochMeasurements {
   double rx_clock_drift_sps = 0.0;
   std::vector<SatMeasurement> sats;  // tracked satellites above the horizon, by SatId
   std::array<BandInterference, 3> interference{};  // by Band, at t_true
+  std::optional<AntennaFault> antenna_fault;       // at t_true
 };
 
 // Receiver classes: tracking loops, antenna and site as they differ between a geodetic receiver

@@ -102,8 +102,11 @@ TEST(SteadyStateAllocation, OfflineUbxEveryMessage) {
   ASSERT_TRUE(cfg.gnss.ubx);
   cfg.gnss.ubx->messages.clear();
   for (const std::string& m : known_ubx_outputs()) cfg.gnss.ubx->messages.emplace_back(m, 1);
-  // With a jammer that comes and goes in both runs: satellites lost and re-acquired.
-  cfg.jamming = {JammingEvent{{100.0, 300.0, 60.0}, 40.0, InterferenceKind::kWideband, Band::kL1}};
+  // With impairments that come and go in both runs: satellites lost and re-acquired.
+  cfg.gnss_events.jamming = {JammingEvent{{100.0, 300.0, 60.0}, 40.0, InterferenceKind::kWideband, Band::kL1}};
+  cfg.gnss_events.outages = {OutageEvent{{420.0, 30.0, 0.0}, 90.0, 270.0, 40.0}};
+  cfg.gnss_events.antenna = {AntennaEvent{{470.0, 10.0, 0.0}, AntennaFault::kShort}};
+  cfg.gnss_events.satellites = {SatelliteFaultEvent{{500.0, 60.0, 20.0}, gps_sat(5), 30.0}};
   expect_offline_steady_state(cfg, "ublox-f9p");
 }
 

@@ -113,28 +113,45 @@ TEST(RunConfig, BadCanSettingsNameTheKey) {
             std::string::npos);
 }
 
-// `events:` schedules jammers; a bad entry names its line and key.
-TEST(RunConfig, JammingEventsAndTheirErrors) {
+// `events:` schedules impairments; a bad entry names its line and key.
+TEST(RunConfig, EventsAndTheirErrors) {
   const RunConfig c = load_run_config(write_temp(
       "events.yaml",
       "events:\n"
       "  - {type: jamming, start_s: 60, duration_s: 120, ramp_s: 30, j_over_s_db: 40}\n"
-      "  - {type: jamming, duration_s: 5, j_over_s_db: 55.5, kind: cw, band: L5}\n"));
-  ASSERT_EQ(c.jamming.size(), 2u);
-  EXPECT_EQ(c.jamming[0].window.start_s, 60.0);
-  EXPECT_EQ(c.jamming[0].window.duration_s, 120.0);
-  EXPECT_EQ(c.jamming[0].window.ramp_s, 30.0);
-  EXPECT_EQ(c.jamming[0].j_over_s_db, 40.0);
-  EXPECT_EQ(c.jamming[0].kind, InterferenceKind::kWideband);
-  EXPECT_EQ(c.jamming[0].band, Band::kL1);
-  EXPECT_EQ(c.jamming[1].window.start_s, 0.0);
-  EXPECT_EQ(c.jamming[1].kind, InterferenceKind::kCw);
-  EXPECT_EQ(c.jamming[1].band, Band::kL5);
-  EXPECT_TRUE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).jamming.empty());
+      "  - {type: jamming, duration_s: 5, j_over_s_db: 55.5, kind: cw, band: L5}\n"
+      "  - {type: outage, start_s: 10, duration_s: 20}\n"
+      "  - {type: outage, start_s: 40, duration_s: 20, azimuth_deg: [300, 60], below_elevation_deg: 45}\n"
+      "  - {type: antenna, start_s: 5, duration_s: 2, fault: short}\n"
+      "  - {type: satellite, start_s: 50, duration_s: 100, ramp_s: 50, prn: 7, clock_error_m: 80}\n"));
+  const GnssEvents& e = c.gnss_events;
+  ASSERT_EQ(e.jamming.size(), 2u);
+  EXPECT_EQ(e.jamming[0].window.start_s, 60.0);
+  EXPECT_EQ(e.jamming[0].window.duration_s, 120.0);
+  EXPECT_EQ(e.jamming[0].window.ramp_s, 30.0);
+  EXPECT_EQ(e.jamming[0].j_over_s_db, 40.0);
+  EXPECT_EQ(e.jamming[0].kind, InterferenceKind::kWideband);
+  EXPECT_EQ(e.jamming[0].band, Band::kL1);
+  EXPECT_EQ(e.jamming[1].window.start_s, 0.0);
+  EXPECT_EQ(e.jamming[1].kind, InterferenceKind::kCw);
+  EXPECT_EQ(e.jamming[1].band, Band::kL5);
+  ASSERT_EQ(e.outages.size(), 2u);
+  EXPECT_EQ(e.outages[0].below_el_deg, 90.0) << "everything: a tunnel";
+  EXPECT_EQ(e.outages[1].az_from_deg, 300.0);
+  EXPECT_EQ(e.outages[1].az_to_deg, 60.0);
+  EXPECT_EQ(e.outages[1].below_el_deg, 45.0);
+  ASSERT_EQ(e.antenna.size(), 1u);
+  EXPECT_EQ(e.antenna[0].fault, AntennaFault::kShort);
+  EXPECT_EQ(e.antenna[0].window.duration_s, 2.0);
+  ASSERT_EQ(e.satellites.size(), 1u);
+  EXPECT_EQ(e.satellites[0].sat, gps_sat(7));
+  EXPECT_EQ(e.satellites[0].clock_error_m, 80.0);
+  EXPECT_EQ(e.satellites[0].window.ramp_s, 50.0);
+  EXPECT_TRUE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).gnss_events.jamming.empty());
 
   const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
   const std::pair<const char*, const char*> cases[] = {
-      {"{type: spoofing, duration_s: 1, j_over_s_db: 1}", ":2: events[0].type: 'spoofing' is not an event type"},
+      {"{type: spoofing, duration_s: 1}", ":2: events[0].type: 'spoofing' is not an event type navemu knows (jamming, outage, antenna, satellite)"},
       {"{duration_s: 1, j_over_s_db: 1}", "events[0].type: missing"},
       {"{type: jamming, j_over_s_db: 40}", "events[0].duration_s: missing"},
       {"{type: jamming, duration_s: 10}", "events[0].j_over_s_db: missing"},
@@ -143,6 +160,14 @@ TEST(RunConfig, JammingEventsAndTheirErrors) {
       {"{type: jamming, duration_s: 10, j_over_s_db: 40, band: E6}", "events[0].band: 'E6' is not one of L1, L2, L5"},
       {"{type: jamming, start_s: -1, duration_s: 10, j_over_s_db: 40}", "events[0].start_s"},
       {"{type: jamming, duration_s: 10, j_over_s_db: 40, power: 3}", "events[0].power"},
+      {"{type: outage, duration_s: 10, ramp_s: 2}", "events[0].ramp_s"},
+      {"{type: outage, duration_s: 10, azimuth_deg: [10]}", "events[0].azimuth_deg: must be [from, to]"},
+      {"{type: outage, duration_s: 10, azimuth_deg: [10, 400]}", "events[0].azimuth_deg: must be [from, to]"},
+      {"{type: antenna, duration_s: 10}", "events[0].fault: missing: open or short"},
+      {"{type: antenna, duration_s: 10, fault: cut}", "events[0].fault: 'cut' is not one of open, short"},
+      {"{type: satellite, duration_s: 10, clock_error_m: 5}", "events[0].prn: missing"},
+      {"{type: satellite, duration_s: 10, prn: 33, clock_error_m: 5}", "events[0].prn: 33 outside [1, 32]"},
+      {"{type: satellite, duration_s: 10, prn: 3}", "events[0].clock_error_m: missing"},
   };
   for (const auto& [entry, expected] : cases)
     EXPECT_NE(err(entry).find(expected), std::string::npos) << entry << " -> " << err(entry);

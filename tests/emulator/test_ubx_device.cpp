@@ -16,6 +16,7 @@
 #include <regex>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "emulator/ubx_device.hpp"
@@ -1732,6 +1733,35 @@ TEST_F(UbxDeviceTest, MonitorsShowTheJammerOnTheirBand) {
   EXPECT_EQ((hw.flags >> 2) & 0x03, 2);
   EXPECT_EQ(hw.agc_cnt, with_fix.blocks[0].agc_cnt);
   EXPECT_EQ(hw.noise_per_ms, with_fix.blocks[0].noise_per_ms);
+}
+
+// An antenna fault of the measurements (an `events:` antenna event) is what the antenna
+// supervisor reports: MON-RF antStatus / antPower and MON-HW aStatus / aPower (F9 interface
+// description UBX-MON-HW: 2 OK, 3 SHORT, 4 OPEN; power 0 OFF, 1 ON), the supply off on a short.
+TEST_F(UbxDeviceTest, MonitorsShowTheAntennaSupervisorsState) {
+  for (const auto& [fault, status, power] :
+       {std::tuple<std::optional<AntennaFault>, int, int>{std::nullopt, 2, 1}, {AntennaFault::kOpen, 4, 1},
+        {AntennaFault::kShort, 3, 0}}) {
+    EpochMeasurements meas;
+    meas.antenna_fault = fault;
+    UbxDevice f9p(f9p_, ReceiverMode::kStandalone, empty_nav());
+    std::string out;
+    f9p.encode_epoch(a_fix(kT0), meas, 0, out);
+    const std::vector<Frame> rf = frames_of(send(f9p, poll(ubx::kMonRf)));
+    ubx::MonRf r;
+    ASSERT_TRUE(rf.size() == 1 && ubx::decode(rf[0].payload, r) && r.blocks.size() == 2);
+    for (const ubx::MonRfBlock& b : r.blocks) {
+      EXPECT_EQ(b.ant_status, status);
+      EXPECT_EQ(b.ant_power, power);
+    }
+    UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
+    m8.encode_epoch(a_fix(kT0), meas, 0, out);
+    const std::vector<Frame> hw = frames_of(send(m8, poll(ubx::kMonHw)));
+    ubx::MonHw h;
+    ASSERT_TRUE(hw.size() == 1 && ubx::decode(hw[0].payload, h));
+    EXPECT_EQ(h.a_status, status);
+    EXPECT_EQ(h.a_power, power);
+  }
 }
 
 // ---- NMEA input (emulator/ubx_nmea_input.cpp) ------------------------------------------------

@@ -287,7 +287,7 @@ TEST(Measurement, JammingLowersCn0ByTheFormulaAndLosesWeakSignals) {
   std::size_t previous = ref.sats.size();
   for (double js = 0.0; js <= 50.0; js += 5.0) {
     MeasurementConfig c = clear_cfg;
-    c.jamming = {JammingEvent{{0.0, 100.0, 0.0}, js, InterferenceKind::kWideband, Band::kL1}};
+    c.events.jamming = {JammingEvent{{0.0, 100.0, 0.0}, js, InterferenceKind::kWideband, Band::kL1}};
     MeasurementGenerator gen(nav, c);
     gen.set_event_origin(kStart);
     const auto e = gen.generate(kStart, ecef_from_geodetic(kSite));
@@ -321,7 +321,7 @@ TEST(Measurement, JammingLowersCn0ByTheFormulaAndLosesWeakSignals) {
 
   // 45 dB from 10 s to 20 s: nothing tracked then; everything back 1 s (re-acquisition) later.
   MeasurementConfig c = all_off();
-  c.jamming = {JammingEvent{{10.0, 10.0, 0.0}, 45.0, InterferenceKind::kWideband, Band::kL1}};
+  c.events.jamming = {JammingEvent{{10.0, 10.0, 0.0}, 45.0, InterferenceKind::kWideband, Band::kL1}};
   MeasurementGenerator gen(nav, c);
   std::map<double, std::size_t> tracked;
   for (double t = 0.0; t <= 25.0; t += 0.5) tracked[t] = gen.generate(kStart.plus_s(t), ecef_from_geodetic(kSite)).sats.size();
@@ -330,6 +330,68 @@ TEST(Measurement, JammingLowersCn0ByTheFormulaAndLosesWeakSignals) {
   EXPECT_EQ(tracked[19.5], 0u);
   EXPECT_EQ(tracked[20.5], 0u) << "re-acquiring";
   EXPECT_EQ(tracked[21.0], ref.sats.size());
+}
+
+// The other impairments act on the signals too. Against the same generator without events,
+// every 0.5 s: a sky mask (azimuth 90..270 deg below 40 deg) blocks exactly the satellites in it
+// and they return a re-acquisition time (1 s) after; an open antenna blocks every signal and is
+// reported; a satellite clock fault ramping to 30 m over 10 s adds to that satellite's code
+// and carrier ranges only (15 m half-way up the ramp), and nothing once it is over.
+TEST(Measurement, SkyMasksAntennaAndSatelliteFaultsActOnTheSignals) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c = all_off();
+  MeasurementGenerator ref(nav, c);
+  const SatId faulty = ref.generate(kStart, ecef_from_geodetic(kSite)).sats.front().sat;
+  MeasurementGenerator clear(nav, c);
+  c.events.outages = {OutageEvent{{10.0, 10.0, 0.0}, 90.0, 270.0, 40.0}};
+  c.events.antenna = {AntennaEvent{{30.0, 5.0, 0.0}, AntennaFault::kOpen}};
+  c.events.satellites = {SatelliteFaultEvent{{40.0, 40.0, 10.0}, faulty, 30.0}};
+  MeasurementGenerator gen(nav, c);
+  const auto in_mask = [](const SatMeasurement& m) {
+    const double az = m.dir.az_rad * kRadToDeg, el = m.dir.el_rad * kRadToDeg;
+    return az >= 90.0 && az <= 270.0 && el < 40.0;
+  };
+  int masked_seen = 0;
+  std::map<SatId, double> carrier_at_40_m;
+  for (double t = 0.0; t <= 90.0; t += 0.5) {
+    const auto a = clear.generate(kStart.plus_s(t), ecef_from_geodetic(kSite));
+    const auto b = gen.generate(kStart.plus_s(t), ecef_from_geodetic(kSite));
+    std::set<SatId> expected;
+    for (const SatMeasurement& m : a.sats) {
+      const bool masked = t >= 10.0 && t < 21.0 && in_mask(m);  // back 1 s after the end
+      const bool antenna = t >= 30.0 && t < 36.0;
+      masked_seen += masked && t < 20.0;
+      if (!masked && !antenna) expected.insert(m.sat);
+    }
+    std::set<SatId> got;
+    for (const SatMeasurement& m : b.sats) got.insert(m.sat);
+    EXPECT_EQ(got, expected) << "t " << t << " s";
+    EXPECT_EQ(b.antenna_fault.has_value(), t >= 30.0 && t < 35.0) << "t " << t << " s";
+    for (const SatMeasurement& m : b.sats) {
+      const auto r = std::find_if(a.sats.begin(), a.sats.end(), [&](const SatMeasurement& x) { return x.sat == m.sat; });
+      ASSERT_NE(r, a.sats.end());
+      const double level = t < 40.0 || t >= 80.0 ? 0.0 : std::min({1.0, (t - 40.0) / 10.0, (80.0 - t) / 10.0});
+      const double extra_m = m.sat == faulty ? 30.0 * level : 0.0;
+      EXPECT_NEAR(m.signals[0]->pseudorange_m - r->signals[0]->pseudorange_m, extra_m, 1e-6) << "t " << t;
+      // The carrier: against its difference when the fault began (the arcs after the antenna
+      // fault have their own integer ambiguities).
+      const double carrier_diff_m =
+          (m.signals[0]->carrier_cycles - r->signals[0]->carrier_cycles) * kSpeedOfLight_mps / kBandFreq_Hz[0];
+      if (t == 40.0) carrier_at_40_m[m.sat] = carrier_diff_m;
+      if (t >= 40.0) {
+        EXPECT_NEAR(carrier_diff_m - carrier_at_40_m.at(m.sat), extra_m, 1e-6) << "t " << t;
+      }
+    }
+    if (t == 45.0) {
+      const auto f = std::find_if(b.sats.begin(), b.sats.end(), [&](const SatMeasurement& x) { return x.sat == faulty; });
+      ASSERT_NE(f, b.sats.end());
+      EXPECT_NEAR(f->engine_pseudorange_m - std::find_if(a.sats.begin(), a.sats.end(), [&](const SatMeasurement& x) {
+                                               return x.sat == faulty;
+                                             })->engine_pseudorange_m,
+                  15.0, 1e-6);
+    }
+  }
+  EXPECT_GT(masked_seen, 0) << "some satellite lies in the mask";
 }
 
 // The built-in constellation never runs out: over three days (the data made for the start hold
