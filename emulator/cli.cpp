@@ -37,6 +37,7 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
   const auto allan = add_allan_command(app);
   const auto deadreckon = add_deadreckon_command(app);
   const auto scene = add_scene_command(app);
+  const auto ctl = add_ctl_command(app);
   app.add_subcommand("profiles", "List the GNSS receiver and IMU profiles and the ready scenarios");
   std::string help_topic;
   app.add_subcommand("help", "Print this list, or the help of one subcommand")
@@ -77,6 +78,7 @@ int run_cli(int argc, char** argv, std::ostream& out, std::ostream& err) {
     if (app.got_subcommand("allan")) return run_allan(*allan, out, err);
     if (app.got_subcommand("deadreckon")) return run_deadreckon(*deadreckon, out, err);
     if (app.got_subcommand("scene")) return run_scene(*scene, out, err);
+    if (app.got_subcommand("ctl")) return run_ctl(*ctl, out, err);
   } catch (const InputError& e) {
     err << "navemu: " << e.what() << "\n";
     return 1;

@@ -133,6 +133,10 @@ int run_scene(const SceneOptions& opt, std::ostream& out, std::ostream& err);
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app);
 std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app);
 int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err);
+// navemu ctl: live-control commands to a running navemu (emulator/ctl_command.cpp).
+struct CtlOptions;
+std::shared_ptr<CtlOptions> add_ctl_command(CLI::App& app);
+int run_ctl(const CtlOptions& opt, std::ostream& out, std::ostream& err);
 // navemu profiles: the profiles and ready scenarios, one line each (emulator/profiles_command.cpp).
 int run_profiles(std::ostream& out);
 

@@ -134,6 +134,30 @@ void GnssChannel::service() {
     if (const std::optional<int> baud = device_->take_baud_change(io_.receiver_ports[i]))
       transport::set_serial_baud(*io_.ports[i], *baud);
   follow_rate(epoch_time(k_ - 1));
+  if (io_.control) io_.control->service([this](std::string_view line) { return apply_control(line); });
+}
+
+std::string GnssChannel::apply_control(std::string_view line) {
+  const std::variant<ControlCommand, std::string> parsed = parse_control_line(line);
+  if (const std::string* why = std::get_if<std::string>(&parsed))
+    return fmt::format(R"({{"ok": false, "error": {}}})", json_string(*why));
+  const ControlCommand& cmd = std::get<ControlCommand>(parsed);
+  if (std::holds_alternative<ControlClear>(cmd)) {
+    receiver_->clear_events();
+    return R"({"ok": true})";
+  }
+  GnssEvents events = std::get<ControlEvent>(cmd).events;
+  // The one event's window, moved from "now" (the next epoch) to the scenario's clock.
+  EventWindow* w = nullptr;
+  for (JammingEvent& e : events.jamming) w = &e.window;
+  for (OutageEvent& e : events.outages) w = &e.window;
+  for (AntennaEvent& e : events.antenna) w = &e.window;
+  for (SatelliteFaultEvent& e : events.satellites) w = &e.window;
+  if (w == nullptr) return R"({"ok": false, "error": "no event"})";
+  w->start_s += seconds_between(epoch_time(k_), start_);
+  receiver_->add_events(events);
+  const GpsTime from = start_.plus_s(w->start_s);
+  return fmt::format(R"({{"ok": true, "from": "{}", "gps": "{}"}})", format_iso_utc(from), format_week_tow(from));
 }
 
 void GnssChannel::status(fmt::memory_buffer& out, ChannelStatus& st) {

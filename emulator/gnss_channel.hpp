@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "emulator/channel.hpp"
+#include "emulator/control.hpp"
 #include "emulator/gnss_device.hpp"
 #include "emulator/recorders.hpp"
 #include "emulator/run_config.hpp"
@@ -33,6 +34,7 @@ struct GnssPorts {
   std::vector<std::unique_ptr<transport::BytePort>> ports;
   std::vector<ReceiverPort> receiver_ports;  // one per port
   std::unique_ptr<transport::BytePort> capture_out, capture_in;
+  std::unique_ptr<ControlPort> control;  // live control (emulator/control.hpp); none: off
   void service();  // accepts TCP clients and the like while nothing runs yet (lockstep)
 };
 
@@ -57,6 +59,8 @@ class GnssChannel final : public SensorChannel {
  private:
   static constexpr std::int64_t kComputeLead_ns = 2'000'000;  // computed 2 ms before output
   void follow_rate(GpsTime last);
+  // One control line's reply; events start from the next epoch.
+  std::string apply_control(std::string_view line);
   GpsTime epoch_time(std::int64_t k) const { return GpsTime{k * period_ns_ + offset_ns_}; }
 
   std::unique_ptr<NavData> nav_;  // before the receiver and device, which refer to it

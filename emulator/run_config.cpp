@@ -359,11 +359,14 @@ double required(YamlMap& m, const std::string& key, const char* what) {
   return *v;
 }
 
-// One entry of `events:` (configs/default.yaml documents them) into its list.
-void add_event(YamlMap& m, GnssEvents& out) {
+}  // namespace
+
+void add_gnss_event(YamlMap& m, GnssEvents& out) {
   const std::optional<std::string> type = m.text("type");
   constexpr const char* kTypes = "jamming, outage, antenna, satellite";
   if (!type) m.fail("type", fmt::format("missing: the event's type ({})", kTypes));
+  if (*type != "jamming" && *type != "outage" && *type != "antenna" && *type != "satellite")
+    m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, kTypes));
   EventWindow w;
   w.start_s = m.positive("start_s", true).value_or(0.0);
   const std::optional<double> duration = m.positive("duration_s");
@@ -397,18 +400,14 @@ void add_event(YamlMap& m, GnssEvents& out) {
     const auto fault = choice<AntennaFault>(m, "fault", {{"open", AntennaFault::kOpen}, {"short", AntennaFault::kShort}});
     if (!fault) m.fail("fault", "missing: open or short");
     out.antenna.push_back({w, *fault});
-  } else if (*type == "satellite") {
+  } else {  // satellite
     ramp();
     const std::optional<std::int64_t> prn = m.integer("prn", 1, 32);
     if (!prn) m.fail("prn", "missing: the GPS satellite's PRN");
     out.satellites.push_back({w, gps_sat(static_cast<int>(*prn)), required(m, "clock_error_m", "the range error at full level, m")});
-  } else {
-    m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, kTypes));
   }
   m.reject_unknown_keys();
 }
-
-}  // namespace
 
 RunConfig load_run_config(const std::filesystem::path& file) {
   YamlMap root = load_yaml_file(file);
@@ -457,7 +456,14 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   for (YamlMap& o : imu.map_list("outputs")) c.imu_outputs.push_back(can_output(o, false));
   imu.reject_unknown_keys();
 
-  for (YamlMap& e : root.map_list("events")) add_event(e, c.gnss_events);
+  for (YamlMap& e : root.map_list("events")) add_gnss_event(e, c.gnss_events);
+  if (root.has("control")) {
+    YamlMap ctl = root.map("control");
+    c.control.emplace();
+    c.control->address = ctl.text("address").value_or(c.control->address);
+    c.control->port = static_cast<int>(ctl.integer("port", 0, 65535).value_or(0));
+    ctl.reject_unknown_keys();
+  }
 
   YamlMap rt = root.map("realtime");
   c.sched_fifo = rt.boolean("sched_fifo").value_or(false);

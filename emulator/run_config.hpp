@@ -135,6 +135,12 @@ struct TruthSpec {
   double first_wait_s = 120.0;  // lockstep: longest wait for the first datagram; 0: no limit
 };
 
+// The live control port (`control:`, emulator/control.hpp): TCP on this address.
+struct ControlSpec {
+  std::string address = "127.0.0.1";
+  int port = 0;  // 0: any free port (navemu prints it)
+};
+
 struct RunConfig {
   std::filesystem::path file;
   std::string description;  // one line for `navemu profiles`
@@ -155,6 +161,7 @@ struct RunConfig {
   std::optional<double> gnss_ideal_sigma_m;  // the paper's low-fidelity receiver: truth + noise
 
   GnssEvents gnss_events;  // `events:`, the scheduled impairments
+  std::optional<ControlSpec> control;  // `control:`; none: no live control
 
   bool imu_enabled = true;
   std::string imu_profile = "paper_phidget";
@@ -166,6 +173,11 @@ struct RunConfig {
   bool lock_memory = false;  // mlockall (falls back with a message)
   std::optional<int> cpu;    // pin the loop to this CPU (sched_setaffinity); unset: any
 };
+
+// One entry of `events:` (configs/default.yaml) into its list of `out`; InputError naming the
+// entry's key for bad ones. Also the form of live control's event commands.
+class YamlMap;
+void add_gnss_event(YamlMap& m, GnssEvents& out);
 
 // The file's configuration; relative paths inside it are relative to the file's folder.
 RunConfig load_run_config(const std::filesystem::path& file);

@@ -120,6 +120,13 @@ void print_gnss_outputs(const RunConfig& cfg, const GnssPorts& io, bool offline,
                  "navemu: warning: the GNSS tcp output listens on {}, not loopback: any host "
                  "that reaches it receives the receiver's output and can configure it\n",
                  o.address);
+  if (io.control) {
+    fmt::print(log, "navemu: control on {} (JSON lines: navemu ctl --port {} '{{\"cmd\": \"event\", ...}}')\n",
+               io.control->describe(), transport::tcp_server_port(io.control->port()));
+    if (!transport::is_loopback_address(cfg.control->address))
+      fmt::print(log, "navemu: warning: the control port listens on {}, not loopback: any host that reaches it "
+                      "can inject faults\n", cfg.control->address);
+  }
   if (io.capture_out)
     fmt::print(log, "navemu: GNSS capture: sent bytes to {0}, received bytes to {0}.in\n", cfg.gnss_capture);
 }
@@ -159,6 +166,9 @@ RunOutputs open_outputs(const RunConfig& cfg, const RunPlan& plan, const EngineO
         out.gnss.capture_out = transport::open_log_file(cfg.gnss_capture);
         out.gnss.capture_in = transport::open_log_file(cfg.gnss_capture + ".in");
       }
+      if (cfg.control)
+        out.gnss.control = std::make_unique<ControlPort>(
+            transport::open_tcp_server({cfg.control->address, cfg.control->port, 4, 65536}));
     }
   }
   if (plan.imu) {

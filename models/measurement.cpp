@@ -212,6 +212,14 @@ MeasurementGenerator::~MeasurementGenerator() = default;
 
 void MeasurementGenerator::set_event_origin(GpsTime start) { state_->event_origin = start; }
 
+void MeasurementGenerator::add_events(const GnssEvents& e) {
+  GnssEvents& to = cfg_.events;
+  to.jamming.insert(to.jamming.end(), e.jamming.begin(), e.jamming.end());
+  to.outages.insert(to.outages.end(), e.outages.begin(), e.outages.end());
+  to.antenna.insert(to.antenna.end(), e.antenna.begin(), e.antenna.end());
+  to.satellites.insert(to.satellites.end(), e.satellites.begin(), e.satellites.end());
+}
+
 EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx,
                                                  const Vec3& v_rx) {
   EpochMeasurements out;
@@ -245,11 +253,11 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   // The receiver's time tag runs ahead of GPS time by its clock bias.
   out.t_true = t_receiver.plus_s(-out.rx_clock_bias_s);
   const double t_s = out.t_true.seconds();
-  // The jammers on at this instant, by band.
-  if (!st.event_origin) st.event_origin = out.t_true;
+  // The events on at this epoch (by its time tag: they follow the scenario's epochs).
+  if (!st.event_origin) st.event_origin = t_receiver;
   out.interference = {};
   out.antenna_fault.reset();
-  const double t_event_s = seconds_between(out.t_true, *st.event_origin);
+  const double t_event_s = seconds_between(t_receiver, *st.event_origin);
   const GnssEvents& ev = cfg_.events;
   for (const JammingEvent& j : ev.jamming)
     if (const auto js = ramped_j_over_s_db(j.j_over_s_db, event_level(j.window, t_event_s)))

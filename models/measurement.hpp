@@ -196,8 +196,8 @@ struct EpochMeasurements {
   double rx_clock_bias_s = 0.0;
   double rx_clock_drift_sps = 0.0;
   std::vector<SatMeasurement> sats;  // tracked satellites above the horizon, by SatId
-  std::array<BandInterference, 3> interference{};  // by Band, at t_true
-  std::optional<AntennaFault> antenna_fault;       // at t_true
+  std::array<BandInterference, 3> interference{};  // by Band, at the epoch
+  std::optional<AntennaFault> antenna_fault;       // at the epoch
 };
 
 // Receiver classes: tracking loops, antenna and site as they differ between a geodetic receiver
@@ -230,6 +230,9 @@ class MeasurementGenerator {
   const MeasurementConfig& config() const { return cfg_; }
   // The scenario's start, from which the events' times count; unset: the first epoch's time.
   void set_event_origin(GpsTime start);
+  // Events added while running (live control), and all of them ended.
+  void add_events(const GnssEvents& e);
+  void clear_events() { cfg_.events = {}; }
 
  private:
   struct State;

@@ -90,6 +90,8 @@ class Receiver {
   const EpochMeasurements& measurements() const { return meas_; }
   // The scenario's start, from which scheduled events count (MeasurementGenerator).
   void set_event_origin(GpsTime start) { gen_.set_event_origin(start); }
+  void add_events(const GnssEvents& e) { gen_.add_events(e); }
+  void clear_events() { gen_.clear_events(); }
 
  private:
   ReceiverParams p_;

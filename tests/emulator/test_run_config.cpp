@@ -148,6 +148,13 @@ TEST(RunConfig, EventsAndTheirErrors) {
   EXPECT_EQ(e.satellites[0].clock_error_m, 80.0);
   EXPECT_EQ(e.satellites[0].window.ramp_s, 50.0);
   EXPECT_TRUE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).gnss_events.jamming.empty());
+  EXPECT_FALSE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).control.has_value());
+  const RunConfig ctl = load_run_config(write_temp("ctl.yaml", "control: {port: 7780}\n"));
+  ASSERT_TRUE(ctl.control.has_value());
+  EXPECT_EQ(ctl.control->port, 7780);
+  EXPECT_EQ(ctl.control->address, "127.0.0.1") << "loopback by default";
+  EXPECT_NE(load_error("control: {port: 70000}\n").find("control.port: 70000 outside [0, 65535]"), std::string::npos);
+  EXPECT_NE(load_error("control: {socket: /tmp/x}\n").find("control.socket"), std::string::npos);
 
   const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
   const std::pair<const char*, const char*> cases[] = {

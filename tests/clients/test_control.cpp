@@ -1,0 +1,93 @@
+// Live control of `navemu run` (emulator/control.hpp) as a test script uses it: `navemu ctl`
+// sends an outage while navemu runs, and the receiver's NMEA output loses its fix from the
+// epoch the reply names until a re-acquisition time (1 s) after the outage; a flood of commands
+// is answered without one epoch late or skipped.
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <regex>
+#include <sstream>
+
+#include "core/time.hpp"
+#include "tests/clients/client_support.hpp"
+
+namespace navemu::test::clients {
+namespace {
+
+// `navemu ctl --port PORT COMMANDS...`: its exit code and standard output.
+std::pair<std::optional<int>, std::string> ctl(const TempDir& dir, int port, const std::vector<std::string>& commands,
+                                               const std::string& name) {
+  std::vector<std::string> argv{navemu_binary().string(), "ctl", "--port", std::to_string(port)};
+  argv.insert(argv.end(), commands.begin(), commands.end());
+  Child c(argv, dir / (name + ".out"), dir / (name + ".err"));
+  const std::optional<int> st = c.wait_exit(20.0);
+  return {st && WIFEXITED(*st) ? std::optional<int>(WEXITSTATUS(*st)) : std::nullopt, slurp(dir / (name + ".out"))};
+}
+
+TEST(LiveControl, AnOutageSentWhileRunningCutsTheFixFromTheNamedEpoch) {
+  TempDir dir("live-control");
+  const fs::path nmea = dir / "nmea.log";
+  NavemuRun nav(dir, "navemu",
+                fmt::format("scenario: {{status_interval_s: 0}}\n"
+                            "truth: {{source: stationary}}\n"
+                            "gnss:\n  profile: ublox-nmea-5hz\n  outputs:\n    - {{type: file, path: '{}'}}\n"
+                            "imu: {{enabled: false}}\n"
+                            "control: {{port: 0}}\n",
+                            nmea.string()),
+                11.0);
+  static const std::regex port_re(R"(navemu: control on tcp 127\.0\.0\.1:(\d+))");
+  std::smatch m;
+  std::string log;
+  ASSERT_TRUE(wait_until([&] { log = nav.err(); return std::regex_search(log, m, port_re); }, 10.0)) << nav.diagnostics();
+  const int port = std::stoi(m[1]);
+  sleep_s(2.5);
+
+  // One good command and one refused: exit code 1, a reply each, in order.
+  const auto [code, replies] =
+      ctl(dir, port, {R"({"cmd": "event", "type": "outage", "duration_s": 2})", R"({"cmd": "event", "type": "tunnel"})"},
+          "ctl");
+  EXPECT_EQ(code, 1);
+  static const std::regex ok_re(R"re(^\{"ok": true, "from": "[^"]+", "gps": "(\d+):([0-9.]+)"\}\n\{"ok": false, "error": "[^"]*'tunnel' is not an event type)re");
+  std::smatch r;
+  ASSERT_TRUE(std::regex_search(replies, r, ok_re)) << replies;
+  const GpsTime from = from_week_tow(std::stoi(r[1]), std::stod(r[2]));
+
+  // A flood: 1000 commands at once (refused ones, which cost the most), answered within the
+  // run, no epoch late or skipped.
+  sleep_s(4.0);
+  const auto [flood_code, flood] = ctl(dir, port, std::vector<std::string>(1000, R"({"cmd": "event"})"), "flood");
+  EXPECT_EQ(flood_code, 1);
+  EXPECT_EQ(std::count(flood.begin(), flood.end(), '\n'), 1000);
+  nav.stop_expecting_exit_0();
+  const std::optional<RunSummary> sum = run_summary(nav.err());
+  ASSERT_TRUE(sum) << nav.diagnostics();
+  EXPECT_EQ(sum->late, 0);
+  EXPECT_EQ(sum->skipped, 0);
+
+  // GGA quality by epoch (UTC time of day in the sentence), against the outage's epochs.
+  const CalendarTime utc = utc_from_gps(from);
+  const std::int64_t from_ms = ((utc.hour * 60 + utc.minute) * 60) * 1000 + std::llround(utc.second * 1000.0);
+  int before = 0, during = 0, reacquiring = 0, after = 0;
+  std::stringstream ss(slurp(nmea));
+  for (std::string line; std::getline(ss, line);) {
+    if (line.size() < 7 || line.compare(3, 4, "GGA,") != 0) continue;
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    const std::int64_t dt_ms = nmea_ms_of_day(f[1]) - from_ms;
+    const int quality = std::stoi(f[6]);
+    if (dt_ms >= -1000 && dt_ms < 0) before += quality == 1 ? 1 : -100;
+    if (dt_ms >= 0 && dt_ms < 2000) during += quality == 0 ? 1 : -100;
+    if (dt_ms >= 2000 && dt_ms < 3000) reacquiring += quality == 0 ? 1 : -100;
+    if (dt_ms >= 3000 && dt_ms < 4000) after += quality == 1 ? 1 : -100;
+  }
+  EXPECT_EQ(before, 5) << "fixes in the second before";
+  EXPECT_EQ(during, 10) << "no fix from the named epoch for 2 s";
+  EXPECT_EQ(reacquiring, 5) << "re-acquiring for 1 s";
+  EXPECT_EQ(after, 5) << "the fix back";
+}
+
+}  // namespace
+}  // namespace navemu::test::clients
