@@ -448,11 +448,6 @@ FrontEndMonitor monitor_of(const FrontEndBlock& b, const EpochView& e) {
   return front_end_monitor(b.open_sky, e.meas.interference[i], kBandChipRate_Hz[i]);
 }
 
-// jammingState (MON-HW flags bits 2..3, MON-RF flags bits 0..1; UBX-13003221 "UBX-MON-HW"):
-// 0 "unknown or feature disabled" unless the jamming/interference monitor is on
-// (CFG-ITFM-ENABLE); then 1 "ok", 2 "warning - interference visible but fix OK", 3 "critical -
-// interference visible and no fix". Visible: broadband J/N above bbThreshold or CW J/N above
-// cwThreshold (CFG-ITFM).
 // The antenna supervisor's status and the antenna supply (MON-HW aStatus / aPower, MON-RF
 // antStatus / antPower; F9 interface description UBX-MON-HW aStatus 0=INIT 1=DONTKNOW 2=OK
 // 3=SHORT 4=OPEN, aPower 0=OFF 1=ON): OK and on; OPEN with the supply on; SHORT with the supply
@@ -463,6 +458,11 @@ std::pair<std::uint8_t, std::uint8_t> antenna_status(const EpochView& e) {
                                                       : std::pair<std::uint8_t, std::uint8_t>{MonHw::kAntShort, 0};
 }
 
+// jammingState (MON-HW flags bits 2..3, MON-RF flags bits 0..1; UBX-13003221 "UBX-MON-HW"):
+// 0 "unknown or feature disabled" unless the jamming/interference monitor is on
+// (CFG-ITFM-ENABLE); then 1 "ok", 2 "warning - interference visible but fix OK", 3 "critical -
+// interference visible and no fix". Visible: broadband J/N above bbThreshold or CW J/N above
+// cwThreshold (CFG-ITFM).
 std::uint8_t jamming_state(const EpochView& e, const FrontEndMonitor& m) {
   if (!e.status.jamming_monitor) return 0;
   const bool visible = m.broadband_j_over_n_db > e.status.itfm_bb_threshold_db ||

@@ -212,14 +212,6 @@ MeasurementGenerator::~MeasurementGenerator() = default;
 
 void MeasurementGenerator::set_event_origin(GpsTime start) { state_->event_origin = start; }
 
-void MeasurementGenerator::add_events(const GnssEvents& e) {
-  GnssEvents& to = cfg_.events;
-  to.jamming.insert(to.jamming.end(), e.jamming.begin(), e.jamming.end());
-  to.outages.insert(to.outages.end(), e.outages.begin(), e.outages.end());
-  to.antenna.insert(to.antenna.end(), e.antenna.begin(), e.antenna.end());
-  to.satellites.insert(to.satellites.end(), e.satellites.begin(), e.satellites.end());
-}
-
 EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx,
                                                  const Vec3& v_rx) {
   EpochMeasurements out;

@@ -84,6 +84,13 @@ struct GnssEvents {
   std::vector<OutageEvent> outages;
   std::vector<AntennaEvent> antenna;
   std::vector<SatelliteFaultEvent> satellites;
+  std::size_t size() const { return jamming.size() + outages.size() + antenna.size() + satellites.size(); }
+  void append(const GnssEvents& e) {
+    jamming.insert(jamming.end(), e.jamming.begin(), e.jamming.end());
+    outages.insert(outages.end(), e.outages.begin(), e.outages.end());
+    antenna.insert(antenna.end(), e.antenna.begin(), e.antenna.end());
+    satellites.insert(satellites.end(), e.satellites.begin(), e.satellites.end());
+  }
 };
 
 enum class SatErrorModel {
@@ -231,7 +238,7 @@ class MeasurementGenerator {
   // The scenario's start, from which the events' times count; unset: the first epoch's time.
   void set_event_origin(GpsTime start);
   // Events added while running (live control), and all of them ended.
-  void add_events(const GnssEvents& e);
+  void add_events(const GnssEvents& e) { cfg_.events.append(e); }
   void clear_events() { cfg_.events = {}; }
 
  private:

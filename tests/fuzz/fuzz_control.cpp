@@ -62,12 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const auto& o : e->events.outages) check_window(o.window);
         for (const auto& a : e->events.antenna) check_window(a.window);
         for (const auto& s : e->events.satellites) check_window(s.window);
-        if (accepted.jamming.size() + accepted.outages.size() + accepted.antenna.size() + accepted.satellites.size() < 64) {
-          accepted.jamming.insert(accepted.jamming.end(), e->events.jamming.begin(), e->events.jamming.end());
-          accepted.outages.insert(accepted.outages.end(), e->events.outages.begin(), e->events.outages.end());
-          accepted.antenna.insert(accepted.antenna.end(), e->events.antenna.begin(), e->events.antenna.end());
-          accepted.satellites.insert(accepted.satellites.end(), e->events.satellites.begin(), e->events.satellites.end());
-        }
+        if (accepted.size() < 64) accepted.append(e->events);
       }
       return std::string("{\"ok\": true}");
     });
@@ -76,8 +71,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const char c : memory.replies)
     if (static_cast<unsigned char>(c) >= 0x80 || (static_cast<unsigned char>(c) < 0x20 && c != '\n')) std::abort();
 
-  if (accepted.jamming.empty() && accepted.outages.empty() && accepted.antenna.empty() && accepted.satellites.empty())
-    return 0;
+  if (accepted.size() == 0) return 0;
   static const navemu::GpsTime t0 = navemu::from_week_tow(2244, 36000.0);
   static const navemu::NavData nav = navemu::nominal_constellation(t0);
   navemu::MeasurementConfig cfg;
