@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 
@@ -312,6 +313,7 @@ TEST(Measurement, JammingLowersCn0ByTheFormulaAndLosesWeakSignals) {
         ++expected_tracked;
     }
     EXPECT_EQ(matched, expected_tracked) << "J/S " << js << " dB";
+    std::printf("J/S %2.0f dB wideband on L1: %zu of %zu satellites tracked\n", js, matched, ref.sats.size());
     EXPECT_LE(matched, previous);
     previous = matched;
     EXPECT_NEAR(e.interference[0].j_over_s, std::pow(10.0, js / 10.0), 1e-6 * std::pow(10.0, js / 10.0));
