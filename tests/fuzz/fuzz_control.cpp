@@ -14,22 +14,7 @@
 
 namespace {
 
-class MemoryPort final : public navemu::transport::BytePort {
- public:
-  bool write(std::span<const std::uint8_t> chunk) override {
-    replies.append(reinterpret_cast<const char*>(chunk.data()), chunk.size());
-    return true;
-  }
-  std::size_t read(std::span<std::uint8_t> buf) override {
-    const std::size_t n = std::min(buf.size(), pending.size());
-    std::copy_n(pending.begin(), n, buf.begin());
-    pending = pending.subspan(n);
-    return n;
-  }
-  std::string describe() const override { return "memory"; }
-  std::span<const std::uint8_t> pending;
-  std::string replies;
-};
+using navemu::fuzz::MemoryPort;
 
 void check_window(const navemu::EventWindow& w) {
   if (!(std::isfinite(w.start_s) && w.start_s >= 0.0 && w.duration_s > 0.0 && std::isfinite(w.duration_s) &&
@@ -68,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     });
     if (lines > static_cast<std::size_t>(navemu::kMaxControlLinesPerTick)) std::abort();
   }
-  for (const char c : memory.replies)
+  for (const char c : memory.written)
     if (static_cast<unsigned char>(c) >= 0x80 || (static_cast<unsigned char>(c) < 0x20 && c != '\n')) std::abort();
 
   if (accepted.size() == 0) return 0;

@@ -14,27 +14,7 @@
 #include "tests/fuzz/fuzz_support.hpp"
 #include "transports/can_port.hpp"
 
-namespace {
-
-class MemoryPort final : public navemu::transport::BytePort {
- public:
-  bool write(std::span<const std::uint8_t> chunk) override {
-    written += chunk.size();
-    return true;
-  }
-  std::size_t read(std::span<std::uint8_t> buf) override {
-    const std::size_t n = std::min(buf.size(), pending.size());
-    std::copy_n(pending.begin(), n, buf.begin());
-    pending = pending.subspan(n);
-    return n;
-  }
-  std::string describe() const override { return "memory"; }
-
-  std::span<const std::uint8_t> pending;
-  std::size_t written = 0;
-};
-
-}  // namespace
+using navemu::fuzz::MemoryPort;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
@@ -57,6 +37,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   // Each answer is at most 7 bytes ("V1013\r") per command; a command takes at least 1 byte.
   const std::size_t frame_lines = pieces * 22;  // "t1238" + 16 hex digits + CR
-  if (memory.written > 7 * (size + pieces) + frame_lines) navemu::fuzz::fail("more answers than commands");
+  if (memory.written.size() > 7 * (size + pieces) + frame_lines) navemu::fuzz::fail("more answers than commands");
   return 0;
 }

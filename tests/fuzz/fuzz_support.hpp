@@ -17,6 +17,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
+#include "transports/byte_port.hpp"
+
 namespace navemu::fuzz {
 
 inline std::span<const std::uint8_t> bytes_of(const std::uint8_t* data, std::size_t size) {
@@ -58,5 +62,25 @@ inline std::filesystem::path write_scratch(const std::string& name, std::string_
   std::fprintf(stderr, "navemu fuzz: %s\n", what);
   std::abort();
 }
+
+// A byte port in memory: its client "sent" `pending` (read() hands it out in order), and what
+// the reader writes back collects in `written`.
+class MemoryPort final : public transport::BytePort {
+ public:
+  bool write(std::span<const std::uint8_t> chunk) override {
+    written.append(reinterpret_cast<const char*>(chunk.data()), chunk.size());
+    return true;
+  }
+  std::size_t read(std::span<std::uint8_t> buf) override {
+    const std::size_t n = std::min(buf.size(), pending.size());
+    std::copy_n(pending.begin(), n, buf.begin());
+    pending = pending.subspan(n);
+    return n;
+  }
+  std::string describe() const override { return "memory"; }
+
+  std::span<const std::uint8_t> pending;
+  std::string written;
+};
 
 }  // namespace navemu::fuzz
