@@ -32,7 +32,6 @@
 #include <limits>
 #include <span>
 #include <string>
-#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -184,6 +183,33 @@ struct Value {
   static_assert(type_matches(), "the member's C++ type is not the one of its wire type");
 };
 
+// ---- lists of rows and of descriptions ----------------------------------------------------
+
+// A fixed list of values, of equal types or not: the rows of a description, block or group,
+// and the table of descriptions. An aggregate with one base per value instead of a std::tuple,
+// whose constructors and recursive bases cost each translation unit that includes the hundred
+// descriptions of ubx_messages.hpp about 15 s of compile time and 1 GB.
+template <std::size_t I, class T>
+struct Slot {
+  T value;
+};
+template <class Seq, class... T>
+struct ListOf;
+template <std::size_t... I, class... T>
+struct ListOf<std::index_sequence<I...>, T...> : Slot<I, T>... {
+  // fn(values...), in list order.
+  template <class Fn>
+  constexpr decltype(auto) apply(Fn&& fn) const {
+    return fn(static_cast<const Slot<I, T>&>(*this).value...);
+  }
+};
+template <class... T>
+using List = ListOf<std::index_sequence_for<T...>, T...>;
+template <class... T>
+constexpr List<T...> list(T... values) {
+  return {{values}...};
+}
+
 // ---- rows of a description -----------------------------------------------------------------
 
 // Decoding state shared by the rows of one payload: the block count read from its field.
@@ -257,17 +283,17 @@ struct Optional {
   static constexpr std::size_t kSize = 0;  // not part of the fixed length
   static constexpr std::size_t kOptionalSize = (Rows::kSize + ...);
   bool S::*present;
-  std::tuple<Rows...> rows;
+  List<Rows...> rows;
   void put(Writer& w, const S& m, std::size_t) const {
-    if (m.*present) std::apply([&](const auto&... row) { (row.put(w, m, 0), ...); }, rows);
+    if (m.*present) rows.apply([&](const auto&... row) { (row.put(w, m, 0), ...); });
   }
   bool get(const Reader& r, Cursor& c, S& m) const {
     m.*present = r.size() >= c.off + kOptionalSize;
     bool ok = true;
-    std::apply([&](const auto&... row) {
+    rows.apply([&](const auto&... row) {
       if (m.*present) ((ok = row.get(r, c, m) && ok), ...);
       else ((m.*row.member = {}), ...);
-    }, rows);
+    });
     return ok;
   }
 };
@@ -318,7 +344,7 @@ struct Block {
   static constexpr std::size_t kBlockSize = (Rows::kSize + ...);
   static constexpr Repeat kRepeat = R;
   std::vector<E> S::*member;
-  std::tuple<Rows...> rows;
+  List<Rows...> rows;
   std::size_t min_blocks = 0;  // fewer blocks fail to decode
 
   // The same block, decoded only when at least n blocks are present.
@@ -330,14 +356,14 @@ struct Block {
   void put(Writer& w, const S& m, std::size_t blocks) const {
     const std::vector<E>& v = m.*member;
     for (std::size_t i = 0; i < blocks; ++i)
-      std::apply([&](const auto&... row) { (row.put(w, v[i], 0), ...); }, rows);
+      rows.apply([&](const auto&... row) { (row.put(w, v[i], 0), ...); });
   }
   bool get(const Reader& r, Cursor& c, S& m) const {
     std::vector<E>& v = m.*member;
     v.resize(c.blocks);
     bool ok = true;
     for (std::size_t i = 0; i < c.blocks; ++i)
-      std::apply([&](const auto&... row) { ((ok = row.get(r, c, v[i]) && ok), ...); }, rows);
+      rows.apply([&](const auto&... row) { ((ok = row.get(r, c, v[i]) && ok), ...); });
     return ok;
   }
 };
@@ -405,7 +431,7 @@ struct IsKeyValues<KeyValues<S, KV>> : std::true_type {};
 template <class Row>
 constexpr bool has_text() {
   if constexpr (IsBlock<Row>::value)
-    return []<class... R>(std::tuple<R...>*) { return (has_text<R>() || ...); }(
+    return []<class Seq, class... R>(ListOf<Seq, R...>*) { return (has_text<R>() || ...); }(
         static_cast<decltype(Row::rows)*>(nullptr));
   else if constexpr (requires { Row::V::size(); }) return std::is_same_v<typename Row::V::Value_t, std::string>;
   else return false;
@@ -432,20 +458,29 @@ constexpr std::size_t count_size_of() {
   else return 0;
 }
 
-// A description's rows written as single rows or as groups (tuples of rows) of them, in wire
-// order, as one tuple of rows.
+// A description's rows written as single rows or as groups (lists of rows) of them, in wire
+// order, as one list of rows.
 template <class T>
 struct IsGroup : std::false_type {};
-template <class... R>
-struct IsGroup<std::tuple<R...>> : std::true_type {};
+template <class Seq, class... R>
+struct IsGroup<ListOf<Seq, R...>> : std::true_type {};
 template <class R>
 constexpr auto as_group(const R& r) {
   if constexpr (IsGroup<R>::value) return r;
-  else return std::tuple<R>(r);
+  else return list(r);
+}
+template <class A, class B>
+constexpr auto concat(const A& a, const B& b) {
+  return a.apply([&](const auto&... x) { return b.apply([&](const auto&... y) { return list(x..., y...); }); });
 }
 template <class... R>
 constexpr auto flatten(const R&... rows) {
-  return std::tuple_cat(as_group(rows)...);
+  return list(rows...);
+}
+template <class First, class... Rest>
+  requires(IsGroup<First>::value || (IsGroup<Rest>::value || ...))
+constexpr auto flatten(const First& first, const Rest&... rest) {
+  return concat(as_group(first), flatten(rest...));
 }
 
 }  // namespace layout
@@ -458,7 +493,7 @@ struct Layout {
   MsgId id;
   const char* name;  // as u-blox writes it: "NAV-PVT"
   Length length;
-  std::tuple<Rows...> rows;
+  layout::List<Rows...> rows;
 
   // Bytes before the repeated part (the whole payload when there is none).
   static constexpr std::size_t kHeaderSize = (std::size_t{0} + ... + Rows::kSize);
@@ -519,16 +554,16 @@ struct Layout {
   // The least number of repeated blocks a payload carries (0 without a block).
   constexpr std::size_t min_blocks() const {
     std::size_t n = 0;
-    std::apply([&](const auto&... row) {
+    rows.apply([&](const auto&... row) {
       ((n = std::max(n, layout::IsBlock<std::remove_cvref_t<decltype(row)>>::value ? min_of(row) : 0)), ...);
-    }, rows);
+    });
     return n;
   }
 
   // Blocks an encoder sends of `m` (0 without a block).
   std::size_t blocks(const S& m) const {
     std::size_t n = 0;
-    std::apply([&](const auto&... row) { ((n += count_of(row, m)), ...); }, rows);
+    rows.apply([&](const auto&... row) { ((n += count_of(row, m)), ...); });
     return n;
   }
 
@@ -536,7 +571,7 @@ struct Layout {
     const std::size_t n = blocks(m);
     const std::size_t start = begin_frame(id.cls, id.id, out);
     Writer w(out);
-    std::apply([&](const auto&... row) { (row.put(w, m, n), ...); }, rows);
+    rows.apply([&](const auto&... row) { (row.put(w, m, n), ...); });
     end_frame(start, out);
   }
 
@@ -546,7 +581,7 @@ struct Layout {
     layout::Cursor c;
     if constexpr (kHasBlock && !kCounted) c.blocks = (p.size() - kHeaderSize) / kBlockSize;
     bool ok = true;
-    std::apply([&](const auto&... row) { ((ok = row.get(r, c, m) && ok), ...); }, rows);
+    rows.apply([&](const auto&... row) { ((ok = row.get(r, c, m) && ok), ...); });
     return ok && r.ok();
   }
 
@@ -554,7 +589,7 @@ struct Layout {
   // value in the quantity's unit (the scale applied: degrees, metres, seconds).
   template <class Fn>
   void for_each_value(const S& m, Fn&& fn) const {
-    std::apply([&](const auto&... row) { (visit(row, m, fn), ...); }, rows);
+    rows.apply([&](const auto&... row) { (visit(row, m, fn), ...); });
   }
 
  private:
@@ -617,15 +652,14 @@ struct Describing {
   // A message's description: its rows, single or in groups, in wire order.
   template <class S, class... R>
   static constexpr auto describe(MsgId id, const char* name, Length length, R... rows) {
-    return std::apply(
-        [&](auto... r) { return Layout<S, decltype(r)...>{id, name, length, std::tuple{r...}}; },
-        layout::flatten(rows...));
+    return layout::flatten(rows...).apply(
+        [&](auto... r) { return Layout<S, decltype(r)...>{id, name, length, layout::list(r...)}; });
   }
   // Rows written once and used in several descriptions (as the rows of a message and of a
   // block of another, or by a struct and the structs derived from it).
   template <class... R>
-  static constexpr std::tuple<R...> group(R... rows) {
-    return {rows...};
+  static constexpr layout::List<R...> group(R... rows) {
+    return layout::list(rows...);
   }
   // CH[n]: a NUL-padded string of n characters.
   template <std::size_t N, class S>
@@ -656,9 +690,8 @@ struct Describing {
   // longer: optional(&CfgCfg::has_device_mask, x1(&CfgCfg::device_mask, "deviceMask")).
   template <class S, class... R>
   static constexpr auto optional(bool S::*present, R... rows) {
-    return std::apply(
-        [&](auto... r) { return layout::Optional<S, decltype(r)...>{present, std::tuple{r...}}; },
-        layout::flatten(rows...));
+    return layout::flatten(rows...).apply(
+        [&](auto... r) { return layout::Optional<S, decltype(r)...>{present, layout::list(r...)}; });
   }
   // The rest of the payload as text, byte for byte.
   template <class S>
@@ -675,19 +708,16 @@ struct Describing {
  private:
   template <Repeat P, class S, class E, class... R>
   static constexpr auto block_of(std::vector<E> S::*member, R... rows) {
-    return std::apply(
-        [&](auto... r) { return layout::Block<S, E, P, decltype(r)...>{member, std::tuple{r...}}; },
-        layout::flatten(rows...));
+    return layout::flatten(rows...).apply(
+        [&](auto... r) { return layout::Block<S, E, P, decltype(r)...>{member, layout::list(r...)}; });
   }
 };
 
-// The index in a tuple of layouts of the one describing T (the tuple's size when none does).
-template <class T, class Tuple, std::size_t I = 0>
-constexpr std::size_t layout_index() {
-  using All = std::remove_cvref_t<Tuple>;
-  if constexpr (I == std::tuple_size_v<All>) return I;
-  else if constexpr (std::is_same_v<typename std::tuple_element_t<I, All>::Struct, T>) return I;
-  else return layout_index<T, Tuple, I + 1>();
+// The description of S in a table of descriptions (a layout::List): the one entry whose layout
+// describes S, found by template argument deduction.
+template <class S, std::size_t I, class... R>
+constexpr const Layout<S, R...>& layout_in(const layout::Slot<I, Layout<S, R...>>& entry) {
+  return entry.value;
 }
 
 }  // namespace navemu::ubx

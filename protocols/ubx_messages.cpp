@@ -39,9 +39,8 @@ constexpr MessageInfo info(const L& l) {
 }
 
 // Every description, in the order of the tables.
-constexpr auto kAll = std::apply(
-    [](const auto&... l) { return std::array<MessageInfo, sizeof...(l)>{info(l)...}; },
-    Descriptions::kAll);
+constexpr auto kAll = Descriptions::kAll.apply(
+    [](const auto&... l) { return std::array<MessageInfo, sizeof...(l)>{info(l)...}; });
 
 }  // namespace
 

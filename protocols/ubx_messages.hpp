@@ -1785,7 +1785,7 @@ struct Descriptions : Describing {
       r4(&CfgDat::d_y_m, "dY"), r4(&CfgDat::d_z_m, "dZ"), r4(&CfgDat::rot_x_s, "rotX"),
       r4(&CfgDat::rot_y_s, "rotY"), r4(&CfgDat::rot_z_s, "rotZ"), r4(&CfgDat::scale_ppm, "scale"));
 
-  static constexpr auto kAll = std::tuple{
+  static constexpr auto kAll = layout::list(
       describe<NavPvt>(kNavPvt, "NAV-PVT", Length::kAtLeast,
           u4(&NavPvt::i_tow_ms, "iTOW", 1e-3), u2(&NavPvt::year, "year"),
           u1(&NavPvt::month, "month"), u1(&NavPvt::day, "day"), u1(&NavPvt::hour, "hour"),
@@ -2376,17 +2376,14 @@ struct Descriptions : Describing {
       describe<CfgDat>(kCfgDat, "CFG-DAT", Length::kExact, kCfgDatum),
       describe<CfgDatCurrent>(kCfgDat, "CFG-DAT", Length::kExact,
           u2(&CfgDatCurrent::datum_num, "datumNum"),
-          ch<CfgDatCurrent::kNameSize>(&CfgDatCurrent::datum_name, "datumName"), kCfgDatum),
-  };
+          ch<CfgDatCurrent::kNameSize>(&CfgDatCurrent::datum_name, "datumName"), kCfgDatum));
 };
 
 // The description of message struct T (a compile-time error for a struct without one).
 template <class T>
-concept Described = layout_index<T, decltype(Descriptions::kAll)>() <
-                    std::tuple_size_v<std::remove_cvref_t<decltype(Descriptions::kAll)>>;
+concept Described = requires { layout_in<T>(Descriptions::kAll); };
 template <Described T>
-inline constexpr const auto& layout_of =
-    std::get<layout_index<T, decltype(Descriptions::kAll)>()>(Descriptions::kAll);
+inline constexpr const auto& layout_of = layout_in<T>(Descriptions::kAll);
 
 // ---- encoders and decoders, driven by the descriptions ---------------------------------------
 // Repeated blocks beyond the count field's range (255; 65535 for MON-PATCH's U2) or beyond the

@@ -360,7 +360,7 @@ struct RawField {
 // the first repeated block (the first of a name wins, as in values_in()).
 template <class Rows, class S>
 void add_raw_values(const Rows& rows, const S& m, std::map<std::string, RawField>& v) {
-  std::apply(
+  rows.apply(
       [&](const auto&... row) {
         const auto one = [&](const auto& r) {
           if constexpr (requires { r.scale; r.member; }) {
@@ -381,8 +381,7 @@ void add_raw_values(const Rows& rows, const S& m, std::map<std::string, RawField
         };
         (void)block;
         (block(row), ...);
-      },
-      rows);
+      });
 }
 
 template <class L, class S>
@@ -415,7 +414,7 @@ TEST(UbxReference, UbxtoolDecodesTheSameFieldValues) {
   std::vector<std::map<std::string, RawField>> ours;
   const auto infos = messages();
   std::size_t index = 0;
-  std::apply(
+  Descriptions::kAll.apply(
       [&](const auto&... layout) {
         const auto one = [&](const auto& l) {
           const MessageInfo& info = infos[index++];
@@ -441,8 +440,7 @@ TEST(UbxReference, UbxtoolDecodesTheSameFieldValues) {
           ours.push_back(std::move(v));
         };
         (one(layout), ...);
-      },
-      Descriptions::kAll);
+      });
 
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() / ("navemu-ubxtool-" + std::to_string(::getpid()) + ".ubx");
