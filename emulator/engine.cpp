@@ -11,6 +11,7 @@
 #include <csignal>
 #include <cstring>
 #include <memory>
+#include <numbers>
 #include <ostream>
 #include <stdexcept>
 #include <vector>
@@ -103,12 +104,37 @@ void print_truth(const RunConfig& cfg, const TruthSource& truth, std::ostream& l
 
 // The scheduled events, at the times they will happen (they count from the scheduler's start).
 void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
-  if (!cfg.gnss_enabled) return;
   const auto print = [&](const EventWindow& w, const std::string& what) {
     const GpsTime from = start.plus_s(w.start_s);
     fmt::print(log, "navemu: event: {}, from {} ({}) for {} s{}\n", what, format_iso_utc(from), format_week_tow(from),
                w.duration_s, w.ramp_s > 0.0 ? fmt::format(", ramps {} s", w.ramp_s) : "");
   };
+  if (cfg.imu_enabled) {
+    constexpr const char* kAxes[] = {"all axes", "x", "y", "z"};
+    for (const ImuFault& f : cfg.imu_faults) {
+      const bool gyro = f.sensor == ImuSensor::kGyro;
+      const std::string sensor = fmt::format("{} {}", gyro ? "gyroscope" : "accelerometer", kAxes[f.axis + 1]);
+      switch (f.kind) {
+        case ImuFaultKind::kBias:
+          print(f.window, gyro ? fmt::format("IMU bias step, {}, {:.6g} deg/s", sensor, f.value * 180.0 / std::numbers::pi)
+                               : fmt::format("IMU bias step, {}, {:.6g} m/s^2", sensor, f.value));
+          break;
+        case ImuFaultKind::kScale:
+          print(f.window, fmt::format("IMU scale-factor error, {}, {} ppm", sensor, f.value));
+          break;
+        case ImuFaultKind::kNoise:
+          print(f.window, fmt::format("IMU added noise, {}, {} {}/sqrt(Hz)", sensor, f.value, gyro ? "rad/s" : "m/s^2"));
+          break;
+        case ImuFaultKind::kStuck:
+          print(f.window, fmt::format("IMU stuck output, {}", sensor));
+          break;
+        case ImuFaultKind::kDrop:
+          print(f.window, fmt::format("IMU samples dropped, probability {}", f.value));
+          break;
+      }
+    }
+  }
+  if (!cfg.gnss_enabled) return;
   const GnssEvents& ev = cfg.gnss_events;
   constexpr const char* kKinds[] = {"CW", "matched-spectrum", "wideband"};
   constexpr const char* kBands[] = {"L1", "L2", "L5"};

@@ -1,5 +1,6 @@
 #include "emulator/imu_channel.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -66,6 +67,7 @@ ImuChannel::ImuChannel(const ImuParams& params, std::uint64_t seed, const IdealI
                        std::unique_ptr<ImuCanOutputs> can, std::vector<std::unique_ptr<SampleRecorder>> recorders,
                        bool offline)
     : pipe_(params, seed, GpsTime{0}, initial),
+      drop_rng_(seed, stream_id("imu.drop")),
       can_(std::move(can)),
       recorders_(std::move(recorders)),
       offline_(offline),
@@ -73,6 +75,7 @@ ImuChannel::ImuChannel(const ImuParams& params, std::uint64_t seed, const IdealI
 
 void ImuChannel::begin(GpsTime start) {
   start_ = start;
+  if (!faults_.empty()) pipe_.set_faults(faults_, start);
   j_ = j0_ = first_index_at_or_after(start, pipe_.output_period_ns());
   pipe_.resume_at(j_ * pipe_.steps_per_output());
 }
@@ -100,6 +103,11 @@ bool ImuChannel::run_event(EventContext& ctx) {
     // One per output period, so that a sample skipped after a stall leaves a gap in the
     // sequence, as a frame lost on the bus does (protocols/can_frames.hpp; wraps).
     const auto sequence = static_cast<std::uint16_t>(j_ - j0_);
+    if (dropped_by_fault(t_meas)) {  // measured, then lost: a gap in the sequence
+      ++dropped_;
+      ++j_;
+      return true;
+    }
     ++samples_;
     if (!valid) {
       ++flagged_;
@@ -125,6 +133,16 @@ bool ImuChannel::run_event(EventContext& ctx) {
   }
   ++j_;
   return true;
+}
+
+// Whether the kDrop faults lose the sample measured at t: independently per fault, each with
+// its probability x level; a draw only while one is active, so runs without agree.
+bool ImuChannel::dropped_by_fault(GpsTime t) {
+  double kept = 1.0;
+  for (const ImuFault& f : faults_)
+    if (f.kind == ImuFaultKind::kDrop)
+      kept *= 1.0 - std::min(1.0, f.value * event_level(f.window, seconds_between(t, start_)));
+  return kept < 1.0 && drop_rng_.uniform() >= kept;
 }
 
 void ImuChannel::service() {
@@ -153,6 +171,7 @@ void ImuChannel::finish(EngineSummary& sum) {
   sum.imu_samples = samples_;
   sum.imu_flagged = flagged_;
   sum.imu_skipped = skipped_;
+  sum.imu_dropped = dropped_;
   if (can_) {
     const CanOutputTotals t = can_->totals();
     sum.can_frames_written = t.frames_written;

@@ -37,6 +37,7 @@ class ImuPipeline {
   const ImuParams& params() const { return model_.params(); }
   // Internal instant n.
   GpsTime step_time(std::int64_t n) const;
+  void set_faults(std::vector<ImuFault> faults, GpsTime origin) { model_.set_faults(std::move(faults), origin); }
   // Continues at internal step n at the earliest (after skipped output samples).
   void resume_at(std::int64_t n) { next_ = std::max(next_, n); }
   // Runs the internal steps up to `last`; true when the model emitted an output sample into
@@ -61,6 +62,9 @@ class ImuChannel final : public SensorChannel {
              std::unique_ptr<ImuCanOutputs> can, std::vector<std::unique_ptr<SampleRecorder>> recorders,
              bool offline);
 
+  // The sensor faults of `events:` (type imu), counted from the run's start (begin()).
+  void set_faults(std::vector<ImuFault> faults) { faults_ = std::move(faults); }
+
   std::string_view status_key() const override { return "imu"; }
   void begin(GpsTime start) override;
   std::optional<Event> next_event(GpsTime end) const override;
@@ -75,8 +79,11 @@ class ImuChannel final : public SensorChannel {
 
  private:
   static constexpr std::int64_t kImuCatchUp_ns = 500'000'000;  // later samples are skipped
+  bool dropped_by_fault(GpsTime t);
 
   ImuPipeline pipe_;
+  std::vector<ImuFault> faults_;
+  RandomStream drop_rng_;  // "imu.drop": which samples a kDrop fault loses
   std::unique_ptr<ImuCanOutputs> can_;
   std::vector<std::unique_ptr<SampleRecorder>> recorders_;
   GpsTime start_;
@@ -85,7 +92,7 @@ class ImuChannel final : public SensorChannel {
   std::int64_t j_ = 0, j0_ = 0;  // the next output sample's index; the first one's (sequence 0)
   ImuSample sample_;
   bool interval_truth_lost_ = false;
-  std::int64_t samples_ = 0, flagged_ = 0, skipped_ = 0;
+  std::int64_t samples_ = 0, flagged_ = 0, skipped_ = 0, dropped_ = 0;
 };
 
 }  // namespace navemu

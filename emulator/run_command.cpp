@@ -143,10 +143,11 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
   if (opt.offline) {
     fmt::print(err,
                "navemu simulate: {:.0f} s of scenario in {:.2f} s ({:.0f}x real time): {} GNSS "
-               "epochs ({} with a fix), {} IMU samples{}; files in {}\n",
+               "epochs ({} with a fix), {} IMU samples{}{}; files in {}\n",
                s.scenario_s, s.wall_s, s.wall_s > 0 ? s.scenario_s / s.wall_s : 0.0, s.gnss_epochs,
                s.gnss_fixes, s.imu_samples,
                s.imu_flagged ? fmt::format(" ({} flagged: no truth)", s.imu_flagged) : "",
+               s.imu_dropped ? fmt::format(", {} dropped by a fault", s.imu_dropped) : "",
                opt.out_dir);
   } else {
     const TruthCounters truth = s.truth.value_or(TruthCounters{});
@@ -154,11 +155,12 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
     format_truth_reasons(truth, reasons);
     fmt::print(err,
                "navemu run: stopped after {:.1f} s: {} GNSS epochs ({} with a fix, {} late, {} "
-               "skipped), {} IMU samples ({} skipped), {} output chunks dropped, {} stale bytes "
+               "skipped), {} IMU samples ({} skipped{}), {} output chunks dropped, {} stale bytes "
                "flushed in {} flushes, {} bytes from clients, {} CAN frames ({} dropped, {} failed, "
                "{} bus errors){}, truth {} accepted / {} rejected / {} lost unread{}\n",
                s.wall_s, s.gnss_epochs, s.gnss_fixes, s.gnss_late, s.gnss_skipped, s.imu_samples,
-               s.imu_skipped, s.output_chunks_dropped, s.stale_bytes_flushed, s.stale_flushes,
+               s.imu_skipped, s.imu_dropped ? fmt::format(", {} dropped by a fault", s.imu_dropped) : "",
+               s.output_chunks_dropped, s.stale_bytes_flushed, s.stale_flushes,
                s.client_bytes_read, s.can_frames_written, s.can_frames_dropped, s.can_frames_failed,
                s.can_bus_errors,
                s.can_frames_held ? fmt::format(", {} CAN frames held back (no client opened the slcan channel)",

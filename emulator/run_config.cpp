@@ -4,6 +4,7 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <numbers>
 
 #include "emulator/imu_profile.hpp"
 #include "emulator/ubx_outputs.hpp"
@@ -361,12 +362,59 @@ double required(YamlMap& m, const std::string& key, const char* what) {
 
 }  // namespace
 
-void add_gnss_event(YamlMap& m, GnssEvents& out) {
+namespace {
+
+// An `events:` entry of type imu (models/imu_model.hpp ImuFault), its window already read.
+ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
+  ImuFault f{w};
+  const auto kind = choice<ImuFaultKind>(m, "fault", {{"bias", ImuFaultKind::kBias},
+                                                      {"scale", ImuFaultKind::kScale},
+                                                      {"noise", ImuFaultKind::kNoise},
+                                                      {"stuck", ImuFaultKind::kStuck},
+                                                      {"drop", ImuFaultKind::kDrop}});
+  if (!kind) m.fail("fault", "missing: bias, scale, noise, stuck or drop");
+  f.kind = *kind;
+  if (f.kind == ImuFaultKind::kDrop) {
+    f.value = m.positive("probability").value_or(1.0);
+    if (f.value > 1.0) m.fail("probability", "must be at most 1 (each sample's chance to be lost)");
+    return f;
+  }
+  const auto sensor = choice<ImuSensor>(m, "sensor", {{"gyro", ImuSensor::kGyro}, {"accel", ImuSensor::kAccel}});
+  if (!sensor) m.fail("sensor", "missing: gyro or accel");
+  f.sensor = *sensor;
+  f.axis = choice<int>(m, "axis", {{"x", 0}, {"y", 1}, {"z", 2}, {"all", -1}}).value_or(-1);
+  const bool gyro = f.sensor == ImuSensor::kGyro;
+  switch (f.kind) {
+    case ImuFaultKind::kBias:
+      f.value = gyro ? required(m, "bias_dps", "the gyroscope's bias step, deg/s") * std::numbers::pi / 180.0
+                     : required(m, "bias_mps2", "the accelerometer's bias step, m/s^2");
+      break;
+    case ImuFaultKind::kScale:
+      f.value = required(m, "scale_ppm", "the scale-factor error, ppm");
+      break;
+    case ImuFaultKind::kNoise: {
+      const char* key = gyro ? "noise_radps_per_rthz" : "noise_mps2_per_rthz";
+      const std::optional<double> d = m.positive(key);
+      if (!d) m.fail(key, "missing: the added white noise's density");
+      f.value = *d;
+      break;
+    }
+    default:
+      break;
+  }
+  return f;
+}
+
+}  // namespace
+
+void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
   const std::optional<std::string> type = m.text("type");
-  constexpr const char* kTypes = "jamming, outage, antenna, satellite";
+  constexpr const char* kTypes = "jamming, outage, antenna, satellite, imu";
   if (!type) m.fail("type", fmt::format("missing: the event's type ({})", kTypes));
-  if (*type != "jamming" && *type != "outage" && *type != "antenna" && *type != "satellite")
+  if (*type != "jamming" && *type != "outage" && *type != "antenna" && *type != "satellite" && *type != "imu")
     m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, kTypes));
+  if (*type == "imu" && !imu)
+    m.fail("type", "IMU faults are scheduled in the configuration's events:, not sent live");
   EventWindow w;
   w.start_s = m.positive("start_s", true).value_or(0.0);
   const std::optional<double> duration = m.positive("duration_s");
@@ -377,7 +425,11 @@ void add_gnss_event(YamlMap& m, GnssEvents& out) {
     if (2.0 * w.ramp_s > w.duration_s)
       m.fail("ramp_s", "ramp-in and ramp-out together would last longer than duration_s");
   };
-  if (*type == "jamming") {
+  if (*type == "imu") {
+    const std::optional<std::string> fault = m.text("fault");
+    if (fault != "stuck") ramp();
+    imu->push_back(imu_fault(m, w));
+  } else if (*type == "jamming") {
     ramp();
     JammingEvent e{w, required(m, "j_over_s_db", "the jammer-to-signal ratio at full power, dB")};
     e.kind = choice<InterferenceKind>(m, "kind", {{"cw", InterferenceKind::kCw},
@@ -456,7 +508,7 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   for (YamlMap& o : imu.map_list("outputs")) c.imu_outputs.push_back(can_output(o, false));
   imu.reject_unknown_keys();
 
-  for (YamlMap& e : root.map_list("events")) add_gnss_event(e, c.gnss_events);
+  for (YamlMap& e : root.map_list("events")) add_event(e, c.gnss_events, &c.imu_faults);
   if (root.has("control")) {
     YamlMap ctl = root.map("control");
     c.control.emplace();

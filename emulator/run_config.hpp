@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "models/geodesy.hpp"
+#include "models/imu_model.hpp"
 #include "models/measurement.hpp"
 #include "models/trajectory.hpp"
 
@@ -161,6 +162,7 @@ struct RunConfig {
   std::optional<double> gnss_ideal_sigma_m;  // the paper's low-fidelity receiver: truth + noise
 
   GnssEvents gnss_events;  // `events:`, the scheduled impairments
+  std::vector<ImuFault> imu_faults;  // `events:` of type imu
   std::optional<ControlSpec> control;  // `control:`; none: no live control
 
   bool imu_enabled = true;
@@ -174,10 +176,11 @@ struct RunConfig {
   std::optional<int> cpu;    // pin the loop to this CPU (sched_setaffinity); unset: any
 };
 
-// One entry of `events:` (configs/default.yaml) into its list of `out`; InputError naming the
-// entry's key for bad ones. Also the form of live control's event commands.
+// One entry of `events:` (configs/default.yaml) into its list of `gnss` or `imu`; InputError
+// naming the entry's key for bad ones. Also the form of live control's event commands, which
+// take no IMU faults (imu null).
 class YamlMap;
-void add_gnss_event(YamlMap& m, GnssEvents& out);
+void add_event(YamlMap& m, GnssEvents& gnss, std::vector<ImuFault>* imu);
 
 // The file's configuration; relative paths inside it are relative to the file's folder.
 RunConfig load_run_config(const std::filesystem::path& file);

@@ -221,10 +221,12 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
                                                      plan.gnss->receiver, cfg.gnss, cfg.gnss_mode,
                                                      std::move(outputs.gnss), std::move(outputs.epoch_recorders)));
   }
-  if (plan.imu)
-    channels.push_back(std::make_unique<ImuChannel>(plan.imu->params, cfg.seed, plan.imu->initial,
-                                                    std::move(outputs.can), std::move(outputs.sample_recorders),
-                                                    !opt.realtime));
+  if (plan.imu) {
+    auto imu = std::make_unique<ImuChannel>(plan.imu->params, cfg.seed, plan.imu->initial, std::move(outputs.can),
+                                            std::move(outputs.sample_recorders), !opt.realtime);
+    imu->set_faults(cfg.imu_faults);
+    channels.push_back(std::move(imu));
+  }
   log.flush();
   return channels;
 }

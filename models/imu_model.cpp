@@ -237,7 +237,9 @@ struct ImuModel::State {
           gm{stream(seed, sensor, "gm", 0), stream(seed, sensor, "gm", 1),
              stream(seed, sensor, "gm", 2)},
           rw{stream(seed, sensor, "rw", 0), stream(seed, sensor, "rw", 1),
-             stream(seed, sensor, "rw", 2)} {
+             stream(seed, sensor, "rw", 2)},
+          fault_noise{stream(seed, sensor, "fault_noise", 0), stream(seed, sensor, "fault_noise", 1),
+                      stream(seed, sensor, "fault_noise", 2)} {
       const double dt = 1.0 / p.internal_rate_hz;
       // Bias instability: Gauss-Markov of 1-sigma kGmSigmaPerBiasInstability * B (header), exact
       // discretisation as models/random.hpp GaussMarkov, with phi precomputed. The three noise
@@ -302,6 +304,10 @@ struct ImuModel::State {
         rw_x[i] += rw_step[i] * n_rw[ui][k];
         y[i] = (scale[i] + scale_temp * dT + k2 * x) * x + bias_const[i] + gm_x[i] + rw_x[i] +
                bias_temp * dT + white_sigma[i] * n_white[ui][k] + g_sens * f[i];
+        if (faulty) {
+          y[i] += fault_scale[i] * x + fault_bias[i];
+          if (fault_sigma[i] > 0.0) y[i] += fault_sigma[i] * kNormal(fault_noise[ui]);
+        }
       }
     }
 
@@ -320,7 +326,12 @@ struct ImuModel::State {
       return sat;
     }
 
-    std::array<RandomStream, 3> white, gm, rw;
+    std::array<RandomStream, 3> white, gm, rw, fault_noise;
+    // The faults' terms at the current step (ImuModel::apply_faults); stuck axes hold `held`.
+    bool faulty = false;
+    Vec3 fault_scale = Vec3::Zero(), fault_bias = Vec3::Zero(), fault_sigma = Vec3::Zero();
+    std::array<bool, 3> stuck{};
+    Vec3 held = Vec3::Zero();  // the last output sample
     double n_white[3][2] = {}, n_gm[3][2] = {}, n_rw[3][2] = {};
     bool have_spare = false;
     Eigen::Matrix3d M;
@@ -363,6 +374,7 @@ ImuModel::~ImuModel() = default;
 // saturated and emitted at t + latency.
 bool ImuModel::step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuSample& out) {
   State& s = *state_;
+  if (!faults_.empty()) apply_faults(t);
   const double dT = temperature_c - p_.reference_temperature_c;
   Vec3 yf, yw;
   s.accel.sense(ideal.f_body_mps2, ideal.f_body_mps2, dT, yf);
@@ -381,12 +393,63 @@ bool ImuModel::step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuS
   out.w_body_radps = s.lp_w;
   const bool sat_f = s.accel.finish(out.f_body_mps2);
   const bool sat_w = s.gyro.finish(out.w_body_radps);
+  for (int i = 0; i < 3; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    if (s.accel.stuck[ui]) out.f_body_mps2[i] = s.accel.held[i];
+    if (s.gyro.stuck[ui]) out.w_body_radps[i] = s.gyro.held[i];
+  }
+  s.accel.held = out.f_body_mps2;
+  s.gyro.held = out.w_body_radps;
   out.accel_saturated = sat_f;
   out.gyro_saturated = sat_w;
   out.saturated = sat_f || sat_w;
   out.t = GpsTime{t.ns + s.latency_ns};
   out.temperature_c = temperature_c;
   return true;
+}
+
+void ImuModel::set_faults(std::vector<ImuFault> faults, GpsTime origin) {
+  faults_ = std::move(faults);
+  fault_origin_ = origin;
+  fault_sigma_per_density_ = internal_white_sigma(p_, 1.0);
+  for (State::Triad* tr : {&state_->accel, &state_->gyro}) {
+    tr->faulty = false;
+    tr->stuck = {};
+  }
+}
+
+// The faults' sum at t: bias steps and scale errors add, noise densities add in variance (each
+// at the internal rate as internal_white_sigma() sets the model's own white noise), and an axis
+// is stuck while any stuck fault on it is active.
+void ImuModel::apply_faults(GpsTime t) {
+  const double t_s = seconds_between(t, fault_origin_);
+  for (State::Triad* tr : {&state_->accel, &state_->gyro}) {
+    tr->fault_scale.setZero();
+    tr->fault_bias.setZero();
+    tr->fault_sigma.setZero();
+    tr->stuck = {};
+  }
+  for (const ImuFault& f : faults_) {
+    const double level = event_level(f.window, t_s);
+    if (level <= 0.0 || f.kind == ImuFaultKind::kDrop) continue;
+    State::Triad& tr = f.sensor == ImuSensor::kGyro ? state_->gyro : state_->accel;
+    for (int i = 0; i < 3; ++i) {
+      if (f.axis >= 0 && f.axis != i) continue;
+      switch (f.kind) {
+        case ImuFaultKind::kBias: tr.fault_bias[i] += f.value * level; break;
+        case ImuFaultKind::kScale: tr.fault_scale[i] += f.value * 1e-6 * level; break;
+        case ImuFaultKind::kNoise: {
+          const double sigma = f.value * level * fault_sigma_per_density_;
+          tr.fault_sigma[i] = std::hypot(tr.fault_sigma[i], sigma);
+          break;
+        }
+        case ImuFaultKind::kStuck: tr.stuck[static_cast<std::size_t>(i)] = true; break;
+        case ImuFaultKind::kDrop: break;
+      }
+    }
+  }
+  for (State::Triad* tr : {&state_->accel, &state_->gyro})
+    tr->faulty = !tr->fault_scale.isZero() || !tr->fault_bias.isZero() || !tr->fault_sigma.isZero();
 }
 
 }  // namespace navemu

@@ -13,7 +13,9 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "models/event_window.hpp"
 #include "models/geodesy.hpp"
 #include "models/imu_kinematics.hpp"
 #include "models/random.hpp"
@@ -117,6 +119,24 @@ struct ImuSample {
   bool gyro_saturated = false;   // a rate axis was clipped at its range
 };
 
+// Faults of the sensors (issue "impairments", deliverable 3), scheduled like the GNSS events:
+// each acts over its window, scaled by the window's level (models/event_window.hpp).
+enum class ImuSensor : std::uint8_t { kAccel, kGyro };
+enum class ImuFaultKind : std::uint8_t {
+  kBias,   // a bias step of `value` (m/s^2, rad/s) x level, ahead of the output filter
+  kScale,  // a scale-factor error of `value` ppm x level, ahead of the output filter
+  kNoise,  // added white noise of density `value` (unit/sqrt(Hz), as white_density) x level
+  kStuck,  // the output holds the last value before the fault while the level is > 0
+  kDrop,   // output samples lost, each with probability `value` x level (the IMU channel's)
+};
+struct ImuFault {
+  EventWindow window;  // from the fault origin (ImuModel::set_faults)
+  ImuFaultKind kind = ImuFaultKind::kBias;
+  ImuSensor sensor = ImuSensor::kGyro;
+  int axis = -1;       // 0, 1, 2: the body frame's x, y, z; -1: all three
+  double value = 0.0;
+};
+
 // The sensor: advanced at its internal rate, emits at its output rate. One random stream per
 // error term and axis.
 class ImuModel {
@@ -129,12 +149,20 @@ class ImuModel {
   // Feeds the ideal output valid at time t (called at the internal rate, increasing times);
   // returns true and fills `out` when an output sample is due.
   bool step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuSample& out);
+  // The faults from now on, their windows counted from `origin` (kDrop ones are ignored here).
+  // The added noise has its own random stream per sensor and axis ("imu.<sensor>.fault_noise"),
+  // so a run without faults draws exactly what it drew before.
+  void set_faults(std::vector<ImuFault> faults, GpsTime origin);
   const ImuParams& params() const { return p_; }
 
  private:
   struct State;
+  void apply_faults(GpsTime t);
   ImuParams p_;
   std::unique_ptr<State> state_;
+  std::vector<ImuFault> faults_;
+  GpsTime fault_origin_;
+  double fault_sigma_per_density_ = 0.0;
 };
 
 }  // namespace navemu

@@ -40,13 +40,6 @@ double effective_cn0_dbhz(double cn0_dbhz, const BandInterference& i, double chi
   return -db(1.0 / ratio(cn0_dbhz) + i.j_over_qs / chip_rate_hz);
 }
 
-double event_level(const EventWindow& w, double t_s) {
-  const double in = t_s - w.start_s, out = w.start_s + w.duration_s - t_s;
-  if (in < 0.0 || out <= 0.0) return 0.0;
-  if (w.ramp_s <= 0.0) return 1.0;
-  return std::min({1.0, in / w.ramp_s, out / w.ramp_s});
-}
-
 std::optional<double> ramped_j_over_s_db(double peak_db, double level) {
   if (level <= 0.0) return std::nullopt;
   return peak_db - (1.0 - std::min(level, 1.0)) * kJammerRampDepth_db;

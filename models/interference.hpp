@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "models/event_window.hpp"
+
 namespace navemu {
 
 enum class InterferenceKind { kCw, kMatchedSpectrum, kWideband };
@@ -34,16 +36,6 @@ struct BandInterference {
 
 // (C/N0)_eff of a signal of `cn0_dbhz` and chip rate `chip_rate_hz` under `i`.
 double effective_cn0_dbhz(double cn0_dbhz, const BandInterference& i, double chip_rate_hz);
-
-// A scheduled event's level at t: 0 before start, rising linearly over ramp_s to 1, 1 until
-// ramp_s before the end, falling linearly to 0 at start_s + duration_s (a trapezoid; ramp 0:
-// a step).
-struct EventWindow {
-  double start_s = 0.0;  // from the scenario's start
-  double duration_s = 0.0;
-  double ramp_s = 0.0;   // each of ramp-in and ramp-out; at most duration_s / 2
-};
-double event_level(const EventWindow& w, double t_s);
 
 // A jammer's J/S at an event level: linear in dB over the kJammerRampDepth_db below its peak, as
 // the power of an approaching or receding jammer changes by decades (1/r^2), not in a linear

@@ -187,6 +187,11 @@ TEST(SteadyStateAllocation, RealTimeRun) {
   cfg.imu_outputs = {can};
   cfg.imu_log = (dir / "imu.csv").string();
   cfg.status_interval_s = 1.0;
+  // IMU faults active through most of each run (the drop short: the sample counts below).
+  cfg.imu_faults = {{{0.2, 10.0, 0.5}, ImuFaultKind::kBias, ImuSensor::kGyro, 2, 0.01},
+                    {{0.2, 10.0, 0.5}, ImuFaultKind::kNoise, ImuSensor::kAccel, -1, 0.01},
+                    {{0.2, 10.0, 0.0}, ImuFaultKind::kStuck, ImuSensor::kGyro, 0, 0.0},
+                    {{0.3, 0.1, 0.0}, ImuFaultKind::kDrop, ImuSensor::kGyro, -1, 0.5}};
 
   std::atomic<bool> done{false};
   std::atomic<long long> bytes_read{0};

@@ -59,5 +59,117 @@ TEST(CanSlcan, PythonCanReceivesEverySampleAndItDecodesToTheLoggedValues) {
   EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
 }
 
+// The GPS time (ns) an `events:` entry starts at, from navemu's "navemu: event: <what>, from
+// <ISO> (WEEK:TOW) ..." line at start (milliseconds); nullopt when not printed.
+std::optional<std::int64_t> event_start_ns(const std::string& err, const std::string& what) {
+  const std::regex re("navemu: event: " + what + "[^\n]*\\((\\d+):(\\d+)\\.(\\d{3})\\)");
+  std::smatch m;
+  if (!std::regex_search(err, m, re)) return std::nullopt;
+  return (std::stoll(m[1]) * 604800 + std::stoll(m[2])) * 1'000'000'000 + std::stoll(m[3]) * 1'000'000;
+}
+
+// IMU faults of `events:` (issue "impairments") as python-can sees them: a gyroscope bias step,
+// an accelerometer axis stuck and a stretch of lost samples, each from its scheduled time to
+// its end within one sample period (8 ms at 125 Hz, plus the millisecond navemu prints), and
+// what python-can received is what navemu logged.
+TEST(CanSlcan, PythonCanSeesImuFaultsComeAndGoOnTime) {
+  if (!fs::exists("/usr/lib/python3/dist-packages/can"))
+    GTEST_SKIP() << "python3-can is not installed (tools/install-deps)";
+  TempDir dir("slcan-faults");
+  const fs::path link = dir / "imu";
+  NavemuRun nav(dir, "navemu",
+                fmt::format("truth: {{source: stationary}}\n"
+                            "gnss: {{enabled: false}}\n"
+                            "imu:\n  log: '{}'\n  outputs:\n"
+                            "    - {{type: slcan, link: '{}', layouts: [highres]}}\n"
+                            "events:\n"
+                            "  - {{type: imu, start_s: 3, duration_s: 1, fault: bias, sensor: gyro, axis: z, bias_dps: 100}}\n"
+                            "  - {{type: imu, start_s: 4.5, duration_s: 1, fault: stuck, sensor: accel, axis: x}}\n"
+                            "  - {{type: imu, start_s: 6, duration_s: 0.5, fault: drop}}\n",
+                            (dir / "imu.log").string(), link.string()),
+                11);
+  ASSERT_TRUE(wait_until([&] { return fs::exists(link) && nav.err().find("CAN frames on slcan") != std::string::npos; }, 10.0))
+      << nav.diagnostics();
+  const fs::path script = fs::path(NAVEMU_SOURCE_DIR) / "tests" / "clients" / "slcan_capture.py";
+  Child py({"/usr/bin/python3", script.string(), link.string(), (dir / "python.log").string(), "8"},
+           dir / "python.stdout", dir / "python.stderr");
+  const auto py_status = py.wait_exit(30.0);
+  ASSERT_TRUE(py_status && WIFEXITED(*py_status) && WEXITSTATUS(*py_status) == 0)
+      << describe_status(py_status) << "\n" << slurp(dir / "python.stderr");
+  const auto nav_status = nav.child().wait_exit(20.0);
+  ASSERT_TRUE(nav_status && WIFEXITED(*nav_status) && WEXITSTATUS(*nav_status) == 0) << nav.diagnostics();
+
+  const std::string err = nav.err();
+  const auto bias_ns = event_start_ns(err, "IMU bias step, gyroscope z, 100 deg/s");
+  const auto stuck_ns = event_start_ns(err, "IMU stuck output, accelerometer x");
+  const auto drop_ns = event_start_ns(err, "IMU samples dropped, probability 1");
+  ASSERT_TRUE(bias_ns && stuck_ns && drop_ns) << nav.diagnostics();
+
+  std::vector<LoggedFrame> frames = read_candump_log(dir / "python.log");
+  const can::highres::Config hr;
+  while (!frames.empty() && frames.back().id != hr.base_id + can::highres::kOffsetStatus) frames.pop_back();
+  const std::vector<ImuRow> rows = read_imu_rows(dir / "imu.log");
+  const CanCheck c = check_frames_against_log(frames, rows);
+  EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
+  ASSERT_GE(c.samples, 700u) << "8 s at 125 Hz, less the lost half second and python-can's start";
+  ASSERT_LE(c.first_time_ns, *bias_ns - 500'000'000) << "python-can was reading before the first fault";
+  ASSERT_GE(c.last_time_ns, *drop_ns + 1'000'000'000) << "and after the last";
+
+  constexpr std::int64_t kTol_ns = 8'000'000 + 1'000'000;  // a sample period + the printed ms
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const auto seconds = [](std::int64_t ns) { return static_cast<double>(ns) * 1e-9; };
+  // Gyroscope z in the half second before the step: the baseline (stationary) and its noise.
+  std::vector<double> before;
+  for (const ImuRow& r : rows)
+    if (r.gps_time_ns >= *bias_ns - 500'000'000 && r.gps_time_ns < *bias_ns - kTol_ns) before.push_back(r.w_radps[2]);
+  ASSERT_GT(before.size(), 50u);
+  double base = 0.0, sigma = 0.0;
+  for (double w : before) base += w / static_cast<double>(before.size());
+  for (double w : before) sigma += (w - base) * (w - base) / static_cast<double>(before.size() - 1);
+  sigma = std::sqrt(sigma);
+  ASSERT_LT(6.0 * sigma, 50.0 * kDeg) << "the step stands out of the noise";
+  std::int64_t first_shifted = -1, last_shifted = -1;
+  std::optional<double> held;
+  std::size_t stuck_rows = 0, after_stuck_moving = 0;
+  std::int64_t before_gap = -1, after_gap = -1;
+  int seq_before = 0, seq_after = 0;
+  for (const ImuRow& r : rows) {
+    const bool shifted = std::abs(r.w_radps[2] - base - 100.0 * kDeg) < 6.0 * sigma;
+    if (shifted) {
+      if (first_shifted < 0) first_shifted = r.gps_time_ns;
+      last_shifted = r.gps_time_ns;
+    } else if (r.gps_time_ns > *bias_ns + kTol_ns && r.gps_time_ns < *bias_ns + 1'000'000'000 - kTol_ns) {
+      ADD_FAILURE() << "gyroscope z without the bias step inside its window at " << seconds(r.gps_time_ns - *bias_ns)
+                    << " s: " << r.w_radps[2] / kDeg << " deg/s";
+    }
+    if (r.gps_time_ns < *stuck_ns + 1'000'000) held = r.f_mps2[0];  // the last sample before it (stuck after it)
+    if (r.gps_time_ns > *stuck_ns + kTol_ns && r.gps_time_ns < *stuck_ns + 1'000'000'000 - kTol_ns) {
+      ++stuck_rows;
+      EXPECT_EQ(r.f_mps2[0], held.value_or(-1.0)) << "accelerometer x moved while stuck";
+    }
+    if (held && r.gps_time_ns > *stuck_ns + 1'000'000'000 + kTol_ns && r.f_mps2[0] != *held) ++after_stuck_moving;
+    if (r.gps_time_ns < *drop_ns) {
+      before_gap = r.gps_time_ns;
+      seq_before = r.sequence;
+    } else if (after_gap < 0) {
+      after_gap = r.gps_time_ns;
+      seq_after = r.sequence;
+    }
+  }
+  fmt::print("bias step seen from {:+.3f} s to {:+.3f} s of its window (1 s); accelerometer x held for {} samples; "
+             "samples lost from {:+.3f} s to {:+.3f} s of the drop window (0.5 s), sequence {} -> {}\n",
+             seconds(first_shifted - *bias_ns), seconds(last_shifted - *bias_ns), stuck_rows,
+             seconds(before_gap - *drop_ns), seconds(after_gap - *drop_ns), seq_before, seq_after);
+  EXPECT_LE(std::abs(first_shifted - *bias_ns), kTol_ns);
+  EXPECT_LE(std::abs(last_shifted - (*bias_ns + 1'000'000'000)), kTol_ns);
+  EXPECT_GE(stuck_rows, 120u);
+  EXPECT_GT(after_stuck_moving, 100u) << "accelerometer x moves again after the fault";
+  EXPECT_GE(before_gap, *drop_ns - kTol_ns);
+  EXPECT_LE(std::abs(after_gap - (*drop_ns + 500'000'000)), kTol_ns);
+  EXPECT_EQ(seq_after - seq_before, (after_gap - before_gap) / 8'000'000) << "a gap in the sequence numbers";
+  EXPECT_NE(err.find(fmt::format("{} dropped by a fault", (after_gap - before_gap) / 8'000'000 - 1)), std::string::npos)
+      << nav.diagnostics();
+}
+
 }  // namespace
 }  // namespace navemu::test::clients

@@ -41,6 +41,8 @@ TEST(Control, CommandsAndTheirRefusals) {
       {R"({"cmd": "reboot"})", "'reboot' is not a command (event, clear)"},
       {R"({"cmd": "event", "type": "spoofing", "duration_s": 1})", "'spoofing' is not an event type"},
       {R"({"cmd": "event", "type": "outage"})", "command.duration_s: missing"},
+      {R"({"cmd": "event", "type": "imu", "duration_s": 1, "fault": "stuck", "sensor": "gyro"})",
+       "IMU faults are scheduled in the configuration's events:, not sent live"},
       {R"({"cmd": "event", "type": "antenna", "duration_s": 1, "fault": "cut"})", "'cut' is not one of open, short"},
       {R"({"cmd": {"a": 1}})", "command.cmd"},
       {R"([1, 2])", "a command is one JSON object per line"},

@@ -123,7 +123,30 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: outage, start_s: 10, duration_s: 20}\n"
       "  - {type: outage, start_s: 40, duration_s: 20, azimuth_deg: [300, 60], below_elevation_deg: 45}\n"
       "  - {type: antenna, start_s: 5, duration_s: 2, fault: short}\n"
-      "  - {type: satellite, start_s: 50, duration_s: 100, ramp_s: 50, prn: 7, clock_error_m: 80}\n"));
+      "  - {type: satellite, start_s: 50, duration_s: 100, ramp_s: 50, prn: 7, clock_error_m: 80}\n"
+      "  - {type: imu, start_s: 3, duration_s: 4, ramp_s: 1, fault: bias, sensor: gyro, axis: z, bias_dps: 180}\n"
+      "  - {type: imu, duration_s: 4, fault: bias, sensor: accel, bias_mps2: -0.5}\n"
+      "  - {type: imu, duration_s: 4, fault: scale, sensor: accel, axis: y, scale_ppm: 2000}\n"
+      "  - {type: imu, duration_s: 4, fault: noise, sensor: gyro, noise_radps_per_rthz: 0.01}\n"
+      "  - {type: imu, duration_s: 4, fault: stuck, sensor: gyro, axis: x}\n"
+      "  - {type: imu, duration_s: 4, fault: drop, probability: 0.25}\n"));
+  ASSERT_EQ(c.imu_faults.size(), 6u);
+  EXPECT_EQ(c.imu_faults[0].kind, ImuFaultKind::kBias);
+  EXPECT_EQ(c.imu_faults[0].sensor, ImuSensor::kGyro);
+  EXPECT_EQ(c.imu_faults[0].axis, 2);
+  EXPECT_NEAR(c.imu_faults[0].value, 3.14159265358979, 1e-12) << "180 deg/s in rad/s";
+  EXPECT_EQ(c.imu_faults[0].window.ramp_s, 1.0);
+  EXPECT_EQ(c.imu_faults[1].sensor, ImuSensor::kAccel);
+  EXPECT_EQ(c.imu_faults[1].axis, -1) << "all axes by default";
+  EXPECT_EQ(c.imu_faults[1].value, -0.5);
+  EXPECT_EQ(c.imu_faults[2].kind, ImuFaultKind::kScale);
+  EXPECT_EQ(c.imu_faults[2].axis, 1);
+  EXPECT_EQ(c.imu_faults[2].value, 2000.0);
+  EXPECT_EQ(c.imu_faults[3].kind, ImuFaultKind::kNoise);
+  EXPECT_EQ(c.imu_faults[3].value, 0.01);
+  EXPECT_EQ(c.imu_faults[4].kind, ImuFaultKind::kStuck);
+  EXPECT_EQ(c.imu_faults[5].kind, ImuFaultKind::kDrop);
+  EXPECT_EQ(c.imu_faults[5].value, 0.25);
   const GnssEvents& e = c.gnss_events;
   ASSERT_EQ(e.jamming.size(), 2u);
   EXPECT_EQ(e.jamming[0].window.start_s, 60.0);
@@ -158,7 +181,7 @@ TEST(RunConfig, EventsAndTheirErrors) {
 
   const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
   const std::pair<const char*, const char*> cases[] = {
-      {"{type: spoofing, duration_s: 1}", ":2: events[0].type: 'spoofing' is not an event type navemu knows (jamming, outage, antenna, satellite)"},
+      {"{type: spoofing, duration_s: 1}", ":2: events[0].type: 'spoofing' is not an event type navemu knows (jamming, outage, antenna, satellite, imu)"},
       {"{duration_s: 1, j_over_s_db: 1}", "events[0].type: missing"},
       {"{type: jamming, j_over_s_db: 40}", "events[0].duration_s: missing"},
       {"{type: jamming, duration_s: 10}", "events[0].j_over_s_db: missing"},
@@ -175,6 +198,16 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: satellite, duration_s: 10, clock_error_m: 5}", "events[0].prn: missing"},
       {"{type: satellite, duration_s: 10, prn: 33, clock_error_m: 5}", "events[0].prn: 33 outside [1, 32]"},
       {"{type: satellite, duration_s: 10, prn: 3}", "events[0].clock_error_m: missing"},
+      {"{type: imu, duration_s: 10, sensor: gyro}", "events[0].fault: missing: bias, scale, noise, stuck or drop"},
+      {"{type: imu, duration_s: 10, fault: tilt}", "events[0].fault: 'tilt' is not one of"},
+      {"{type: imu, duration_s: 10, fault: bias, bias_dps: 1}", "events[0].sensor: missing: gyro or accel"},
+      {"{type: imu, duration_s: 10, fault: bias, sensor: gyro}", "events[0].bias_dps: missing"},
+      {"{type: imu, duration_s: 10, fault: bias, sensor: gyro, bias_mps2: 1}", "events[0].bias_dps: missing"},
+      {"{type: imu, duration_s: 10, fault: bias, sensor: accel, axis: w, bias_mps2: 1}", "events[0].axis: 'w' is not one of"},
+      {"{type: imu, duration_s: 10, fault: noise, sensor: accel}", "events[0].noise_mps2_per_rthz: missing"},
+      {"{type: imu, duration_s: 10, fault: stuck, sensor: accel, ramp_s: 1}", "events[0].ramp_s"},
+      {"{type: imu, duration_s: 10, fault: drop, probability: 1.5}", "events[0].probability: must be at most 1"},
+      {"{type: imu, duration_s: 10, fault: drop, sensor: gyro}", "events[0].sensor"},
   };
   for (const auto& [entry, expected] : cases)
     EXPECT_NE(err(entry).find(expected), std::string::npos) << entry << " -> " << err(entry);

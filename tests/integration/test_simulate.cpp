@@ -86,6 +86,69 @@ TEST(Simulate, EventsAreDeterministicAndAct) {
   EXPECT_NE(ra.out.find("navemu: event: jamming, wideband on L1, J/S 50 dB"), std::string::npos) << ra.out;
 }
 
+// configs/tunnel.yaml: the F9P (1 Hz) loses its fix for the 20 s of the tunnel and the second
+// it takes to re-acquire the satellites after it.
+TEST(Simulate, TheTunnelScenarioLosesTheFixForItsLength) {
+  const fs::path d = temp_dir("tunnel");
+  const auto r = simulate(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "tunnel.yaml", d, 100);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("100 GNSS epochs (79 with a fix)"), std::string::npos) << r.out;
+}
+
+// IMU faults (configs/imu-stuck-gyro.yaml: gyroscope z stuck 60-90 s, samples lost 110-112 s,
+// accelerometer noise 150-170 s): the same bytes twice; against the run without its events,
+// every sample outside the windows is the same (the faults draw from their own streams), the
+// stuck axis holds its last value, the lost samples leave a gap in the sequence.
+TEST(Simulate, ImuFaultsAreDeterministicAndActOnlyInTheirWindows) {
+  const fs::path a = temp_dir("imu_faults_a"), b = temp_dir("imu_faults_b"), c = temp_dir("imu_faults_c");
+  const fs::path cfg = fs::path(NAVEMU_SOURCE_DIR) / "configs" / "imu-stuck-gyro.yaml";
+  const auto ra = simulate(cfg, a, 180), rb = simulate(cfg, b, 180);
+  ASSERT_EQ(ra.exit_code, 0) << ra.out;
+  ASSERT_EQ(rb.exit_code, 0) << rb.out;
+  for (const char* f : {"imu.csv", "can.log", "nmea.log"}) {
+    EXPECT_FALSE(slurp(a / f).empty()) << f;
+    EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
+  }
+  EXPECT_NE(ra.out.find("22250 IMU samples, 250 dropped by a fault"), std::string::npos) << ra.out;
+  EXPECT_NE(ra.out.find("navemu: event: IMU stuck output, gyroscope z, from 2010-11-17T13:01:00Z"), std::string::npos)
+      << ra.out;
+  const fs::path quiet = c / "quiet.yaml";
+  std::string text = slurp(cfg);
+  std::ofstream(quiet) << text.substr(0, text.find("\nevents:")) + "\n";
+  ASSERT_EQ(simulate(quiet, c, 180).exit_code, 0);
+
+  const std::vector<test::ImuRow> faulty = test::read_imu_rows(a / "imu.csv"), clean = test::read_imu_rows(c / "imu.csv");
+  ASSERT_EQ(clean.size(), 22500u);
+  ASSERT_EQ(faulty.size(), 22250u);
+  std::map<int, const test::ImuRow*> by_sequence;
+  for (const test::ImuRow& r : faulty) by_sequence[r.sequence] = &r;
+  std::size_t stuck = 0, noisy = 0;
+  for (const test::ImuRow& q : clean) {
+    const double t_s = q.sequence * 0.008;
+    const auto it = by_sequence.find(q.sequence);
+    if (t_s >= 110.0 && t_s < 112.0) {
+      EXPECT_EQ(it, by_sequence.end()) << "lost at " << t_s << " s";
+      continue;
+    }
+    ASSERT_NE(it, by_sequence.end()) << t_s << " s";
+    const test::ImuRow& r = *it->second;
+    EXPECT_EQ(r.w_radps[0], q.w_radps[0]);
+    EXPECT_EQ(r.gps_time_ns, q.gps_time_ns);
+    if (t_s >= 60.0 && t_s < 90.0) {
+      EXPECT_EQ(r.w_radps[2], by_sequence.at(7499)->w_radps[2]) << "held at " << t_s << " s";
+      stuck += r.w_radps[2] != q.w_radps[2];
+    } else {
+      EXPECT_EQ(r.w_radps[2], q.w_radps[2]) << t_s << " s";
+    }
+    if (t_s > 150.0 && t_s < 170.0)
+      noisy += r.f_mps2[1] != q.f_mps2[1];
+    else
+      EXPECT_EQ(r.f_mps2, q.f_mps2) << t_s << " s";
+  }
+  EXPECT_GT(stuck, 3700u) << "the held rate differs from the turning vehicle's";
+  EXPECT_EQ(noisy, 2499u);
+}
+
 TEST(Simulate, ASecondRunIntoTheSameFolderReplacesEveryFile) {
   const fs::path once = temp_dir("once"), twice = temp_dir("twice");
   ASSERT_EQ(simulate(kDefault, once, 10).exit_code, 0);

@@ -367,6 +367,78 @@ TEST(ImuModel, SameSeedSameOutputDifferentSeedsUncorrelated) {
     }
 }
 
+// Faults (issue "impairments"): a 100 Hz sensor, faults from 1 s to 3 s after an origin at 10 s.
+std::vector<ImuSample> run_with_faults(const ImuParams& p, std::vector<ImuFault> faults, const IdealImu& in,
+                                       std::uint64_t seed = 5) {
+  ImuModel m(p, seed);
+  m.set_faults(std::move(faults), GpsTime{10'000'000'000});
+  std::vector<ImuSample> out;
+  ImuSample s;
+  for (std::int64_t n = 1000; n < 1500; ++n)
+    if (m.step(at(n, p.internal_rate_hz), in, 25.0, s)) out.push_back(s);
+  return out;  // out[k] at 10 s + k / 100 s
+}
+
+TEST(ImuModel, BiasStepAndScaleFaultAddExactlyOverTheirWindow) {
+  const ImuParams p = clean(100.0);
+  const IdealImu in = ideal_of(Vec3(1.0, 2.0, -9.8), Vec3(0.1, 0.2, 0.3));
+  const EventWindow w{1.0, 2.0, 0.5};  // ramps 1.0-1.5 s and 2.5-3.0 s
+  const auto s = run_with_faults(p, {{w, ImuFaultKind::kBias, ImuSensor::kGyro, 2, 0.05},
+                                     {w, ImuFaultKind::kScale, ImuSensor::kAccel, -1, 1000.0}},
+                                 in);
+  ASSERT_EQ(s.size(), 500u);
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const double level = event_level(w, static_cast<double>(k) / 100.0);
+    EXPECT_DOUBLE_EQ(s[k].w_body_radps.z(), 0.3 + 0.05 * level) << k;
+    EXPECT_EQ(s[k].w_body_radps.x(), 0.1) << "other axes untouched";
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(s[k].f_body_mps2[i], in.f_body_mps2[i] * (1.0 + 1e-3 * level), 1e-12) << k;
+  }
+  EXPECT_EQ(s[99].w_body_radps.z(), 0.3) << "before the window";
+  EXPECT_DOUBLE_EQ(s[150].w_body_radps.z(), 0.35) << "full level after the ramp";
+  EXPECT_EQ(s[300].w_body_radps.z(), 0.3) << "after the window";
+}
+
+TEST(ImuModel, StuckAxisHoldsTheLastOutputBeforeTheFault) {
+  ImuParams p = clean(100.0);
+  p.gyro.white_density = 1e-3;  // noise, so that a held value is the one sample's
+  const IdealImu in = ideal_of(Vec3(0, 0, -9.8), Vec3(0, 0, 0.3));
+  const auto free = run_with_faults(p, {}, in);
+  const auto s = run_with_faults(p, {{EventWindow{1.0, 2.0, 0.0}, ImuFaultKind::kStuck, ImuSensor::kGyro, 0, 0.0}}, in);
+  ASSERT_EQ(s.size(), free.size());
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    if (k >= 100 && k < 300)
+      EXPECT_EQ(s[k].w_body_radps.x(), free[99].w_body_radps.x()) << k;
+    else
+      EXPECT_EQ(s[k].w_body_radps.x(), free[k].w_body_radps.x()) << k;
+    EXPECT_EQ(s[k].w_body_radps.y(), free[k].w_body_radps.y()) << "the other axes go on";
+  }
+  EXPECT_NE(free[150].w_body_radps.x(), free[99].w_body_radps.x());
+}
+
+// Added noise: its standard deviation is density x sqrt(rate) (as the model's own white noise,
+// test WhiteNoiseStdIsDensityTimesRootRate), within 5 standard errors; outside the window the
+// output is the fault-free run's, draw for draw.
+TEST(ImuModel, AddedNoiseHasItsDensityAndLeavesTheOtherStreamsAlone) {
+  ImuParams p = clean(100.0);
+  p.accel.white_density = 1e-3;
+  const IdealImu in = ideal_of(Vec3(0, 0, -9.8), Vec3(0, 0, 0));
+  const auto free = run_with_faults(p, {}, in);
+  const auto s = run_with_faults(p, {{EventWindow{1.0, 2.0, 0.0}, ImuFaultKind::kNoise, ImuSensor::kAccel, 1, 0.02}}, in);
+  std::vector<double> added;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    if (k >= 100 && k < 300)
+      added.push_back(s[k].f_body_mps2.y() - free[k].f_body_mps2.y());
+    else
+      EXPECT_EQ(s[k].f_body_mps2, free[k].f_body_mps2) << k;
+    EXPECT_EQ(s[k].f_body_mps2.x(), free[k].f_body_mps2.x());
+  }
+  const double sigma = 0.02 * std::sqrt(100.0);
+  const Moments m = moments(added);
+  EXPECT_NEAR(m.std, sigma, 5.0 * sigma / std::sqrt(2.0 * static_cast<double>(added.size())));
+  EXPECT_NEAR(m.mean, 0.0, 5.0 * sigma / std::sqrt(static_cast<double>(added.size())));
+}
+
 // Different axes and terms are independent streams too.
 TEST(ImuModel, AxesUncorrelated) {
   ImuParams p = clean(100.0);

@@ -1,0 +1,24 @@
+#pragma once
+// When a scheduled event (`events:`, issue "impairments") acts, and how strongly.
+
+#include <algorithm>
+
+namespace navemu {
+
+// A scheduled event's level at t: 0 before start, rising linearly over ramp_s to 1, 1 until
+// ramp_s before the end, falling linearly to 0 at start_s + duration_s (a trapezoid; ramp 0:
+// a step).
+struct EventWindow {
+  double start_s = 0.0;  // from the scenario's start
+  double duration_s = 0.0;
+  double ramp_s = 0.0;   // each of ramp-in and ramp-out; at most duration_s / 2
+};
+
+inline double event_level(const EventWindow& w, double t_s) {
+  const double in = t_s - w.start_s, out = w.start_s + w.duration_s - t_s;
+  if (in < 0.0 || out <= 0.0) return 0.0;
+  if (w.ramp_s <= 0.0) return 1.0;
+  return std::min({1.0, in / w.ramp_s, out / w.ramp_s});
+}
+
+}  // namespace navemu
