@@ -4,7 +4,8 @@
 // JSON object per line, one reply line each:
 //   {"cmd": "event", "type": "jamming", "duration_s": 10, "j_over_s_db": 45, ...}
 //       an event with the keys of `events:` (configs/default.yaml), its start_s counted from the
-//       next GNSS epoch (0 when absent); reply {"ok": true, "from": ISO UTC, "gps": "WEEK:TOW"}
+//       next GNSS epoch (0 when absent), or its start at GPS time `at`; reply {"ok": true,
+//       "from": ISO UTC, "gps": "WEEK:TOW"}
 //   {"cmd": "clear"}
 //       ends every event, those of the configuration too; reply {"ok": true}
 // A malformed or unknown command is refused: {"ok": false, "error": "<why>"}. Replies go to

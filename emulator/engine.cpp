@@ -105,7 +105,7 @@ void print_truth(const RunConfig& cfg, const TruthSource& truth, std::ostream& l
 // The scheduled events, at the times they will happen (they count from the scheduler's start).
 void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
   const auto print = [&](const EventWindow& w, const std::string& what) {
-    const GpsTime from = start.plus_s(w.start_s);
+    const GpsTime from = w.at ? *w.at : start.plus_s(w.start_s);
     fmt::print(log, "navemu: event: {}, from {} ({}) for {} s{}\n", what, format_iso_utc(from), format_week_tow(from),
                w.duration_s, w.ramp_s > 0.0 ? fmt::format(", ramps {} s", w.ramp_s) : "");
   };

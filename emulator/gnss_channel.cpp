@@ -147,14 +147,15 @@ std::string GnssChannel::apply_control(std::string_view line) {
     return R"({"ok": true})";
   }
   GnssEvents events = std::get<ControlEvent>(cmd).events;
-  // The one event's window, moved from "now" (the next epoch) to the scenario's clock.
+  // The one event's window on the scenario's clock: from its GPS time, or from "now" (the next
+  // epoch).
   EventWindow* w = nullptr;
-  for (JammingEvent& e : events.jamming) w = &e.window;
-  for (OutageEvent& e : events.outages) w = &e.window;
-  for (AntennaEvent& e : events.antenna) w = &e.window;
-  for (SatelliteFaultEvent& e : events.satellites) w = &e.window;
+  events.for_each_window([&](EventWindow& x) { w = &x; });
   if (w == nullptr) return R"({"ok": false, "error": "no event"})";
-  w->start_s += seconds_between(epoch_time(k_), start_);
+  if (w->at)
+    resolve_start(*w, start_);
+  else
+    w->start_s += seconds_between(epoch_time(k_), start_);
   receiver_->add_events(events);
   const GpsTime from = start_.plus_s(w->start_s);
   return fmt::format(R"({{"ok": true, "from": "{}", "gps": "{}"}})", format_iso_utc(from), format_week_tow(from));

@@ -75,6 +75,7 @@ ImuChannel::ImuChannel(const ImuParams& params, std::uint64_t seed, const IdealI
 
 void ImuChannel::begin(GpsTime start) {
   start_ = start;
+  for (ImuFault& f : faults_) resolve_start(f.window, start);
   if (!faults_.empty()) pipe_.set_faults(faults_, start);
   j_ = j0_ = first_index_at_or_after(start, pipe_.output_period_ns());
   pipe_.resume_at(j_ * pipe_.steps_per_output());

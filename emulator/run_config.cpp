@@ -417,6 +417,14 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
     m.fail("type", "IMU faults are scheduled in the configuration's events:, not sent live");
   EventWindow w;
   w.start_s = m.positive("start_s", true).value_or(0.0);
+  if (const std::optional<std::string> at = m.text("at")) {  // GPS time instead of start_s
+    if (m.has("start_s")) m.fail("at", "give either at (a GPS time) or start_s (seconds from the start), not both");
+    try {
+      w.at = parse_time(*at, "at");
+    } catch (const InputError&) {
+      m.fail("at", fmt::format("'{}' is not a time: ISO-8601 UTC (2026-11-27T12:00:00Z) or GPS WEEK:TOW (2394:475200)", *at));
+    }
+  }
   const std::optional<double> duration = m.positive("duration_s");
   if (!duration) m.fail("duration_s", "missing: how long the event lasts, s");
   w.duration_s = *duration;

@@ -2,6 +2,9 @@
 // When a scheduled event (`events:`, issue "impairments") acts, and how strongly.
 
 #include <algorithm>
+#include <optional>
+
+#include "core/time.hpp"
 
 namespace navemu {
 
@@ -9,10 +12,21 @@ namespace navemu {
 // ramp_s before the end, falling linearly to 0 at start_s + duration_s (a trapezoid; ramp 0:
 // a step).
 struct EventWindow {
+  EventWindow() = default;
+  EventWindow(double start, double duration, double ramp = 0.0) : start_s(start), duration_s(duration), ramp_s(ramp) {}
   double start_s = 0.0;  // from the scenario's start
   double duration_s = 0.0;
   double ramp_s = 0.0;   // each of ramp-in and ramp-out; at most duration_s / 2
+  std::optional<GpsTime> at;  // a start given as GPS time instead: start_s once resolved
 };
+
+// start_s of a window whose start was given as GPS time, counted from `origin` (the scenario's
+// start; negative when the event began before it).
+inline void resolve_start(EventWindow& w, GpsTime origin) {
+  if (!w.at) return;
+  w.start_s = seconds_between(*w.at, origin);
+  w.at.reset();
+}
 
 inline double event_level(const EventWindow& w, double t_s) {
   const double in = t_s - w.start_s, out = w.start_s + w.duration_s - t_s;

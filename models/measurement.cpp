@@ -210,7 +210,15 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
 
 MeasurementGenerator::~MeasurementGenerator() = default;
 
-void MeasurementGenerator::set_event_origin(GpsTime start) { state_->event_origin = start; }
+void MeasurementGenerator::set_event_origin(GpsTime start) {
+  state_->event_origin = start;
+  cfg_.events.for_each_window([&](EventWindow& w) { resolve_start(w, start); });
+}
+
+void MeasurementGenerator::add_events(const GnssEvents& e) {
+  cfg_.events.append(e);
+  if (state_->event_origin) set_event_origin(*state_->event_origin);
+}
 
 EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx,
                                                  const Vec3& v_rx) {
@@ -246,7 +254,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   out.t_true = t_receiver.plus_s(-out.rx_clock_bias_s);
   const double t_s = out.t_true.seconds();
   // The events on at this epoch (by its time tag: they follow the scenario's epochs).
-  if (!st.event_origin) st.event_origin = t_receiver;
+  if (!st.event_origin) set_event_origin(t_receiver);
   out.interference = {};
   out.antenna_fault.reset();
   const double t_event_s = seconds_between(t_receiver, *st.event_origin);

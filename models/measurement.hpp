@@ -85,6 +85,14 @@ struct GnssEvents {
   std::vector<AntennaEvent> antenna;
   std::vector<SatelliteFaultEvent> satellites;
   std::size_t size() const { return jamming.size() + outages.size() + antenna.size() + satellites.size(); }
+  // fn(EventWindow&) for every event's window.
+  template <class Fn>
+  void for_each_window(Fn&& fn) {
+    for (JammingEvent& e : jamming) fn(e.window);
+    for (OutageEvent& e : outages) fn(e.window);
+    for (AntennaEvent& e : antenna) fn(e.window);
+    for (SatelliteFaultEvent& e : satellites) fn(e.window);
+  }
   void append(const GnssEvents& e) {
     jamming.insert(jamming.end(), e.jamming.begin(), e.jamming.end());
     outages.insert(outages.end(), e.outages.begin(), e.outages.end());
@@ -238,7 +246,7 @@ class MeasurementGenerator {
   // The scenario's start, from which the events' times count; unset: the first epoch's time.
   void set_event_origin(GpsTime start);
   // Events added while running (live control), and all of them ended.
-  void add_events(const GnssEvents& e) { cfg_.events.append(e); }
+  void add_events(const GnssEvents& e);
   void clear_events() { cfg_.events = {}; }
 
  private:

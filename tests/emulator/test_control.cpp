@@ -31,6 +31,9 @@ TEST(Control, CommandsAndTheirRefusals) {
   const auto out = parse_control_line(R"({"cmd": "event", "type": "outage", "duration_s": 3})");
   ASSERT_TRUE(std::holds_alternative<ControlCommand>(out));
   EXPECT_EQ(std::get<ControlEvent>(std::get<ControlCommand>(out)).events.outages.size(), 1u);
+  const auto at = parse_control_line(R"({"cmd": "event", "type": "outage", "duration_s": 3, "at": "2394:475200"})");
+  ASSERT_TRUE(std::holds_alternative<ControlCommand>(at));
+  EXPECT_EQ(std::get<ControlEvent>(std::get<ControlCommand>(at)).events.outages.at(0).window.at, parse_time("2394:475200"));
   const auto clear = parse_control_line(R"({"cmd": "clear"})");
   ASSERT_TRUE(std::holds_alternative<ControlCommand>(clear));
   EXPECT_TRUE(std::holds_alternative<ControlClear>(std::get<ControlCommand>(clear)));

@@ -129,7 +129,8 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: imu, duration_s: 4, fault: scale, sensor: accel, axis: y, scale_ppm: 2000}\n"
       "  - {type: imu, duration_s: 4, fault: noise, sensor: gyro, noise_radps_per_rthz: 0.01}\n"
       "  - {type: imu, duration_s: 4, fault: stuck, sensor: gyro, axis: x}\n"
-      "  - {type: imu, duration_s: 4, fault: drop, probability: 0.25}\n"));
+      "  - {type: imu, duration_s: 4, fault: drop, probability: 0.25}\n"
+      "  - {type: outage, at: '2394:475200.5', duration_s: 20}\n"));
   ASSERT_EQ(c.imu_faults.size(), 6u);
   EXPECT_EQ(c.imu_faults[0].kind, ImuFaultKind::kBias);
   EXPECT_EQ(c.imu_faults[0].sensor, ImuSensor::kGyro);
@@ -158,7 +159,9 @@ TEST(RunConfig, EventsAndTheirErrors) {
   EXPECT_EQ(e.jamming[1].window.start_s, 0.0);
   EXPECT_EQ(e.jamming[1].kind, InterferenceKind::kCw);
   EXPECT_EQ(e.jamming[1].band, Band::kL5);
-  ASSERT_EQ(e.outages.size(), 2u);
+  ASSERT_EQ(e.outages.size(), 3u);
+  ASSERT_TRUE(e.outages[2].window.at.has_value());
+  EXPECT_EQ(*e.outages[2].window.at, parse_time("2394:475200.5"));
   EXPECT_EQ(e.outages[0].below_el_deg, 90.0) << "everything: a tunnel";
   EXPECT_EQ(e.outages[1].az_from_deg, 300.0);
   EXPECT_EQ(e.outages[1].az_to_deg, 60.0);
@@ -208,6 +211,8 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: imu, duration_s: 10, fault: stuck, sensor: accel, ramp_s: 1}", "events[0].ramp_s"},
       {"{type: imu, duration_s: 10, fault: drop, probability: 1.5}", "events[0].probability: must be at most 1"},
       {"{type: imu, duration_s: 10, fault: drop, sensor: gyro}", "events[0].sensor"},
+      {"{type: outage, duration_s: 10, at: '2394:1', start_s: 4}", "events[0].at: give either at (a GPS time) or start_s"},
+      {"{type: outage, duration_s: 10, at: yesterday}", "events[0].at: 'yesterday' is not a time"},
   };
   for (const auto& [entry, expected] : cases)
     EXPECT_NE(err(entry).find(expected), std::string::npos) << entry << " -> " << err(entry);

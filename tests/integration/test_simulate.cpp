@@ -87,12 +87,30 @@ TEST(Simulate, EventsAreDeterministicAndAct) {
 }
 
 // configs/tunnel.yaml: the F9P (1 Hz) loses its fix for the 20 s of the tunnel and the second
-// it takes to re-acquire the satellites after it.
-TEST(Simulate, TheTunnelScenarioLosesTheFixForItsLength) {
-  const fs::path d = temp_dir("tunnel");
-  const auto r = simulate(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "tunnel.yaml", d, 100);
+// it takes to re-acquire the satellites after it. The same tunnel (and an IMU fault) given by
+// GPS time (`at`, 60 s after the 13:00:00 start) gives the same files.
+TEST(Simulate, TheTunnelScenarioLosesTheFixForItsLengthAndStartsAtItsGpsTime) {
+  const fs::path d = temp_dir("tunnel"), e = temp_dir("tunnel_at");
+  std::string text = slurp(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "tunnel.yaml");
+  const std::string relative = "  - {type: outage, start_s: 60, duration_s: 20}\n";
+  ASSERT_NE(text.find(relative), std::string::npos);
+  std::ofstream(d / "tunnel.yaml")
+      << text + "  - {type: imu, start_s: 30, duration_s: 5, fault: bias, sensor: gyro, bias_dps: 1}\n";
+  text.replace(text.find(relative), relative.size(), "  - {type: outage, at: '1610:306075', duration_s: 20}\n");
+  std::ofstream(e / "tunnel.yaml")
+      << text + "  - {type: imu, at: '2010-11-17T13:00:30Z', duration_s: 5, fault: bias, sensor: gyro, bias_dps: 1}\n";
+  const auto r = simulate(d / "tunnel.yaml", d / "out", 100), s = simulate(e / "tunnel.yaml", e / "out", 100);
   ASSERT_EQ(r.exit_code, 0) << r.out;
+  ASSERT_EQ(s.exit_code, 0) << s.out;
   EXPECT_NE(r.out.find("100 GNSS epochs (79 with a fix)"), std::string::npos) << r.out;
+  EXPECT_NE(s.out.find("navemu: event: outage, azimuth 0 to 360 deg below 90 deg elevation, from "
+                       "2010-11-17T13:01:00Z (1610:306075.000) for 20 s"),
+            std::string::npos)
+      << s.out;
+  for (const char* f : {"gnss.csv", "ubx.bin", "imu.csv"}) {
+    EXPECT_FALSE(slurp(d / "out" / f).empty()) << f;
+    EXPECT_EQ(slurp(d / "out" / f), slurp(e / "out" / f)) << f;
+  }
 }
 
 // IMU faults (configs/imu-stuck-gyro.yaml: gyroscope z stuck 60-90 s, samples lost 110-112 s,
