@@ -148,6 +148,9 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
     print(a.window, a.fault == AntennaFault::kOpen ? "antenna open" : "antenna short");
   for (const SatelliteFaultEvent& f : ev.satellites)
     print(f.window, fmt::format("satellite fault, {} clock error {} m", f.sat.rinex(), f.clock_error_m));
+  for (const SpoofingEvent& s : ev.spoofing)
+    print(s.window, fmt::format("spoofing, pull to {} m east, {} m north, {} m up, {} dB over the true signals",
+                                s.offset_enu_m.x(), s.offset_enu_m.y(), s.offset_enu_m.z(), s.power_advantage_db));
 }
 
 }  // namespace

@@ -409,9 +409,10 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
 
 void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
   const std::optional<std::string> type = m.text("type");
-  constexpr const char* kTypes = "jamming, outage, antenna, satellite, imu";
+  constexpr const char* kTypes = "jamming, outage, antenna, satellite, spoofing, imu";
   if (!type) m.fail("type", fmt::format("missing: the event's type ({})", kTypes));
-  if (*type != "jamming" && *type != "outage" && *type != "antenna" && *type != "satellite" && *type != "imu")
+  if (*type != "jamming" && *type != "outage" && *type != "antenna" && *type != "satellite" && *type != "spoofing" &&
+      *type != "imu")
     m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, kTypes));
   if (*type == "imu" && !imu)
     m.fail("type", "IMU faults are scheduled in the configuration's events:, not sent live");
@@ -446,6 +447,15 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
                  .value_or(e.kind);
     e.band = choice<Band>(m, "band", {{"L1", Band::kL1}, {"L2", Band::kL2}, {"L5", Band::kL5}}).value_or(e.band);
     out.jamming.push_back(e);
+  } else if (*type == "spoofing") {
+    ramp();
+    SpoofingEvent e{w};
+    const auto offset = m.number_list("offset_m");
+    if (!offset) m.fail("offset_m", "missing: [east, north, up], metres from the antenna at full level");
+    if (offset->size() != 3) m.fail("offset_m", "must be [east, north, up], metres");
+    e.offset_enu_m = Vec3((*offset)[0], (*offset)[1], (*offset)[2]);
+    e.power_advantage_db = m.positive("power_advantage_db", true).value_or(e.power_advantage_db);
+    out.spoofing.push_back(e);
   } else if (*type == "outage") {
     OutageEvent e{w};
     if (const auto az = m.number_list("azimuth_deg")) {

@@ -233,6 +233,9 @@ void emit_nav_status(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.i_tow_ms = e.i_tow;
   m.gps_fix = fix_type(e.fix.fix);
   m.flags = e.status_flags;
+  // flags2 spoofDetState (bits 3-4, UBX-13003221 32.17.x NAV-STATUS; the F9 descriptions
+  // alike): 1 no spoofing indicated, 2 spoofing indicated (models/measurement.hpp SpoofingEvent).
+  m.flags2 = static_cast<std::uint8_t>((e.meas.spoofing_indicated ? 2 : 1) << 3);
   m.ttff_ms = 1000;
   m.msss_ms = e.i_tow;
   append(m, out);

@@ -20,6 +20,16 @@ struct EventWindow {
   std::optional<GpsTime> at;  // a start given as GPS time instead: start_s once resolved
 };
 
+// The rate of event_level at t, 1/s: +1/ramp_s on the ramp-in, -1/ramp_s on the ramp-out.
+inline double event_level_rate(const EventWindow& w, double t_s) {
+  if (w.ramp_s <= 0.0) return 0.0;
+  const double in = t_s - w.start_s, out = w.start_s + w.duration_s - t_s;
+  if (in < 0.0 || out <= 0.0) return 0.0;
+  if (in < w.ramp_s && in <= out) return 1.0 / w.ramp_s;
+  if (out < w.ramp_s) return -1.0 / w.ramp_s;
+  return 0.0;
+}
+
 // start_s of a window whose start was given as GPS time, counted from `origin` (the scenario's
 // start; negative when the event began before it).
 inline void resolve_start(EventWindow& w, GpsTime origin) {

@@ -257,7 +257,10 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   if (!st.event_origin) set_event_origin(t_receiver);
   out.interference = {};
   out.antenna_fault.reset();
+  out.spoofed = out.spoofing_indicated = false;
   const double t_event_s = seconds_between(t_receiver, *st.event_origin);
+  const Geodetic geo = geodetic_from_ecef(p_rx);
+  const Mat3 R_enu = R_enu_from_ecef(geo);
   const GnssEvents& ev = cfg_.events;
   for (const JammingEvent& j : ev.jamming)
     if (const auto js = ramped_j_over_s_db(j.j_over_s_db, event_level(j.window, t_event_s)))
@@ -274,8 +277,19 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     return false;
   };
 
-  const Geodetic geo = geodetic_from_ecef(p_rx);
-  const ReceiverPlace rx{p_rx, v_rx, R_enu_from_ecef(geo)};
+  // A spoofer: the signals of a false position (and the velocity of its pull), stronger.
+  Vec3 spoof_offset_m = Vec3::Zero(), spoof_velocity_mps = Vec3::Zero();
+  double spoof_gain_db = 0.0;
+  for (const SpoofingEvent& s : ev.spoofing) {
+    const double level = event_level(s.window, t_event_s);
+    if (level <= 0.0) continue;
+    spoof_offset_m += R_enu.transpose() * s.offset_enu_m * level;
+    spoof_velocity_mps += R_enu.transpose() * s.offset_enu_m * event_level_rate(s.window, t_event_s);
+    spoof_gain_db = std::max(spoof_gain_db, s.power_advantage_db);
+    out.spoofed = true;
+    out.spoofing_indicated = out.spoofing_indicated || s.power_advantage_db >= kSpoofDetectPower_db;
+  }
+  const ReceiverPlace rx{p_rx + spoof_offset_m, v_rx + spoof_velocity_mps, R_enu};
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
   const TropoDelay tropo_zenith = tropo_zenith_delay(geo, meteo);
   // What the atmosphere models need of the receiver and the epoch, for every satellite.
@@ -311,7 +325,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     if (cfg_.environment && g.dir.el_rad > 0.0)
       env = cfg_.environment->evaluate(p_rx, (g.sat.p_ecef_m - p_rx).normalized());
     // Without interference, and as tracked (the effective C/N0 under the jammers on L1).
-    const double cn0_clear_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db;
+    const double cn0_clear_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db + spoof_gain_db;
     const double cn0_l1 = effective_cn0_dbhz(cn0_clear_l1, out.interference[0], kBandChipRate_Hz[0]);
     // Tracked while above the threshold; a signal that returns (rises, or comes back above the
     // threshold) is re-acquired only after the receiver's re-acquisition time.

@@ -79,12 +79,30 @@ struct SatelliteFaultEvent {
   SatId sat;
   double clock_error_m = 0.0;
 };
+// A spoofer sending a coherent false signal set: every satellite's signal as it would arrive at
+// a false position offset_enu_m (east, north, up) from the antenna, times the event's level,
+// and power_advantage_db stronger than the true signals, so the tracking loops follow it. A
+// ramp walks the receiver off gradually, as a takeover does (its ranges, Doppler and position
+// stay consistent: the pull's rate shows as velocity). The receiver's spoofing monitor
+// indicates it (u-blox NAV-STATUS spoofDetState) when the signals come kSpoofDetectPower_db or
+// more above the true ones: C/N0 above what the sky gives is the monitor's telltale, and a
+// spoofer matched in power goes unnoticed (a navemu assumption: u-blox does not publish its
+// detector).
+inline constexpr double kSpoofDetectPower_db = 3.0;
+struct SpoofingEvent {
+  EventWindow window;
+  Vec3 offset_enu_m = Vec3::Zero();
+  double power_advantage_db = 3.0;
+};
 struct GnssEvents {
   std::vector<JammingEvent> jamming;
   std::vector<OutageEvent> outages;
   std::vector<AntennaEvent> antenna;
   std::vector<SatelliteFaultEvent> satellites;
-  std::size_t size() const { return jamming.size() + outages.size() + antenna.size() + satellites.size(); }
+  std::vector<SpoofingEvent> spoofing;
+  std::size_t size() const {
+    return jamming.size() + outages.size() + antenna.size() + satellites.size() + spoofing.size();
+  }
   // fn(EventWindow&) for every event's window.
   template <class Fn>
   void for_each_window(Fn&& fn) {
@@ -92,12 +110,14 @@ struct GnssEvents {
     for (OutageEvent& e : outages) fn(e.window);
     for (AntennaEvent& e : antenna) fn(e.window);
     for (SatelliteFaultEvent& e : satellites) fn(e.window);
+    for (SpoofingEvent& e : spoofing) fn(e.window);
   }
   void append(const GnssEvents& e) {
     jamming.insert(jamming.end(), e.jamming.begin(), e.jamming.end());
     outages.insert(outages.end(), e.outages.begin(), e.outages.end());
     antenna.insert(antenna.end(), e.antenna.begin(), e.antenna.end());
     satellites.insert(satellites.end(), e.satellites.begin(), e.satellites.end());
+    spoofing.insert(spoofing.end(), e.spoofing.begin(), e.spoofing.end());
   }
 };
 
@@ -213,6 +233,8 @@ struct EpochMeasurements {
   std::vector<SatMeasurement> sats;  // tracked satellites above the horizon, by SatId
   std::array<BandInterference, 3> interference{};  // by Band, at the epoch
   std::optional<AntennaFault> antenna_fault;       // at the epoch
+  bool spoofed = false;             // a spoofer's signals are tracked (SpoofingEvent)
+  bool spoofing_indicated = false;  // and the spoofing monitor sees it
 };
 
 // Receiver classes: tracking loops, antenna and site as they differ between a geodetic receiver

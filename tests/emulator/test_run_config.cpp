@@ -130,7 +130,12 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: imu, duration_s: 4, fault: noise, sensor: gyro, noise_radps_per_rthz: 0.01}\n"
       "  - {type: imu, duration_s: 4, fault: stuck, sensor: gyro, axis: x}\n"
       "  - {type: imu, duration_s: 4, fault: drop, probability: 0.25}\n"
-      "  - {type: outage, at: '2394:475200.5', duration_s: 20}\n"));
+      "  - {type: outage, at: '2394:475200.5', duration_s: 20}\n"
+      "  - {type: spoofing, start_s: 10, duration_s: 60, ramp_s: 20, offset_m: [0, 500, -5], power_advantage_db: 1.5}\n"));
+  ASSERT_EQ(c.gnss_events.spoofing.size(), 1u);
+  EXPECT_EQ(c.gnss_events.spoofing[0].offset_enu_m, Vec3(0, 500, -5));
+  EXPECT_EQ(c.gnss_events.spoofing[0].power_advantage_db, 1.5);
+  EXPECT_EQ(c.gnss_events.spoofing[0].window.ramp_s, 20.0);
   ASSERT_EQ(c.imu_faults.size(), 6u);
   EXPECT_EQ(c.imu_faults[0].kind, ImuFaultKind::kBias);
   EXPECT_EQ(c.imu_faults[0].sensor, ImuSensor::kGyro);
@@ -184,7 +189,7 @@ TEST(RunConfig, EventsAndTheirErrors) {
 
   const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
   const std::pair<const char*, const char*> cases[] = {
-      {"{type: spoofing, duration_s: 1}", ":2: events[0].type: 'spoofing' is not an event type navemu knows (jamming, outage, antenna, satellite, imu)"},
+      {"{type: meaconing, duration_s: 1}", ":2: events[0].type: 'meaconing' is not an event type navemu knows (jamming, outage, antenna, satellite, spoofing, imu)"},
       {"{duration_s: 1, j_over_s_db: 1}", "events[0].type: missing"},
       {"{type: jamming, j_over_s_db: 40}", "events[0].duration_s: missing"},
       {"{type: jamming, duration_s: 10}", "events[0].j_over_s_db: missing"},
@@ -213,6 +218,9 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: imu, duration_s: 10, fault: drop, sensor: gyro}", "events[0].sensor"},
       {"{type: outage, duration_s: 10, at: '2394:1', start_s: 4}", "events[0].at: give either at (a GPS time) or start_s"},
       {"{type: outage, duration_s: 10, at: yesterday}", "events[0].at: 'yesterday' is not a time"},
+      {"{type: spoofing, duration_s: 10}", "events[0].offset_m: missing"},
+      {"{type: spoofing, duration_s: 10, offset_m: [1, 2]}", "events[0].offset_m: must be [east, north, up]"},
+      {"{type: spoofing, duration_s: 10, offset_m: [1, 2, 3], power_advantage_db: -3}", "events[0].power_advantage_db"},
   };
   for (const auto& [entry, expected] : cases)
     EXPECT_NE(err(entry).find(expected), std::string::npos) << entry << " -> " << err(entry);

@@ -1,6 +1,7 @@
 // navemu simulate: the real-time loop's models and encoders offline, deterministic, and the
 // files they write agree with each other and with the physics.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "core/time.hpp"
+#include "models/event_window.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/nmea.hpp"
 #include "protocols/ubx.hpp"
@@ -111,6 +113,28 @@ TEST(Simulate, TheTunnelScenarioLosesTheFixForItsLengthAndStartsAtItsGpsTime) {
     EXPECT_FALSE(slurp(d / "out" / f).empty()) << f;
     EXPECT_EQ(slurp(d / "out" / f), slurp(e / "out" / f)) << f;
   }
+}
+
+// configs/spoofing-takeover.yaml: the spoofer walks the fix 300 m north over 60 s from 60 s,
+// holds it and walks it back; the fix error follows the ramp (level x 300 m, within the
+// receiver's own error), the velocity shows the walk's 5 m/s, and the fix never drops.
+TEST(Simulate, TheSpoofingScenarioWalksTheFixOffAndBack) {
+  const fs::path d = temp_dir("spoofing");
+  const auto r = simulate(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "spoofing-takeover.yaml", d, 300);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("300 GNSS epochs (300 with a fix)"), std::string::npos) << r.out;
+  const test::CsvTable t(d / "gnss.csv");
+  ASSERT_EQ(t.size(), 300u);
+  const EventWindow w{60.0, 180.0, 60.0};
+  double worst_m = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double t_s = t.num(i, "time_s");
+    const double pulled_m = 300.0 * event_level(w, t_s);
+    worst_m = std::max(worst_m, std::abs(t.num(i, "err_n_m") - pulled_m));
+    EXPECT_NEAR(t.num(i, "err_n_m"), pulled_m, 5.0) << t_s << " s";
+    EXPECT_NEAR(t.num(i, "v_n_mps"), 300.0 * event_level_rate(w, t_s), 0.5) << t_s << " s";
+  }
+  fmt::print("spoofed fix: north error within {:.2f} m of the pull (level x 300 m)\n", worst_m);
 }
 
 // IMU faults (configs/imu-stuck-gyro.yaml: gyroscope z stuck 60-90 s, samples lost 110-112 s,

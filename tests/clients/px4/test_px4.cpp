@@ -32,6 +32,7 @@
 #include <set>
 
 #include "core/satellite.hpp"
+#include "models/event_window.hpp"
 #include "tests/clients/client_support.hpp"
 #include "tests/clients/ubx_frames.hpp"
 
@@ -630,6 +631,66 @@ TEST_P(Px4Impairment, TheDriverSeesItComeAndGo) {
   std::printf("PX4 %s: fix lost %.2f s after the event's start, back %.2f s after its end; %d reports during, "
               "jamming state %d, noise %d -> %d\n",
               c.name, *lost_at, *back_at - end_s, jammed, during->jamming, before->noise, during->noise);
+}
+
+// A spoofer (issue "impairments"): PX4's driver follows the walk of the fix north and back, the
+// fix never drops, and its spoofing_state (NAV-STATUS spoofDetState) says 2 "spoofing
+// indicated" from the event's start to its end, within one epoch, and 1 outside.
+TEST(Px4Spoofing, TheDriverIsWalkedOffAndSeesTheIndication) {
+  if (!have_harness()) GTEST_SKIP() << kNoHarness;
+  const ProfileFacts facts = profile_facts("ublox-f9p-hpg132");
+  TempDir dir("px4-spoofing");
+  Px4Run run;
+  constexpr double kOn_s = 6.0, kFor_s = 6.0, kRamp_s = 2.0, kNorth_m = 200.0, kEpoch_s = 0.2;
+  run_px4(dir, facts, facts.baud, 16.0, run,
+          fmt::format("events:\n  - {{type: spoofing, start_s: {}, duration_s: {}, ramp_s: {}, offset_m: [0, {}, 0], "
+                      "power_advantage_db: 6}}\n",
+                      kOn_s, kFor_s, kRamp_s, kNorth_m));
+  if (HasFatalFailure()) return;
+  const std::size_t at = run.log.find("navemu: event: spoofing");
+  ASSERT_NE(at, std::string::npos) << run.log;
+  int week = 0;
+  double tow_s = 0.0;
+  ASSERT_EQ(std::sscanf(run.log.c_str() + run.log.find('(', at), "(%d:%lf)", &week, &tow_s), 2) << run.log;
+  const GpsTime on = from_week_tow(week, tow_s);
+  const EventWindow w{0.0, kFor_s, kRamp_s};
+  constexpr double kMetresPerDegLat = 110'852.0;  // at 32.3 deg N (WGS 84 meridian arc)
+  std::optional<double> lat0_deg;
+  int during = 0, outside = 0, first_indicated = -1;
+  double worst_m = 0.0, first_indicated_s = 0.0, last_indicated_s = -1.0;
+  for (const YAML::Node& g : run.rep.gps) {
+    const auto utc_us = g["time_utc_usec"].as<std::int64_t>();
+    if (utc_us == 0 || g["fix_type"].as<int>() < 3) continue;
+    const double t_s = seconds_between(gps_from_unix_ns(utc_us * 1000), on);
+    const double lat_deg = g["latitude_deg"].as<double>();
+    const int spoofing = g["spoofing_state"].as<int>();
+    if (t_s < -1.0) lat0_deg = lat_deg;  // the last report a second before: the true place
+    if (!lat0_deg || t_s < -1.0) continue;
+    const double north_m = (lat_deg - *lat0_deg) * kMetresPerDegLat;
+    // NAV-STATUS may come one epoch after NAV-PVT: the state is checked an epoch inside.
+    if (t_s >= kEpoch_s && t_s < kFor_s - kEpoch_s) {
+      ++during;
+      EXPECT_EQ(spoofing, 2) << "at " << t_s << " s";
+    } else if (t_s < -kEpoch_s || t_s > kFor_s + kEpoch_s) {
+      ++outside;
+      EXPECT_EQ(spoofing, 1) << "at " << t_s << " s";
+    }
+    if (spoofing == 2) {
+      if (first_indicated < 0) first_indicated_s = t_s;
+      first_indicated = 1;
+      last_indicated_s = t_s;
+    }
+    const double pulled_m = kNorth_m * event_level(w, t_s);
+    worst_m = std::max(worst_m, std::abs(north_m - pulled_m));
+    EXPECT_NEAR(north_m, pulled_m, 5.0) << "at " << t_s << " s";
+  }
+  EXPECT_GE(during, 20) << run.where;
+  EXPECT_GE(outside, 10) << run.where;
+  EXPECT_LE(std::abs(first_indicated_s), 2 * kEpoch_s + 1e-3) << run.where;
+  EXPECT_LE(std::abs(last_indicated_s - kFor_s), 2 * kEpoch_s + 1e-3) << run.where;
+  std::printf("PX4 spoofing: walked within %.2f m of the pull (level x %.0f m north); spoofing_state 2 from %.2f s "
+              "to %.2f s of the %.0f s event, %d reports during\n",
+              worst_m, kNorth_m, first_indicated_s, last_indicated_s, kFor_s, during);
 }
 
 INSTANTIATE_TEST_SUITE_P(Events, Px4Impairment,
