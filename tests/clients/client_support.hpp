@@ -74,6 +74,15 @@ bool wait_until(F done, double timeout_s, double poll_s = 0.02) {
   }
 }
 
+// The GPS time an `events:` entry starts at, from navemu's line at start "navemu: event: <what>,
+// from <ISO> (WEEK:TOW.mmm) ..." (to the millisecond); nullopt when not printed.
+inline std::optional<GpsTime> announced_event_start(const std::string& log, const std::string& what) {
+  const std::regex re("navemu: event: " + what + "[^\n]*\\((\\d+):(\\d+)\\.(\\d{3})\\)");
+  std::smatch m;
+  if (!std::regex_search(log, m, re)) return std::nullopt;
+  return GpsTime{(std::stoll(m[1]) * 604800 + std::stoll(m[2])) * 1'000'000'000 + std::stoll(m[3]) * 1'000'000};
+}
+
 inline std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream ss;

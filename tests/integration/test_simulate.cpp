@@ -50,6 +50,28 @@ test::CommandResult simulate(const fs::path& config, const fs::path& out, double
 
 const fs::path kDefault = fs::path(NAVEMU_SOURCE_DIR) / "configs" / "default.yaml";
 
+// Runs `config` into a and b: both succeed with the same bytes in each of `files`. The first
+// run's result.
+test::CommandResult simulate_twice(const fs::path& config, const fs::path& a, const fs::path& b, double duration_s,
+                                   std::initializer_list<const char*> files) {
+  const auto ra = simulate(config, a, duration_s), rb = simulate(config, b, duration_s);
+  EXPECT_EQ(ra.exit_code, 0) << ra.out;
+  EXPECT_EQ(rb.exit_code, 0) << rb.out;
+  for (const char* f : files) {
+    EXPECT_FALSE(slurp(a / f).empty()) << f;
+    EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
+  }
+  return ra;
+}
+
+// `config` without its `events:` section (the last one), written into `dir`.
+fs::path without_events(const fs::path& config, const fs::path& dir) {
+  const fs::path quiet = dir / "quiet.yaml";
+  const std::string text = slurp(config);
+  std::ofstream(quiet) << text.substr(0, text.find("\nevents:")) + "\n";
+  return quiet;
+}
+
 TEST(Simulate, SameSeedGivesIdenticalFilesAndAnotherSeedDoesNot) {
   const fs::path a = temp_dir("a"), b = temp_dir("b"), c = temp_dir("c");
   ASSERT_EQ(simulate(kDefault, a, 30).exit_code, 0);
@@ -70,18 +92,8 @@ TEST(Simulate, SameSeedGivesIdenticalFilesAndAnotherSeedDoesNot) {
 TEST(Simulate, EventsAreDeterministicAndAct) {
   const fs::path a = temp_dir("events_a"), b = temp_dir("events_b"), c = temp_dir("events_c");
   const fs::path cfg = fs::path(NAVEMU_SOURCE_DIR) / "configs" / "jammer-drive-by.yaml";
-  const auto ra = simulate(cfg, a, 180), rb = simulate(cfg, b, 180);
-  ASSERT_EQ(ra.exit_code, 0) << ra.out;
-  ASSERT_EQ(rb.exit_code, 0) << rb.out;
-  for (const char* f : {"ubx.bin", "gnss.csv"}) {
-    EXPECT_FALSE(slurp(a / f).empty()) << f;
-    EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
-  }
-  const fs::path quiet = c / "quiet.yaml";
-  std::string text = slurp(cfg);
-  text = text.substr(0, text.find("\nevents:")) + "\n";
-  std::ofstream(quiet) << text;
-  const auto rc = simulate(quiet, c, 180);
+  const auto ra = simulate_twice(cfg, a, b, 180, {"ubx.bin", "gnss.csv"});
+  const auto rc = simulate(without_events(cfg, c), c, 180);
   ASSERT_EQ(rc.exit_code, 0) << rc.out;
   EXPECT_NE(rc.out.find("180 GNSS epochs (180 with a fix)"), std::string::npos) << rc.out;
   EXPECT_EQ(ra.out.find("180 GNSS epochs (180 with a fix)"), std::string::npos) << ra.out;
@@ -144,20 +156,11 @@ TEST(Simulate, TheSpoofingScenarioWalksTheFixOffAndBack) {
 TEST(Simulate, ImuFaultsAreDeterministicAndActOnlyInTheirWindows) {
   const fs::path a = temp_dir("imu_faults_a"), b = temp_dir("imu_faults_b"), c = temp_dir("imu_faults_c");
   const fs::path cfg = fs::path(NAVEMU_SOURCE_DIR) / "configs" / "imu-stuck-gyro.yaml";
-  const auto ra = simulate(cfg, a, 180), rb = simulate(cfg, b, 180);
-  ASSERT_EQ(ra.exit_code, 0) << ra.out;
-  ASSERT_EQ(rb.exit_code, 0) << rb.out;
-  for (const char* f : {"imu.csv", "can.log", "nmea.log"}) {
-    EXPECT_FALSE(slurp(a / f).empty()) << f;
-    EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
-  }
+  const auto ra = simulate_twice(cfg, a, b, 180, {"imu.csv", "can.log", "nmea.log"});
   EXPECT_NE(ra.out.find("22250 IMU samples, 250 dropped by a fault"), std::string::npos) << ra.out;
   EXPECT_NE(ra.out.find("navemu: event: IMU stuck output, gyroscope z, from 2010-11-17T13:01:00Z"), std::string::npos)
       << ra.out;
-  const fs::path quiet = c / "quiet.yaml";
-  std::string text = slurp(cfg);
-  std::ofstream(quiet) << text.substr(0, text.find("\nevents:")) + "\n";
-  ASSERT_EQ(simulate(quiet, c, 180).exit_code, 0);
+  ASSERT_EQ(simulate(without_events(cfg, c), c, 180).exit_code, 0);
 
   const std::vector<test::ImuRow> faulty = test::read_imu_rows(a / "imu.csv"), clean = test::read_imu_rows(c / "imu.csv");
   ASSERT_EQ(clean.size(), 22500u);

@@ -570,12 +570,9 @@ TEST_P(Px4Impairment, TheDriverSeesItComeAndGo) {
           fmt::format("events:\n  - {{{}, start_s: {}, duration_s: {}}}\n", c.event, kOn_s, kFor_s));
   if (HasFatalFailure()) return;
   // The event's start as navemu announced it: "event: ..., from ISO (WEEK:TOW) for 5 s".
-  const std::size_t at = run.log.find("navemu: event: ");
-  ASSERT_NE(at, std::string::npos) << run.log;
-  int week = 0;
-  double tow_s = 0.0;
-  ASSERT_EQ(std::sscanf(run.log.c_str() + run.log.find('(', at), "(%d:%lf)", &week, &tow_s), 2) << run.log;
-  const GpsTime on = from_week_tow(week, tow_s), off = on.plus_s(kFor_s);
+  const std::optional<GpsTime> start = announced_event_start(run.log, "");
+  ASSERT_TRUE(start) << run.log;
+  const GpsTime on = *start, off = on.plus_s(kFor_s);
 
   struct Seen {
     double t_s;  // from the event's start
@@ -647,12 +644,9 @@ TEST(Px4Spoofing, TheDriverIsWalkedOffAndSeesTheIndication) {
                       "power_advantage_db: 6}}\n",
                       kOn_s, kFor_s, kRamp_s, kNorth_m));
   if (HasFatalFailure()) return;
-  const std::size_t at = run.log.find("navemu: event: spoofing");
-  ASSERT_NE(at, std::string::npos) << run.log;
-  int week = 0;
-  double tow_s = 0.0;
-  ASSERT_EQ(std::sscanf(run.log.c_str() + run.log.find('(', at), "(%d:%lf)", &week, &tow_s), 2) << run.log;
-  const GpsTime on = from_week_tow(week, tow_s);
+  const std::optional<GpsTime> start = announced_event_start(run.log, "spoofing");
+  ASSERT_TRUE(start) << run.log;
+  const GpsTime on = *start;
   const EventWindow w{0.0, kFor_s, kRamp_s};
   constexpr double kMetresPerDegLat = 110'852.0;  // at 32.3 deg N (WGS 84 meridian arc)
   std::optional<double> lat0_deg;
