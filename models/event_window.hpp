@@ -8,9 +8,7 @@
 
 namespace navemu {
 
-// A scheduled event's level at t: 0 before start, rising linearly over ramp_s to 1, 1 until
-// ramp_s before the end, falling linearly to 0 at start_s + duration_s (a trapezoid; ramp 0:
-// a step).
+// When an event acts: from start_s (or its GPS time `at`) for duration_s, ramping in and out.
 struct EventWindow {
   EventWindow() = default;
   EventWindow(double start, double duration, double ramp = 0.0) : start_s(start), duration_s(duration), ramp_s(ramp) {}
@@ -38,6 +36,9 @@ inline void resolve_start(EventWindow& w, GpsTime origin) {
   w.at.reset();
 }
 
+// A scheduled event's level at t: 0 before start, rising linearly over ramp_s to 1, 1 until
+// ramp_s before the end, falling linearly to 0 at start_s + duration_s (a trapezoid; ramp 0:
+// a step).
 inline double event_level(const EventWindow& w, double t_s) {
   const double in = t_s - w.start_s, out = w.start_s + w.duration_s - t_s;
   if (in < 0.0 || out <= 0.0) return 0.0;
