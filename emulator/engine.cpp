@@ -11,7 +11,6 @@
 #include <csignal>
 #include <cstring>
 #include <memory>
-#include <numbers>
 #include <ostream>
 #include <stdexcept>
 #include <vector>
@@ -116,7 +115,7 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
       const std::string sensor = fmt::format("{} {}", gyro ? "gyroscope" : "accelerometer", kAxes[f.axis + 1]);
       switch (f.kind) {
         case ImuFaultKind::kBias:
-          print(f.window, gyro ? fmt::format("IMU bias step, {}, {:.6g} deg/s", sensor, f.value * 180.0 / std::numbers::pi)
+          print(f.window, gyro ? fmt::format("IMU bias step, {}, {:.6g} deg/s", sensor, f.value * kRadToDeg)
                                : fmt::format("IMU bias step, {}, {:.6g} m/s^2", sensor, f.value));
           break;
         case ImuFaultKind::kScale:

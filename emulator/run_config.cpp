@@ -4,7 +4,6 @@
 #include <sched.h>
 
 #include <algorithm>
-#include <numbers>
 
 #include "emulator/imu_profile.hpp"
 #include "emulator/ubx_outputs.hpp"
@@ -386,7 +385,7 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
   const bool gyro = f.sensor == ImuSensor::kGyro;
   switch (f.kind) {
     case ImuFaultKind::kBias:
-      f.value = gyro ? required(m, "bias_dps", "the gyroscope's bias step, deg/s") * std::numbers::pi / 180.0
+      f.value = gyro ? required(m, "bias_dps", "the gyroscope's bias step, deg/s") * kDegToRad
                      : required(m, "bias_mps2", "the accelerometer's bias step, m/s^2");
       break;
     case ImuFaultKind::kScale:

@@ -188,7 +188,7 @@ struct Value {
 // A fixed list of values, of equal types or not: the rows of a description, block or group,
 // and the table of descriptions. An aggregate with one base per value instead of a std::tuple,
 // whose constructors and recursive bases cost each translation unit that includes the hundred
-// descriptions of ubx_messages.hpp about 15 s of compile time and 1 GB.
+// descriptions of ubx_messages.hpp about 24 s of compile time and 1.7 GB (g++ 12).
 template <std::size_t I, class T>
 struct Slot {
   T value;
