@@ -127,8 +127,31 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
         case ImuFaultKind::kStuck:
           print(f.window, fmt::format("IMU stuck output, {}", sensor));
           break;
+        case ImuFaultKind::kSaturation:
+          print(f.window, gyro ? fmt::format("IMU saturation, {}, range {:.6g} deg/s", sensor, f.value * kRadToDeg)
+                               : fmt::format("IMU saturation, {}, range {:.6g} m/s^2", sensor, f.value));
+          break;
+        case ImuFaultKind::kVibration: {
+          std::string what = fmt::format("IMU vibration, {}", sensor);
+          if (f.vibration.frequency_hz > 0.0)
+            what += gyro ? fmt::format(", {:.6g} deg/s at {} Hz", f.value * kRadToDeg, f.vibration.frequency_hz)
+                         : fmt::format(", {:.6g} m/s^2 at {} Hz", f.value, f.vibration.frequency_hz);
+          if (f.vibration.psd > 0.0)
+            what += fmt::format(", random {:.6g} {} rms over {} to {} Hz",
+                                std::sqrt(f.vibration.psd * (f.vibration.band_hi_hz - f.vibration.band_lo_hz)) *
+                                    (gyro ? kRadToDeg : 1.0),
+                                gyro ? "deg/s" : "m/s^2", f.vibration.band_lo_hz, f.vibration.band_hi_hz);
+          print(f.window, what);
+          break;
+        }
+        case ImuFaultKind::kTemperature:
+          print(f.window, fmt::format("IMU temperature change, {:+} degC", f.value));
+          break;
         case ImuFaultKind::kDrop:
           print(f.window, fmt::format("IMU samples dropped, probability {}", f.value));
+          break;
+        case ImuFaultKind::kDuplicate:
+          print(f.window, fmt::format("IMU samples sent twice, probability {}", f.value));
           break;
       }
     }
@@ -145,8 +168,19 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
                                 o.below_el_deg));
   for (const AntennaEvent& a : ev.antenna)
     print(a.window, a.fault == AntennaFault::kOpen ? "antenna open" : "antenna short");
-  for (const SatelliteFaultEvent& f : ev.satellites)
-    print(f.window, fmt::format("satellite fault, {} clock error {} m", f.sat.rinex(), f.clock_error_m));
+  for (const SatelliteFaultEvent& f : ev.satellites) {
+    std::string what = fmt::format("satellite fault, {}", f.sat.rinex());
+    if (f.clock_error_m != 0.0) what += fmt::format(" clock error {} m", f.clock_error_m);
+    if (!f.orbit_error_rac_m.isZero())
+      what += fmt::format(" orbit error {} m radial, {} m along-track, {} m cross-track", f.orbit_error_rac_m.x(),
+                          f.orbit_error_rac_m.y(), f.orbit_error_rac_m.z());
+    if (f.unhealthy) what += " flagged unhealthy";
+    print(f.window, what);
+  }
+  for (const IonosphereEvent& i : ev.ionosphere)
+    print(i.window, fmt::format("ionospheric storm, delay x{}", i.scale));
+  for (const MultipathEvent& m : ev.multipath)
+    print(m.window, fmt::format("multipath x{}", m.scale));
   for (const SpoofingEvent& s : ev.spoofing)
     print(s.window, fmt::format("spoofing, pull to {} m east, {} m north, {} m up, {} dB over the true signals",
                                 s.offset_enu_m.x(), s.offset_enu_m.y(), s.offset_enu_m.z(), s.power_advantage_db));

@@ -47,7 +47,8 @@ std::int64_t realtime_ns();
 
 struct EngineSummary {
   std::int64_t gnss_epochs = 0, gnss_fixes = 0, gnss_skipped = 0, gnss_late = 0;
-  std::int64_t imu_samples = 0, imu_flagged = 0, imu_skipped = 0, imu_dropped = 0;  // dropped: by a fault
+  std::int64_t imu_samples = 0, imu_flagged = 0, imu_skipped = 0;
+  std::int64_t imu_dropped = 0, imu_duplicated = 0;  // by a fault
   std::uint64_t output_chunks_dropped = 0;
   // Summed over the GNSS ports (transport::PortCounters): bytes the clients sent (commands, or
   // whatever a client floods in), and unread output discarded as stale (a lower bound, pty).

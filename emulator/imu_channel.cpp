@@ -68,6 +68,7 @@ ImuChannel::ImuChannel(const ImuParams& params, std::uint64_t seed, const IdealI
                        bool offline)
     : pipe_(params, seed, GpsTime{0}, initial),
       drop_rng_(seed, stream_id("imu.drop")),
+      duplicate_rng_(seed, stream_id("imu.duplicate")),
       can_(std::move(can)),
       recorders_(std::move(recorders)),
       offline_(offline),
@@ -104,7 +105,7 @@ bool ImuChannel::run_event(EventContext& ctx) {
     // One per output period, so that a sample skipped after a stall leaves a gap in the
     // sequence, as a frame lost on the bus does (protocols/can_frames.hpp; wraps).
     const auto sequence = static_cast<std::uint16_t>(j_ - j0_);
-    if (dropped_by_fault(t_meas)) {  // measured, then lost: a gap in the sequence
+    if (fault_hits(ImuFaultKind::kDrop, t_meas, drop_rng_)) {  // measured, then lost: a gap in the sequence
       ++dropped_;
       ++j_;
       return true;
@@ -114,6 +115,9 @@ bool ImuChannel::run_event(EventContext& ctx) {
       ++flagged_;
       interval_truth_lost_ = true;
     }
+    // A duplicate is the same sample again at once: the same frames, the same log line.
+    const int copies = fault_hits(ImuFaultKind::kDuplicate, t_meas, duplicate_rng_) ? 2 : 1;
+    duplicated_ += copies - 1;
     if (can_) {
       can::ImuSample cs;
       cs.gps_time_ns = t_meas.ns;
@@ -127,23 +131,24 @@ bool ImuChannel::run_event(EventContext& ctx) {
       cs.gyro_saturated = sample_.gyro_saturated;
       cs.accel_saturated = sample_.accel_saturated;
       // Live frames are stamped when they leave; offline ones at their scheduled time.
-      can_->send(cs, offline_ ? unix_ns_from_gps(sample_.t) : realtime_ns());
+      for (int c = 0; c < copies; ++c) can_->send(cs, offline_ ? unix_ns_from_gps(sample_.t) : realtime_ns());
     }
     const SampleRecord record{sample_, seconds_between(sample_.t, start_), valid, t_meas, sequence};
-    for (auto& r : recorders_) r->record(record);
+    for (int c = 0; c < copies; ++c)
+      for (auto& r : recorders_) r->record(record);
   }
   ++j_;
   return true;
 }
 
-// Whether the kDrop faults lose the sample measured at t: independently per fault, each with
-// its probability x level; a draw only while one is active, so runs without agree.
-bool ImuChannel::dropped_by_fault(GpsTime t) {
-  double kept = 1.0;
+// Whether the faults of `kind` (kDrop, kDuplicate) hit the sample measured at t: independently
+// per fault, each with its probability x level; a draw from `rng` only while one is active, so
+// runs without agree.
+bool ImuChannel::fault_hits(ImuFaultKind kind, GpsTime t, RandomStream& rng) const {
+  double missed = 1.0;
   for (const ImuFault& f : faults_)
-    if (f.kind == ImuFaultKind::kDrop)
-      kept *= 1.0 - std::min(1.0, f.value * event_level(f.window, seconds_between(t, start_)));
-  return kept < 1.0 && drop_rng_.uniform() >= kept;
+    if (f.kind == kind) missed *= 1.0 - std::min(1.0, f.value * event_level(f.window, seconds_between(t, start_)));
+  return missed < 1.0 && rng.uniform() >= missed;
 }
 
 void ImuChannel::service() {
@@ -173,6 +178,7 @@ void ImuChannel::finish(EngineSummary& sum) {
   sum.imu_flagged = flagged_;
   sum.imu_skipped = skipped_;
   sum.imu_dropped = dropped_;
+  sum.imu_duplicated = duplicated_;
   if (can_) {
     const CanOutputTotals t = can_->totals();
     sum.can_frames_written = t.frames_written;

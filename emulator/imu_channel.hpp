@@ -79,11 +79,12 @@ class ImuChannel final : public SensorChannel {
 
  private:
   static constexpr std::int64_t kImuCatchUp_ns = 500'000'000;  // later samples are skipped
-  bool dropped_by_fault(GpsTime t);
+  bool fault_hits(ImuFaultKind kind, GpsTime t, RandomStream& rng) const;
 
   ImuPipeline pipe_;
   std::vector<ImuFault> faults_;
-  RandomStream drop_rng_;  // "imu.drop": which samples a kDrop fault loses
+  RandomStream drop_rng_;       // "imu.drop": which samples a kDrop fault loses
+  RandomStream duplicate_rng_;  // "imu.duplicate": which a kDuplicate fault sends twice
   std::unique_ptr<ImuCanOutputs> can_;
   std::vector<std::unique_ptr<SampleRecorder>> recorders_;
   GpsTime start_;
@@ -92,7 +93,7 @@ class ImuChannel final : public SensorChannel {
   std::int64_t j_ = 0, j0_ = 0;  // the next output sample's index; the first one's (sequence 0)
   ImuSample sample_;
   bool interval_truth_lost_ = false;
-  std::int64_t samples_ = 0, flagged_ = 0, skipped_ = 0, dropped_ = 0;
+  std::int64_t samples_ = 0, flagged_ = 0, skipped_ = 0, dropped_ = 0, duplicated_ = 0;
 };
 
 }  // namespace navemu

@@ -24,7 +24,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;            // rad per degree
 constexpr double kDegPerHour = kDeg / 3600.0;   // rad/s per deg/h
-constexpr double kStandardGravity = 9.80665;    // m/s^2 per g (CGPM 1901)
+constexpr double kStandardGravity = kStandardGravity_mps2;  // m/s^2 per g
 constexpr double kRootHour = 60.0;              // sqrt(s) per sqrt(h)
 
 // One accepted unit suffix of a key and the factor to SI (m/s^2, rad/s, s, Hz, rad).

@@ -47,6 +47,14 @@ RunConfig load(const RunOptions& opt) {
   return cfg;
 }
 
+// The IMU samples the `events:` faults lost or sent twice, for the closing line.
+std::string imu_fault_counts(const EngineSummary& s) {
+  std::string out;
+  if (s.imu_dropped) out += fmt::format(", {} dropped by a fault", s.imu_dropped);
+  if (s.imu_duplicated) out += fmt::format(", {} sent twice by a fault", s.imu_duplicated);
+  return out;
+}
+
 }  // namespace
 
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
@@ -147,8 +155,7 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
                s.scenario_s, s.wall_s, s.wall_s > 0 ? s.scenario_s / s.wall_s : 0.0, s.gnss_epochs,
                s.gnss_fixes, s.imu_samples,
                s.imu_flagged ? fmt::format(" ({} flagged: no truth)", s.imu_flagged) : "",
-               s.imu_dropped ? fmt::format(", {} dropped by a fault", s.imu_dropped) : "",
-               opt.out_dir);
+               imu_fault_counts(s), opt.out_dir);
   } else {
     const TruthCounters truth = s.truth.value_or(TruthCounters{});
     fmt::memory_buffer reasons;
@@ -159,7 +166,7 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
                "flushed in {} flushes, {} bytes from clients, {} CAN frames ({} dropped, {} failed, "
                "{} bus errors){}, truth {} accepted / {} rejected / {} lost unread{}\n",
                s.wall_s, s.gnss_epochs, s.gnss_fixes, s.gnss_late, s.gnss_skipped, s.imu_samples,
-               s.imu_skipped, s.imu_dropped ? fmt::format(", {} dropped by a fault", s.imu_dropped) : "",
+               s.imu_skipped, imu_fault_counts(s),
                s.output_chunks_dropped, s.stale_bytes_flushed, s.stale_flushes,
                s.client_bytes_read, s.can_frames_written, s.can_frames_dropped, s.can_frames_failed,
                s.can_bus_errors,

@@ -4,6 +4,8 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <array>
+#include <string_view>
 
 #include "emulator/imu_profile.hpp"
 #include "emulator/ubx_outputs.hpp"
@@ -370,12 +372,21 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
                                                       {"scale", ImuFaultKind::kScale},
                                                       {"noise", ImuFaultKind::kNoise},
                                                       {"stuck", ImuFaultKind::kStuck},
-                                                      {"drop", ImuFaultKind::kDrop}});
-  if (!kind) m.fail("fault", "missing: bias, scale, noise, stuck or drop");
+                                                      {"saturation", ImuFaultKind::kSaturation},
+                                                      {"vibration", ImuFaultKind::kVibration},
+                                                      {"temperature", ImuFaultKind::kTemperature},
+                                                      {"drop", ImuFaultKind::kDrop},
+                                                      {"duplicate", ImuFaultKind::kDuplicate}});
+  if (!kind)
+    m.fail("fault", "missing: bias, scale, noise, stuck, saturation, vibration, temperature, drop or duplicate");
   f.kind = *kind;
-  if (f.kind == ImuFaultKind::kDrop) {
+  if (channel_fault(f.kind)) {  // whole samples: no sensor or axis
     f.value = m.positive("probability").value_or(1.0);
-    if (f.value > 1.0) m.fail("probability", "must be at most 1 (each sample's chance to be lost)");
+    if (f.value > 1.0) m.fail("probability", "must be at most 1 (each sample's chance to be hit)");
+    return f;
+  }
+  if (f.kind == ImuFaultKind::kTemperature) {  // the part's temperature: both triads
+    f.value = required(m, "temperature_c", "the temperature change at full level, degC");
     return f;
   }
   const auto sensor = choice<ImuSensor>(m, "sensor", {{"gyro", ImuSensor::kGyro}, {"accel", ImuSensor::kAccel}});
@@ -383,10 +394,13 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
   f.sensor = *sensor;
   f.axis = choice<int>(m, "axis", {{"x", 0}, {"y", 1}, {"z", 2}, {"all", -1}}).value_or(-1);
   const bool gyro = f.sensor == ImuSensor::kGyro;
+  // A value in the sensor's configuration unit (deg/s-based for the gyroscope, m/s^2 for the
+  // accelerometer), to the model's (rad/s, m/s^2).
+  const auto in_unit = [&](double v) { return gyro ? v * kDegToRad : v; };
   switch (f.kind) {
     case ImuFaultKind::kBias:
-      f.value = gyro ? required(m, "bias_dps", "the gyroscope's bias step, deg/s") * kDegToRad
-                     : required(m, "bias_mps2", "the accelerometer's bias step, m/s^2");
+      f.value = in_unit(gyro ? required(m, "bias_dps", "the gyroscope's bias step, deg/s")
+                             : required(m, "bias_mps2", "the accelerometer's bias step, m/s^2"));
       break;
     case ImuFaultKind::kScale:
       f.value = required(m, "scale_ppm", "the scale-factor error, ppm");
@@ -396,6 +410,37 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
       const std::optional<double> d = m.positive(key);
       if (!d) m.fail(key, "missing: the added white noise's density");
       f.value = *d;
+      break;
+    }
+    case ImuFaultKind::kSaturation: {
+      const char* key = gyro ? "range_dps" : "range_mps2";
+      const std::optional<double> r = m.positive(key);
+      if (!r) m.fail(key, "missing: the range the output clips at while the fault lasts");
+      f.value = in_unit(*r);
+      break;
+    }
+    case ImuFaultKind::kVibration: {
+      // A sinusoid (amplitude and frequency) and/or random vibration (a PSD over a band).
+      const char* amplitude_key = gyro ? "amplitude_dps" : "amplitude_mps2";
+      const char* psd_key = gyro ? "psd_dps2_per_hz" : "psd_g2_per_hz";
+      f.value = in_unit(m.positive(amplitude_key, true).value_or(0.0));
+      f.vibration.frequency_hz = m.positive("frequency_hz").value_or(0.0);
+      if ((f.value > 0.0) != (f.vibration.frequency_hz > 0.0))
+        m.fail(f.value > 0.0 ? "frequency_hz" : amplitude_key, "a sinusoid needs both its amplitude and frequency_hz");
+      const double psd = m.positive(psd_key, true).value_or(0.0);
+      f.vibration.psd = gyro ? psd * kDegToRad * kDegToRad : psd * kStandardGravity_mps2 * kStandardGravity_mps2;
+      const auto band = m.number_list("band_hz");
+      if ((psd > 0.0) != band.has_value())
+        m.fail(psd > 0.0 ? "band_hz" : psd_key, "random vibration needs both its PSD and band_hz [low, high]");
+      if (band) {
+        if (band->size() != 2 || !((*band)[0] > 0.0) || !((*band)[0] < (*band)[1]))
+          m.fail("band_hz", "must be [low, high], Hz, 0 < low < high");
+        f.vibration.band_lo_hz = (*band)[0];
+        f.vibration.band_hi_hz = (*band)[1];
+      }
+      if (f.value <= 0.0 && psd <= 0.0)
+        m.fail("type", fmt::format("a vibration needs {} and frequency_hz (a sinusoid), or {} and band_hz "
+                                   "(random vibration), or both", amplitude_key, psd_key));
       break;
     }
     default:
@@ -408,11 +453,12 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
 
 void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
   const std::optional<std::string> type = m.text("type");
-  constexpr const char* kTypes = "jamming, outage, antenna, satellite, spoofing, imu";
-  if (!type) m.fail("type", fmt::format("missing: the event's type ({})", kTypes));
-  if (*type != "jamming" && *type != "outage" && *type != "antenna" && *type != "satellite" && *type != "spoofing" &&
-      *type != "imu")
-    m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, kTypes));
+  constexpr std::array<std::string_view, 8> kTypes = {"jamming",  "outage",     "antenna",   "satellite",
+                                                       "spoofing", "ionosphere", "multipath", "imu"};
+  const std::string types = fmt::format("{}", fmt::join(kTypes, ", "));
+  if (!type) m.fail("type", fmt::format("missing: the event's type ({})", types));
+  if (std::find(kTypes.begin(), kTypes.end(), *type) == kTypes.end())
+    m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, types));
   if (*type == "imu" && !imu)
     m.fail("type", "IMU faults are scheduled in the configuration's events:, not sent live");
   EventWindow w;
@@ -435,7 +481,7 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
   };
   if (*type == "imu") {
     const std::optional<std::string> fault = m.text("fault");
-    if (fault != "stuck") ramp();
+    if (fault != "stuck" && fault != "saturation") ramp();
     imu->push_back(imu_fault(m, w));
   } else if (*type == "jamming") {
     ramp();
@@ -469,11 +515,30 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
     const auto fault = choice<AntennaFault>(m, "fault", {{"open", AntennaFault::kOpen}, {"short", AntennaFault::kShort}});
     if (!fault) m.fail("fault", "missing: open or short");
     out.antenna.push_back({w, *fault});
+  } else if (*type == "ionosphere" || *type == "multipath") {
+    ramp();
+    const std::optional<double> scale = m.positive("scale", true);
+    if (!scale) m.fail("scale", *type == "ionosphere" ? "missing: the true ionospheric delay's factor at full level"
+                                                      : "missing: the multipath errors' factor at full level");
+    if (*type == "ionosphere")
+      out.ionosphere.push_back({w, *scale});
+    else
+      out.multipath.push_back({w, *scale});
   } else {  // satellite
     ramp();
     const std::optional<std::int64_t> prn = m.integer("prn", 1, 32);
     if (!prn) m.fail("prn", "missing: the GPS satellite's PRN");
-    out.satellites.push_back({w, gps_sat(static_cast<int>(*prn)), required(m, "clock_error_m", "the range error at full level, m")});
+    SatelliteFaultEvent e{w, gps_sat(static_cast<int>(*prn))};
+    e.clock_error_m = m.number("clock_error_m").value_or(0.0);
+    if (const auto orbit = m.number_list("orbit_error_m")) {
+      if (orbit->size() != 3) m.fail("orbit_error_m", "must be [radial, along-track, cross-track], metres");
+      e.orbit_error_rac_m = Vec3((*orbit)[0], (*orbit)[1], (*orbit)[2]);
+    }
+    e.unhealthy = m.boolean("unhealthy").value_or(false);
+    if (e.clock_error_m == 0.0 && e.orbit_error_rac_m.isZero() && !e.unhealthy)
+      m.fail("type", "a satellite fault needs clock_error_m (m), orbit_error_m ([radial, along, cross], m) or "
+                     "unhealthy: true");
+    out.satellites.push_back(e);
   }
   m.reject_unknown_keys();
 }

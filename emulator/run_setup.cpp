@@ -224,6 +224,14 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
   if (plan.imu) {
     auto imu = std::make_unique<ImuChannel>(plan.imu->params, cfg.seed, plan.imu->initial, std::move(outputs.can),
                                             std::move(outputs.sample_recorders), !opt.realtime);
+    for (const ImuFault& f : cfg.imu_faults)
+      if (f.kind == ImuFaultKind::kVibration && f.vibration.psd > 0.0 &&
+          f.vibration.band_hi_hz >= plan.imu->params.internal_rate_hz / 2.0)
+        throw InputError(cfg.file.string(), 0, "band_hz",
+                         fmt::format("a random vibration up to {} Hz: the IMU profile {} samples at {} Hz, so the "
+                                     "band must end below {} Hz",
+                                     f.vibration.band_hi_hz, plan.imu->params.name, plan.imu->params.internal_rate_hz,
+                                     plan.imu->params.internal_rate_hz / 2.0));
     imu->set_faults(cfg.imu_faults);
     channels.push_back(std::move(imu));
   }

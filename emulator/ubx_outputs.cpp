@@ -318,6 +318,7 @@ void emit_nav_svinfo(const EpochView& e, std::vector<std::uint8_t>& out) {
     c.chn = chn++;
     c.svid = static_cast<std::uint8_t>(s.sat.ubx_legacy_sv_id().value_or(0));
     c.flags = static_cast<std::uint8_t>((s.used ? NavSvinfoChannel::kSvUsed : 0) |
+                                        (s.unhealthy ? NavSvinfoChannel::kUnhealthy : 0) |
                                         NavSvinfoChannel::kOrbitAvail | NavSvinfoChannel::kOrbitEph);
     c.quality = 7;  // code and carrier locked, time synchronised
     c.cno_dbhz = clamp_cast<std::uint8_t>(s.cn0_dbhz);
@@ -329,6 +330,8 @@ void emit_nav_svinfo(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
+// NAV-SAT (interface description, UBX-NAV-SAT flags): health (bits 4..5: 1 healthy, 2 unhealthy) as the
+// broadcast data say; an unhealthy satellite is tracked and not used.
 void emit_nav_sat(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavSat& m = reset_keeping_storage(e.lists.sat, &NavSat::svs);
   m.i_tow_ms = e.i_tow;
@@ -340,7 +343,7 @@ void emit_nav_sat(const EpochView& e, std::vector<std::uint8_t>& out) {
     v.elev_deg = clamp_cast<std::int8_t>(s.el_deg);
     v.azim_deg = clamp_cast<std::int16_t>(s.az_deg);
     v.pr_res_dm = clamp_cast<std::int16_t>(s.residual_m * 10.0);
-    v.flags = 7u | (s.used ? NavSatSv::kSvUsed : 0u) | (1u << NavSatSv::kHealthShift) |
+    v.flags = 7u | (s.used ? NavSatSv::kSvUsed : 0u) | ((s.unhealthy ? 2u : 1u) << NavSatSv::kHealthShift) |
               (1u << NavSatSv::kOrbitSourceShift) | NavSatSv::kEphAvail;
     m.svs.push_back(v);
   }
@@ -632,7 +635,7 @@ void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
       g.sig_id = static_cast<std::uint8_t>(*sig);
       g.cno_dbhz = clamp_cast<std::uint8_t>(s.signals[b]->cn0_dbhz);
       g.quality_ind = 7;  // code and carrier locked, as NAV-SAT
-      unsigned flags = 1;  // healthy
+      unsigned flags = s.unhealthy ? 2 : 1;  // health: 1 healthy, 2 unhealthy
       if (used) {
         g.pr_res_dm = clamp_cast<std::int16_t>(residual_m * 10.0);
         flags |= NavSigSignal::kPrUsed | NavSigSignal::kDoUsed;
@@ -774,7 +777,7 @@ void emit_nav_orb(const EpochView& e, std::vector<std::uint8_t>& out) {
     const auto meas = std::find_if(e.meas.sats.begin(), e.meas.sats.end(),
                                    [&](const SatMeasurement& s) { return s.sat == sat; });
     const GpsEphemeris* eph = meas != e.meas.sats.end() ? meas->eph : nullptr;
-    v.sv_flag = static_cast<std::uint8_t>(eph ? ((eph->health == 0 ? 1 : 2) | 3 << 2) : 0);
+    v.sv_flag = static_cast<std::uint8_t>(eph ? ((eph->health == 0 && !meas->unhealthy ? 1 : 2) | 3 << 2) : 0);
     if (eph) {
       const double left_min =
           seconds_between(eph->toe.plus_s(eph->fit_interval_h * 1800.0), e.fix.t) / 60.0;

@@ -13,6 +13,7 @@ inline constexpr double kSpeedOfLight_mps = 299'792'458.0;
 inline constexpr double kPi = 3.1415926535898;  // the value IS-GPS-200 prescribes for orbits
 inline constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 inline constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+inline constexpr double kStandardGravity_mps2 = 9.80665;  // per g (CGPM 1901, 3rd meeting)
 
 struct Geodetic {
   double lat_deg = 0.0;

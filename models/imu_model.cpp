@@ -11,6 +11,7 @@ namespace {
 constexpr double kBoltzmann = 1.380649e-23;  // J/K (SI 2019, exact)
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadPerDeg = kPi / 180.0;
+constexpr double kTwoPi = 2.0 * kPi;
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("ImuParams: " + what);
@@ -239,7 +240,9 @@ struct ImuModel::State {
           rw{stream(seed, sensor, "rw", 0), stream(seed, sensor, "rw", 1),
              stream(seed, sensor, "rw", 2)},
           fault_noise{stream(seed, sensor, "fault_noise", 0), stream(seed, sensor, "fault_noise", 1),
-                      stream(seed, sensor, "fault_noise", 2)} {
+                      stream(seed, sensor, "fault_noise", 2)},
+          vibration{stream(seed, sensor, "vibration", 0), stream(seed, sensor, "vibration", 1),
+                    stream(seed, sensor, "vibration", 2)} {
       const double dt = 1.0 / p.internal_rate_hz;
       // Bias instability: Gauss-Markov of 1-sigma kGmSigmaPerBiasInstability * B (header), exact
       // discretisation as models/random.hpp GaussMarkov, with phi precomputed. The three noise
@@ -311,14 +314,17 @@ struct ImuModel::State {
       }
     }
 
-    // Resolution (round to the nearest LSB) then saturation at +-full scale.
+    // Resolution (round to the nearest LSB) then saturation at +-full scale (or a saturation
+    // fault's narrower range).
     bool finish(Vec3& y) const {
       bool sat = false;
       for (int i = 0; i < 3; ++i) {
         double x = y[i];
         if (resolution > 0.0) x = resolution * std::nearbyint(x / resolution);
-        if (full_scale > 0.0 && std::abs(x) > full_scale) {
-          x = std::copysign(full_scale, x);
+        double range = full_scale;
+        if (fault_range[i] > 0.0 && (range <= 0.0 || fault_range[i] < range)) range = fault_range[i];
+        if (range > 0.0 && std::abs(x) > range) {
+          x = std::copysign(range, x);
           sat = true;
         }
         y[i] = x;
@@ -326,10 +332,12 @@ struct ImuModel::State {
       return sat;
     }
 
-    std::array<RandomStream, 3> white, gm, rw, fault_noise;
-    // The faults' terms at the current step (ImuModel::apply_faults); stuck axes hold `held`.
+    std::array<RandomStream, 3> white, gm, rw, fault_noise, vibration;
+    // The faults' terms at the current step (ImuModel::apply_faults); stuck axes hold `held`;
+    // fault_range: a saturation fault's range, 0 none.
     bool faulty = false;
     Vec3 fault_scale = Vec3::Zero(), fault_bias = Vec3::Zero(), fault_sigma = Vec3::Zero();
+    Vec3 fault_range = Vec3::Zero();
     std::array<bool, 3> stuck{};
     Vec3 held = Vec3::Zero();  // the last output sample
     double n_white[3][2] = {}, n_gm[3][2] = {}, n_rw[3][2] = {};
@@ -362,12 +370,63 @@ struct ImuModel::State {
   std::int64_t n = 0;  // internal samples so far
 };
 
+// The random vibration's shaping filter: a band-pass of a 4th-order Butterworth high-pass at
+// band_lo and a 4th-order Butterworth low-pass at band_hi, each two biquads of R. Bristow-Johnson's
+// "Audio EQ Cookbook" (HPF/LPF, bilinear transform warped at the corner) with the Butterworth
+// section Qs 1 / (2 cos((2k - 1) pi / 8)), k = 1, 2. It is fed with white noise of 1-sigma
+// `sigma` chosen so that the output's variance is exactly psd (hi - lo): Var = sigma^2 sum(h_n^2),
+// the sum of the squared impulse response, summed once here. The passband's PSD is then psd less
+// the few per cent the skirts take.
+struct ImuModel::Vibration {
+  struct Biquad {  // normalised (a0 = 1), transposed direct form II
+    double b0 = 0.0, b1 = 0.0, b2 = 0.0, a1 = 0.0, a2 = 0.0;
+    double step(double x, double& z1, double& z2) const {
+      const double y = b0 * x + z1;
+      z1 = b1 * x - a1 * y + z2;
+      z2 = b2 * x - a2 * y;
+      return y;
+    }
+  };
+  static Biquad section(bool high_pass, double f_hz, double q, double fs_hz) {
+    const double w0 = kTwoPi * f_hz / fs_hz, c = std::cos(w0), alpha = std::sin(w0) / (2.0 * q);
+    const double a0 = 1.0 + alpha, b = high_pass ? (1.0 + c) / 2.0 : (1.0 - c) / 2.0;
+    return {b / a0, (high_pass ? -2.0 : 2.0) * b / a0, b / a0, -2.0 * c / a0, (1.0 - alpha) / a0};
+  }
+  static constexpr std::size_t kSections = 4;
+  using Memory = std::array<std::array<double, 2>, kSections>;  // z1, z2 per section
+
+  Vibration() = default;
+  Vibration(const ImuVibration& v, double fs_hz) {
+    if (v.psd <= 0.0) return;
+    const double q[2] = {1.0 / (2.0 * std::cos(kTwoPi / 16.0)), 1.0 / (2.0 * std::cos(3.0 * kTwoPi / 16.0))};
+    for (std::size_t k = 0; k < 2; ++k) {
+      sections[k] = section(true, v.band_lo_hz, q[k], fs_hz);
+      sections[k + 2] = section(false, v.band_hi_hz, q[k], fs_hz);
+    }
+    Memory z{};
+    double energy = 0.0;
+    for (int n = 0; n < 100'000'000; ++n) {
+      const double h = filter(n == 0 ? 1.0 : 0.0, z);
+      energy += h * h;
+      double left = 0.0;
+      for (const auto& m : z) left += m[0] * m[0] + m[1] * m[1];
+      if (n > 1000 && h * h + left < 1e-20 * energy) break;
+    }
+    sigma = std::sqrt(v.psd * (v.band_hi_hz - v.band_lo_hz) / energy);
+  }
+  double filter(double x, Memory& z) const {
+    for (std::size_t k = 0; k < kSections; ++k) x = sections[k].step(x, z[k][0], z[k][1]);
+    return x;
+  }
+  std::array<Biquad, kSections> sections{};
+  double sigma = 0.0;
+  std::array<Memory, 3> memory{};  // per axis
+};
+
 ImuModel::ImuModel(const ImuParams& p, std::uint64_t seed) : p_(p) {
   check_params(p_);
   state_ = std::make_unique<State>(p_, seed);
 }
-
-ImuModel::~ImuModel() = default;
 
 // One internal sample: (1 + s + s_T(T) + k2 x) (M x) + turn-on + null offset + b_GM + b_RW +
 // b_T(T) + white + g-sensitivity, through the output low-pass; every k-th sample is quantized,
@@ -375,6 +434,7 @@ ImuModel::~ImuModel() = default;
 bool ImuModel::step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuSample& out) {
   State& s = *state_;
   if (!faults_.empty()) apply_faults(t);
+  temperature_c += temperature_offset_c_;
   const double dT = temperature_c - p_.reference_temperature_c;
   Vec3 yf, yw;
   s.accel.sense(ideal.f_body_mps2, ideal.f_body_mps2, dT, yf);
@@ -409,32 +469,56 @@ bool ImuModel::step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuS
 }
 
 void ImuModel::set_faults(std::vector<ImuFault> faults, GpsTime origin) {
+  for (const ImuFault& f : faults)
+    if (f.kind == ImuFaultKind::kVibration && f.vibration.psd > 0.0)
+      require(f.vibration.band_lo_hz > 0.0 && f.vibration.band_lo_hz < f.vibration.band_hi_hz &&
+                  f.vibration.band_hi_hz < p_.internal_rate_hz / 2.0,
+              "a random vibration's band must lie between 0 and half the internal rate");
   faults_ = std::move(faults);
   fault_origin_ = origin;
   fault_sigma_per_density_ = internal_white_sigma(p_, 1.0);
+  vibration_.clear();
+  for (const ImuFault& f : faults_)
+    vibration_.push_back(f.kind == ImuFaultKind::kVibration ? Vibration(f.vibration, p_.internal_rate_hz) : Vibration());
+  temperature_offset_c_ = 0.0;
   for (State::Triad* tr : {&state_->accel, &state_->gyro}) {
     tr->faulty = false;
     tr->stuck = {};
+    tr->fault_range.setZero();
   }
 }
 
-// The faults' sum at t: bias steps and scale errors add, noise densities add in variance (each
-// at the internal rate as internal_white_sigma() sets the model's own white noise), and an axis
-// is stuck while any stuck fault on it is active.
+ImuModel::~ImuModel() = default;
+
+// The faults' sum at t: bias steps, scale errors, vibration and temperature offsets add, noise
+// densities add in variance (each at the internal rate as internal_white_sigma() sets the
+// model's own white noise), an axis is stuck while any stuck fault on it is active and clips at
+// the narrowest active saturation range.
 void ImuModel::apply_faults(GpsTime t) {
   const double t_s = seconds_between(t, fault_origin_);
   for (State::Triad* tr : {&state_->accel, &state_->gyro}) {
     tr->fault_scale.setZero();
     tr->fault_bias.setZero();
     tr->fault_sigma.setZero();
+    tr->fault_range.setZero();
     tr->stuck = {};
   }
-  for (const ImuFault& f : faults_) {
+  temperature_offset_c_ = 0.0;
+  for (std::size_t k = 0; k < faults_.size(); ++k) {
+    const ImuFault& f = faults_[k];
     const double level = event_level(f.window, t_s);
-    if (level <= 0.0 || f.kind == ImuFaultKind::kDrop) continue;
+    if (level <= 0.0 || channel_fault(f.kind)) continue;
+    if (f.kind == ImuFaultKind::kTemperature) {
+      temperature_offset_c_ += f.value * level;
+      continue;
+    }
     State::Triad& tr = f.sensor == ImuSensor::kGyro ? state_->gyro : state_->accel;
+    const double sine = f.kind == ImuFaultKind::kVibration && f.vibration.frequency_hz > 0.0
+                            ? f.value * std::sin(kTwoPi * f.vibration.frequency_hz * (t_s - f.window.start_s))
+                            : 0.0;
     for (int i = 0; i < 3; ++i) {
       if (f.axis >= 0 && f.axis != i) continue;
+      const auto ui = static_cast<std::size_t>(i);
       switch (f.kind) {
         case ImuFaultKind::kBias: tr.fault_bias[i] += f.value * level; break;
         case ImuFaultKind::kScale: tr.fault_scale[i] += f.value * 1e-6 * level; break;
@@ -443,8 +527,18 @@ void ImuModel::apply_faults(GpsTime t) {
           tr.fault_sigma[i] = std::hypot(tr.fault_sigma[i], sigma);
           break;
         }
-        case ImuFaultKind::kStuck: tr.stuck[static_cast<std::size_t>(i)] = true; break;
-        case ImuFaultKind::kDrop: break;
+        case ImuFaultKind::kStuck: tr.stuck[ui] = true; break;
+        case ImuFaultKind::kSaturation:
+          if (tr.fault_range[i] <= 0.0 || f.value < tr.fault_range[i]) tr.fault_range[i] = f.value;
+          break;
+        case ImuFaultKind::kVibration: {
+          Vibration& v = vibration_[k];
+          double random = 0.0;
+          if (v.sigma > 0.0) random = v.filter(v.sigma * kNormal(tr.vibration[ui]), v.memory[ui]);
+          tr.fault_bias[i] += level * (sine + random);
+          break;
+        }
+        default: break;
       }
     }
   }

@@ -123,11 +123,27 @@ struct ImuSample {
 // each acts over its window, scaled by the window's level (models/event_window.hpp).
 enum class ImuSensor : std::uint8_t { kAccel, kGyro };
 enum class ImuFaultKind : std::uint8_t {
-  kBias,   // a bias step of `value` (m/s^2, rad/s) x level, ahead of the output filter
-  kScale,  // a scale-factor error of `value` ppm x level, ahead of the output filter
-  kNoise,  // added white noise of density `value` (unit/sqrt(Hz), as white_density) x level
-  kStuck,  // the output holds the last value before the fault while the level is > 0
-  kDrop,   // output samples lost, each with probability `value` x level (the IMU channel's)
+  kBias,         // a bias step of `value` (m/s^2, rad/s) x level, ahead of the output filter
+  kScale,        // a scale-factor error of `value` ppm x level, ahead of the output filter
+  kNoise,        // added white noise of density `value` (unit/sqrt(Hz), as white_density) x level
+  kStuck,        // the output holds the last value before the fault while the level is > 0
+  kSaturation,   // the output clips at +-`value` (unit) while the level is > 0: a range lost
+  kVibration,    // vibration x level: a sinusoid and/or band-limited noise (ImuVibration)
+  kTemperature,  // the sensor's temperature `value` degC x level off what it was (both triads):
+                 // a ramp drives the datasheet's temperature coefficients
+  kDrop,         // output samples lost, each with probability `value` x level (the IMU channel's)
+  kDuplicate,    // output samples sent twice, each with probability `value` x level (the channel's)
+};
+// Vibration felt by the sensor: a sinusoid of amplitude `value` (unit) at frequency_hz, plus
+// random vibration of one-sided power spectral density psd (unit^2/Hz) over [band_lo_hz,
+// band_hi_hz], of rms sqrt(psd (band_hi - band_lo)) as a vibration profile's grms
+// (MIL-STD-810H method 514.8 specifies random vibration by such an ASD), band-limited by an
+// 8th-order Butterworth band-pass. Both are sampled at the internal rate ahead of the output
+// filter, so vibration above the output Nyquist frequency aliases as in a real MEMS part.
+struct ImuVibration {
+  double frequency_hz = 0.0;  // the sinusoid's; 0: none
+  double psd = 0.0;           // unit^2/Hz; 0: none
+  double band_lo_hz = 0.0, band_hi_hz = 0.0;
 };
 struct ImuFault {
   EventWindow window;  // from the fault origin (ImuModel::set_faults)
@@ -135,7 +151,10 @@ struct ImuFault {
   ImuSensor sensor = ImuSensor::kGyro;
   int axis = -1;       // 0, 1, 2: the body frame's x, y, z; -1: all three
   double value = 0.0;
+  ImuVibration vibration{};  // kVibration only
 };
+// Whether a fault acts in the IMU channel (on whole samples) rather than in the sensor model.
+inline bool channel_fault(ImuFaultKind k) { return k == ImuFaultKind::kDrop || k == ImuFaultKind::kDuplicate; }
 
 // The sensor: advanced at its internal rate, emits at its output rate. One random stream per
 // error term and axis.
@@ -149,9 +168,10 @@ class ImuModel {
   // Feeds the ideal output valid at time t (called at the internal rate, increasing times);
   // returns true and fills `out` when an output sample is due.
   bool step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuSample& out);
-  // The faults from now on, their windows counted from `origin` (kDrop ones are ignored here).
-  // The added noise has its own random stream per sensor and axis ("imu.<sensor>.fault_noise"),
-  // so a run without faults draws exactly what it drew before.
+  // The faults from now on, their windows counted from `origin` (channel_fault ones are ignored
+  // here). Added noise and random vibration have their own random streams per sensor and axis
+  // ("imu.<sensor>.fault_noise", "imu.<sensor>.vibration"), so a run without faults draws
+  // exactly what it drew before.
   void set_faults(std::vector<ImuFault> faults, GpsTime origin);
   const ImuParams& params() const { return p_; }
 
@@ -161,8 +181,12 @@ class ImuModel {
   ImuParams p_;
   std::unique_ptr<State> state_;
   std::vector<ImuFault> faults_;
+  // Per fault, per axis: the random vibration's band-pass (ImuModel::apply_faults).
+  struct Vibration;
+  std::vector<Vibration> vibration_;
   GpsTime fault_origin_;
   double fault_sigma_per_density_ = 0.0;
+  double temperature_offset_c_ = 0.0;  // kTemperature faults now
 };
 
 }  // namespace navemu

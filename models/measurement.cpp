@@ -1,5 +1,7 @@
 #include "models/measurement.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -289,6 +291,10 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     out.spoofed = true;
     out.spoofing_indicated = out.spoofing_indicated || s.power_advantage_db >= kSpoofDetectPower_db;
   }
+  // Storms and multipath intensity: scale factors of the epoch.
+  double iono_scale = 1.0, multipath_scale = 1.0;
+  for (const IonosphereEvent& i : ev.ionosphere) iono_scale += (i.scale - 1.0) * event_level(i.window, t_event_s);
+  for (const MultipathEvent& m : ev.multipath) multipath_scale += (m.scale - 1.0) * event_level(m.window, t_event_s);
   const ReceiverPlace rx{p_rx + spoof_offset_m, v_rx + spoof_velocity_mps, R_enu};
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
   const TropoDelay tropo_zenith = tropo_zenith_delay(geo, meteo);
@@ -364,8 +370,8 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
       const double gradient_m =
           ipp.obliquity * (st.iono_gradient_north.value() * ipp.dlat_deg +
                            st.iono_gradient_east.value() * ipp.dlon_deg * std::cos(geo.lat_deg * kDegToRad));
-      m.iono_l1_m = std::max(
-          0.0, model_m * (1.0 + st.iono_common.value() + sp.iono_fraction.value()) + gradient_m);
+      m.iono_l1_m = iono_scale * std::max(0.0, model_m * (1.0 + st.iono_common.value() + sp.iono_fraction.value()) +
+                                                   gradient_m);
     }
     // Troposphere: Saastamoinen zenith delays from the meteorology, Niell mapping, plus the
     // wet delay's unmodelled variability.
@@ -385,16 +391,31 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
         m.sat_error_m = st.sat_errors.range_error_m(sat, t_s, g.sat.p_ecef_m, g.sat.v_ecef_mps, los);
       }
     }
-    // A satellite clock fault: on the range, not in the broadcast clock.
-    for (const SatelliteFaultEvent& f : ev.satellites)
-      if (f.sat == sat) m.sat_error_m += f.clock_error_m * event_level(f.window, t_event_s);
+    // A satellite fault: clock and orbit errors on the range, not in the broadcast record; the
+    // health flag in it. The orbit error in the satellite's radial / along-track / cross-track
+    // frame: radial along p, cross-track along p x v with v the inertial velocity
+    // (v_ecef + omega_e x p).
+    for (const SatelliteFaultEvent& f : ev.satellites) {
+      const double level = f.sat == sat ? event_level(f.window, t_event_s) : 0.0;
+      if (level <= 0.0) continue;
+      m.unhealthy = m.unhealthy || f.unhealthy;
+      m.sat_error_m += f.clock_error_m * level;
+      if (!f.orbit_error_rac_m.isZero()) {
+        const Vec3 radial = g.sat.p_ecef_m.normalized();
+        const Vec3 v_inertial_mps = g.sat.v_ecef_mps + Vec3(0.0, 0.0, kOmegaEarth_radps).cross(g.sat.p_ecef_m);
+        const Vec3 cross = g.sat.p_ecef_m.cross(v_inertial_mps).normalized();
+        const Vec3 error_ecef_m = f.orbit_error_rac_m.x() * radial + f.orbit_error_rac_m.y() * cross.cross(radial) +
+                                  f.orbit_error_rac_m.z() * cross;
+        m.sat_error_m += level * error_ecef_m.dot((g.sat.p_ecef_m - p_rx).normalized());
+      }
+    }
     // Multipath: the scene's composite-signal errors, or the statistical model in open sky.
     // The carrier error's rate of change is the Doppler error.
     double phase_mp_m = 0.0, doppler_mp_mps = 0.0;
     if (cfg_.environment) {
-      m.multipath_m = env.code_error_m;
+      m.multipath_m = multipath_scale * env.code_error_m;
       m.nlos = env.nlos;
-      phase_mp_m = env.phase_error_m;
+      phase_mp_m = multipath_scale * env.phase_error_m;
       auto [prev, fresh_phase] = st.scene_phase.try_emplace(sat, t_s, phase_mp_m);
       // A jump of half a wavelength or more (the dominant path changed) is a cycle slip, not
       // a Doppler: no rate across it.
@@ -404,7 +425,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
         doppler_mp_mps = step_m / (t_s - prev.first);
       prev = {t_s, phase_mp_m};
     } else if (on.multipath) {
-      m.multipath_m = cfg_.multipath_zenith_sigma_m / std::max(sin_el, 0.05) * sp.multipath.value();
+      m.multipath_m = multipath_scale * cfg_.multipath_zenith_sigma_m / std::max(sin_el, 0.05) * sp.multipath.value();
     }
 
     // Satellite clock as the broadcast record gives it (relativistic term included): what a

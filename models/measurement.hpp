@@ -72,12 +72,34 @@ struct AntennaEvent {
   EventWindow window;
   AntennaFault fault = AntennaFault::kOpen;
 };
-// A satellite clock fault the broadcast data do not show: the satellite's ranges (code and
-// carrier) grow by clock_error_m times the event's level, so a ramp is a clock drifting off.
+// A satellite fault. What the broadcast data do not show: a clock error (the satellite's
+// ranges, code and carrier, grow by clock_error_m times the event's level, so a ramp is a clock
+// drifting off) and an orbit error (the satellite orbits orbit_error_rac_m, radial, along-track
+// and cross-track, off its broadcast position: the ranges change by its projection on the line
+// of sight). And what they do show: the satellite flagged unhealthy (IS-GPS-200 20.3.3.3.1.4
+// SV health), so receivers track it and leave it out of the fix while the event's level is > 0.
 struct SatelliteFaultEvent {
   EventWindow window;
   SatId sat;
   double clock_error_m = 0.0;
+  Vec3 orbit_error_rac_m = Vec3::Zero();
+  bool unhealthy = false;
+};
+// An ionospheric storm: the true ionospheric delay of every signal scaled by 1 + (scale - 1) x
+// level while the broadcast model receivers correct with stays as it was, so single-frequency
+// fixes take the difference and dual-frequency ones remove it, as in the field (storm-time
+// total electron content reaches several times its quiet value: Mannucci et al. 2005,
+// Geophys. Res. Lett. 32, L12S02, the 2003 "Halloween" storms).
+struct IonosphereEvent {
+  EventWindow window;
+  double scale = 1.0;
+};
+// Multipath intensity: every code, carrier and Doppler multipath error (the scene's, or the
+// statistical model's in open sky) scaled by 1 + (scale - 1) x level: a rougher or more
+// reflective surrounding than the scenario's.
+struct MultipathEvent {
+  EventWindow window;
+  double scale = 1.0;
 };
 // A spoofer sending a coherent false signal set: every satellite's signal as it would arrive at
 // a false position offset_enu_m (east, north, up) from the antenna, times the event's level,
@@ -100,24 +122,39 @@ struct GnssEvents {
   std::vector<AntennaEvent> antenna;
   std::vector<SatelliteFaultEvent> satellites;
   std::vector<SpoofingEvent> spoofing;
+  std::vector<IonosphereEvent> ionosphere;
+  std::vector<MultipathEvent> multipath;
   std::size_t size() const {
-    return jamming.size() + outages.size() + antenna.size() + satellites.size() + spoofing.size();
+    return jamming.size() + outages.size() + antenna.size() + satellites.size() + spoofing.size() +
+           ionosphere.size() + multipath.size();
+  }
+  // fn(events) for each kind's list.
+  template <class Fn>
+  void for_each_list(Fn&& fn) {
+    fn(jamming);
+    fn(outages);
+    fn(antenna);
+    fn(satellites);
+    fn(spoofing);
+    fn(ionosphere);
+    fn(multipath);
   }
   // fn(EventWindow&) for every event's window.
   template <class Fn>
   void for_each_window(Fn&& fn) {
-    for (JammingEvent& e : jamming) fn(e.window);
-    for (OutageEvent& e : outages) fn(e.window);
-    for (AntennaEvent& e : antenna) fn(e.window);
-    for (SatelliteFaultEvent& e : satellites) fn(e.window);
-    for (SpoofingEvent& e : spoofing) fn(e.window);
+    for_each_list([&](auto& list) {
+      for (auto& e : list) fn(e.window);
+    });
   }
   void append(const GnssEvents& e) {
-    jamming.insert(jamming.end(), e.jamming.begin(), e.jamming.end());
-    outages.insert(outages.end(), e.outages.begin(), e.outages.end());
-    antenna.insert(antenna.end(), e.antenna.begin(), e.antenna.end());
-    satellites.insert(satellites.end(), e.satellites.begin(), e.satellites.end());
-    spoofing.insert(spoofing.end(), e.spoofing.begin(), e.spoofing.end());
+    const auto add = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+    add(jamming, e.jamming);
+    add(outages, e.outages);
+    add(antenna, e.antenna);
+    add(satellites, e.satellites);
+    add(spoofing, e.spoofing);
+    add(ionosphere, e.ionosphere);
+    add(multipath, e.multipath);
   }
 };
 
@@ -219,6 +256,7 @@ struct SatMeasurement {
   double sat_clock_m = 0.0;        // c (dt_sv - TGD) from the broadcast record
   double multipath_m = 0.0;
   bool nlos = false;               // tracked on reflections only (scene)
+  bool unhealthy = false;          // flagged so by its broadcast data (SatelliteFaultEvent)
   std::array<std::optional<SignalObs>, 3> signals;  // by Band (kBandSignals)
   // The pseudorange the position engine uses in the configured mode (L1 in standalone, the
   // iono-free combination in dual-frequency, the differentially corrected one in DGPS/RTK).

@@ -52,7 +52,8 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
 
   // The engine's input filters (F9P integration manual 3.1.7.2 "Navigation input filters"):
   // satellites below the elevation or C/N0 mask are not used, and a fix is attempted only with
-  // enough strong satellites.
+  // enough strong satellites. Satellites their broadcast data flag unhealthy are not used
+  // either (IS-GPS-200 20.3.3.3.1.4).
   const NavEngineSettings& eng = engine_;
   SolverOptions opt = gen_.solver_options();
   opt.initial_p_ecef_m = last_fix_ecef_m_;
@@ -67,7 +68,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   for (std::size_t i = 0; i < e.sats.size(); ++i) {
     const double cn0 = l1_cn0_dbhz(e.sats[i]);
     if (cn0 >= eng.cn0_threshold_dbhz) ++strong;
-    if (cn0 >= eng.min_cn0_dbhz) solver_input_[kept++] = solver_input_[i];
+    if (cn0 >= eng.min_cn0_dbhz && !e.sats[i].unhealthy) solver_input_[kept++] = solver_input_[i];
   }
   solver_input_.resize(kept);
   if (strong < eng.cn0_threshold_sats) solver_input_.clear();
@@ -90,6 +91,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
     s.az_deg = m.dir.az_rad * kRadToDeg;
     s.el_deg = m.dir.el_rad * kRadToDeg;
     s.cn0_dbhz = l1_cn0_dbhz(m);
+    s.unhealthy = m.unhealthy;
     for (const SatResidual& r : sol.sats)
       if (r.sat == m.sat && r.used && sol.fix != FixType::kNone) {
         s.used = true;

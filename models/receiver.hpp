@@ -51,6 +51,7 @@ struct ReceiverSatellite {
   SatId sat;
   double az_deg = 0.0, el_deg = 0.0, cn0_dbhz = 0.0;
   bool used = false;
+  bool unhealthy = false;   // flagged so by its broadcast data: tracked, not used
   double residual_m = 0.0;  // pseudorange residual of the fix (used satellites), else 0
 };
 

@@ -161,5 +161,151 @@ TEST(CanSlcan, PythonCanSeesImuFaultsComeAndGoOnTime) {
       << nav.diagnostics();
 }
 
+// The other IMU faults as python-can sees them, on a BMI160 (its datasheet temperature
+// coefficients; output at 100 Hz here): the accelerometer's z axis saturating at 5 m/s^2 (its
+// saturation flag set), a 2 Hz sinusoidal vibration of 20 deg/s on gyroscope x, the part
+// warming by 40 degC over a 1 s ramp (gyroscope bias 0.05 deg/s per degC: +2 deg/s), and every
+// sample sent twice for half a second; each from its scheduled time to its end within one
+// sample period (10 ms, plus the millisecond navemu prints), and python-can's frames decode to
+// what navemu logged.
+TEST(CanSlcan, PythonCanSeesSaturationVibrationTemperatureAndDuplicates) {
+  if (!fs::exists("/usr/lib/python3/dist-packages/can"))
+    GTEST_SKIP() << "python3-can is not installed (tools/install-deps)";
+  TempDir dir("slcan-faults-2");
+  std::string profile = slurp(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "imu" / "bmi160.yaml");
+  const std::size_t rate = profile.find("output_rate_hz: 200");
+  ASSERT_NE(rate, std::string::npos);
+  profile.replace(rate, 19, "output_rate_hz: 100");
+  std::ofstream(dir / "bmi160-100hz.yaml") << profile;
+  const fs::path link = dir / "imu";
+  NavemuRun nav(dir, "navemu",
+                fmt::format("truth: {{source: stationary}}\n"
+                            "gnss: {{enabled: false}}\n"
+                            "imu:\n  profile: '{}'\n  log: '{}'\n  outputs:\n"
+                            "    - {{type: slcan, link: '{}', layouts: [highres]}}\n"
+                            "events:\n"
+                            "  - {{type: imu, start_s: 3, duration_s: 1, fault: saturation, sensor: accel, axis: z, range_mps2: 5}}\n"
+                            "  - {{type: imu, start_s: 4.5, duration_s: 1.5, fault: vibration, sensor: gyro, axis: x, "
+                            "amplitude_dps: 20, frequency_hz: 2}}\n"
+                            "  - {{type: imu, start_s: 6.5, duration_s: 2.5, ramp_s: 1, fault: temperature, temperature_c: 40}}\n"
+                            "  - {{type: imu, start_s: 9.2, duration_s: 0.5, fault: duplicate}}\n",
+                            (dir / "bmi160-100hz.yaml").string(), (dir / "imu.log").string(), link.string()),
+                13);
+  std::vector<LoggedFrame> frames;
+  capture_with_python_can(dir, link, nav, "10", frames);
+  if (HasFatalFailure()) return;
+  const auto nav_status = nav.child().wait_exit(20.0);
+  ASSERT_TRUE(nav_status && WIFEXITED(*nav_status) && WEXITSTATUS(*nav_status) == 0) << nav.diagnostics();
+  const std::string err = nav.err();
+  const auto saturation = announced_event_start(err, "IMU saturation, accelerometer z, range 5 m/s\\^2");
+  const auto vibration = announced_event_start(err, "IMU vibration, gyroscope x, 20 deg/s at 2 Hz");
+  const auto warm = announced_event_start(err, "IMU temperature change");
+  const auto twice = announced_event_start(err, "IMU samples sent twice, probability 1");
+  ASSERT_TRUE(saturation && vibration && warm && twice) << nav.diagnostics();
+  const CanCheck c = check_frames_against_log(frames, read_imu_rows(dir / "imu.log"));
+  EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
+
+  // The samples python-can received, decoded: five classic frames from TIME to STATUS.
+  std::vector<can::highres::Decoded> got;
+  std::vector<can::CanFrame> group;
+  const can::highres::Config hr;
+  for (const LoggedFrame& f : frames) {
+    const std::uint32_t offset = f.id - hr.base_id;
+    if (offset == can::highres::kOffsetTime) group.clear();
+    can::CanFrame cf;
+    cf.id = f.id;
+    cf.extended = f.extended;
+    cf.len = static_cast<std::uint8_t>(f.data.size());
+    std::copy(f.data.begin(), f.data.end(), cf.data.begin());
+    group.push_back(cf);
+    if (offset == can::highres::kOffsetStatus) {
+      if (const auto d = can::highres::decode_classic(group, hr)) got.push_back(*d);
+      group.clear();
+    }
+  }
+  ASSERT_GE(got.size(), 950u) << "10 s at 100 Hz, less python-can's start";
+  ASSERT_LE(got.front().gps_time_ns, saturation->ns - 500'000'000) << "python-can was reading before the first fault";
+  ASSERT_GE(got.back().gps_time_ns, twice->ns + 700'000'000) << "and after the last";
+
+  constexpr std::int64_t kTol_ns = 10'000'000 + 1'000'000;  // a sample period + the printed ms
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const auto inside = [&](const can::highres::Decoded& d, GpsTime start, double duration_s) {
+    return d.gps_time_ns > start.ns + kTol_ns && d.gps_time_ns < start.ns + std::llround(duration_s * 1e9) - kTol_ns;
+  };
+  const auto outside = [&](const can::highres::Decoded& d, GpsTime start, double duration_s) {
+    return d.gps_time_ns < start.ns - kTol_ns || d.gps_time_ns > start.ns + std::llround(duration_s * 1e9) + kTol_ns;
+  };
+  const auto mean_between = [&](int axis, std::int64_t from_ns, std::int64_t to_ns) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& d : got)
+      if (d.gps_time_ns >= from_ns && d.gps_time_ns < to_ns) {
+        sum += d.w_body_radps[static_cast<std::size_t>(axis)];
+        ++n;
+      }
+    return n ? sum / n : std::nan("");
+  };
+  // Saturation: |f_z| at 5 m/s^2 and the accelerometer flag (bit 2) in the window, ~g outside.
+  std::size_t clipped = 0;
+  for (const auto& d : got) {
+    const bool flagged = (d.flags & 0x04) != 0;
+    if (inside(d, *saturation, 1.0)) {
+      ++clipped;
+      EXPECT_NEAR(std::abs(d.f_body_mps2[2]), 5.0, 1e-6);
+      EXPECT_TRUE(flagged);
+    } else if (outside(d, *saturation, 1.0)) {
+      EXPECT_GT(std::abs(d.f_body_mps2[2]), 9.0) << "gravity and the part's turn-on bias";
+      EXPECT_FALSE(flagged);
+    }
+  }
+  EXPECT_GE(clipped, 97u);
+  // Vibration: gyroscope x less its mean of the second before, fitted with the 2 Hz sine and
+  // cosine over the window: amplitude 20 deg/s in phase (+-2 %, the output filter's 80 Hz pole
+  // shifts 2 Hz by 1.4 deg); after it, back to the baseline.
+  const double base_x = mean_between(0, vibration->ns - 1'000'000'000, vibration->ns - kTol_ns);
+  double ss = 0.0, sc = 0.0, s2 = 0.0, c2 = 0.0, worst_after = 0.0;
+  for (const auto& d : got) {
+    const double t_s = static_cast<double>(d.gps_time_ns - vibration->ns) * 1e-9;
+    const double y = d.w_body_radps[0] - base_x, sn = std::sin(2.0 * 3.14159265358979323846 * 2.0 * t_s),
+                 cs = std::cos(2.0 * 3.14159265358979323846 * 2.0 * t_s);
+    if (inside(d, *vibration, 1.5)) {
+      ss += y * sn;
+      sc += y * cs;
+      s2 += sn * sn;
+      c2 += cs * cs;
+    } else if (t_s > 1.5 + 0.011 && t_s < 2.0) {
+      worst_after = std::max(worst_after, std::abs(y));
+    }
+  }
+  const double in_phase_dps = ss / s2 / kDeg, quadrature_dps = sc / c2 / kDeg;
+  EXPECT_NEAR(in_phase_dps, 20.0, 0.4);
+  EXPECT_NEAR(quadrature_dps, 0.0, 1.0);  // the filter's 1.4 deg and the printed ms's 0.7 deg
+  EXPECT_LT(worst_after, 1.0 * kDeg) << "the vibration stopped";
+  // Temperature: gyroscope y's bias follows 0.05 deg/s per degC x 40 degC x level: half way up
+  // the ramp +1 deg/s, on the plateau (1 s to 1.5 s) +2 deg/s, after the end back.
+  const std::int64_t w0 = warm->ns;
+  const double base_y = mean_between(1, w0 - 1'000'000'000, w0 - kTol_ns);
+  const double mid_ramp = mean_between(1, w0 + 350'000'000, w0 + 650'000'000) - base_y;
+  const double plateau = mean_between(1, w0 + 1'100'000'000, w0 + 1'450'000'000) - base_y;
+  const double after = mean_between(1, w0 + 2'600'000'000, w0 + 2'900'000'000) - base_y;
+  EXPECT_NEAR(mid_ramp / kDeg, 1.0, 0.1);
+  EXPECT_NEAR(plateau / kDeg, 2.0, 0.1);
+  EXPECT_NEAR(after / kDeg, 0.0, 0.1);
+  // Duplicates: the same sequence number twice in a row, only inside the window.
+  std::size_t doubled = 0;
+  for (std::size_t i = 1; i < got.size(); ++i)
+    if (got[i].sequence == got[i - 1].sequence) {
+      ++doubled;
+      EXPECT_EQ(got[i].gps_time_ns, got[i - 1].gps_time_ns);
+      EXPECT_FALSE(outside(got[i], *twice, 0.5)) << "sent twice at " << static_cast<double>(got[i].gps_time_ns - twice->ns) * 1e-9 << " s";
+    }
+  EXPECT_NEAR(static_cast<double>(doubled), 50.0, 1.0);
+  fmt::print("saturation: {} samples clipped at 5 m/s^2; vibration: {:.2f} deg/s in phase, {:.2f} in quadrature "
+             "(20 deg/s at 2 Hz); temperature +40 degC: gyroscope y +{:.3f} deg/s half way up the ramp, "
+             "+{:.3f} on the plateau, {:+.3f} after; {} samples sent twice\n",
+             clipped, in_phase_dps, quadrature_dps, mid_ramp / kDeg, plateau / kDeg, after / kDeg, doubled);
+  EXPECT_NE(err.find(fmt::format("{} sent twice by a fault", doubled)), std::string::npos) << nav.diagnostics();
+}
+
 }  // namespace
 }  // namespace navemu::test::clients

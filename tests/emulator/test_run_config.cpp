@@ -124,19 +124,28 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: outage, start_s: 40, duration_s: 20, azimuth_deg: [300, 60], below_elevation_deg: 45}\n"
       "  - {type: antenna, start_s: 5, duration_s: 2, fault: short}\n"
       "  - {type: satellite, start_s: 50, duration_s: 100, ramp_s: 50, prn: 7, clock_error_m: 80}\n"
+      "  - {type: satellite, duration_s: 10, prn: 9, orbit_error_m: [5, -20, 3], unhealthy: true}\n"
+      "  - {type: ionosphere, start_s: 30, duration_s: 600, ramp_s: 120, scale: 6}\n"
+      "  - {type: multipath, duration_s: 60, scale: 3.5}\n"
       "  - {type: imu, start_s: 3, duration_s: 4, ramp_s: 1, fault: bias, sensor: gyro, axis: z, bias_dps: 180}\n"
       "  - {type: imu, duration_s: 4, fault: bias, sensor: accel, bias_mps2: -0.5}\n"
       "  - {type: imu, duration_s: 4, fault: scale, sensor: accel, axis: y, scale_ppm: 2000}\n"
       "  - {type: imu, duration_s: 4, fault: noise, sensor: gyro, noise_radps_per_rthz: 0.01}\n"
       "  - {type: imu, duration_s: 4, fault: stuck, sensor: gyro, axis: x}\n"
       "  - {type: imu, duration_s: 4, fault: drop, probability: 0.25}\n"
+      "  - {type: imu, duration_s: 4, fault: saturation, sensor: gyro, axis: y, range_dps: 90}\n"
+      "  - {type: imu, duration_s: 4, fault: vibration, sensor: gyro, amplitude_dps: 2, frequency_hz: 30, "
+      "psd_dps2_per_hz: 0.5, band_hz: [20, 80]}\n"
+      "  - {type: imu, duration_s: 4, fault: vibration, sensor: accel, psd_g2_per_hz: 0.04, band_hz: [20, 200]}\n"
+      "  - {type: imu, duration_s: 40, ramp_s: 20, fault: temperature, temperature_c: -30}\n"
+      "  - {type: imu, duration_s: 4, fault: duplicate, probability: 0.1}\n"
       "  - {type: outage, at: '2394:475200.5', duration_s: 20}\n"
       "  - {type: spoofing, start_s: 10, duration_s: 60, ramp_s: 20, offset_m: [0, 500, -5], power_advantage_db: 1.5}\n"));
   ASSERT_EQ(c.gnss_events.spoofing.size(), 1u);
   EXPECT_EQ(c.gnss_events.spoofing[0].offset_enu_m, Vec3(0, 500, -5));
   EXPECT_EQ(c.gnss_events.spoofing[0].power_advantage_db, 1.5);
   EXPECT_EQ(c.gnss_events.spoofing[0].window.ramp_s, 20.0);
-  ASSERT_EQ(c.imu_faults.size(), 6u);
+  ASSERT_EQ(c.imu_faults.size(), 11u);
   EXPECT_EQ(c.imu_faults[0].kind, ImuFaultKind::kBias);
   EXPECT_EQ(c.imu_faults[0].sensor, ImuSensor::kGyro);
   EXPECT_EQ(c.imu_faults[0].axis, 2);
@@ -153,6 +162,22 @@ TEST(RunConfig, EventsAndTheirErrors) {
   EXPECT_EQ(c.imu_faults[4].kind, ImuFaultKind::kStuck);
   EXPECT_EQ(c.imu_faults[5].kind, ImuFaultKind::kDrop);
   EXPECT_EQ(c.imu_faults[5].value, 0.25);
+  constexpr double kDeg = 3.14159265358979323846 / 180.0, kG = 9.80665;
+  EXPECT_EQ(c.imu_faults[6].kind, ImuFaultKind::kSaturation);
+  EXPECT_NEAR(c.imu_faults[6].value, 90.0 * kDeg, 1e-15);
+  EXPECT_EQ(c.imu_faults[7].kind, ImuFaultKind::kVibration);
+  EXPECT_NEAR(c.imu_faults[7].value, 2.0 * kDeg, 1e-15);
+  EXPECT_EQ(c.imu_faults[7].vibration.frequency_hz, 30.0);
+  EXPECT_NEAR(c.imu_faults[7].vibration.psd, 0.5 * kDeg * kDeg, 1e-15) << "(deg/s)^2/Hz in (rad/s)^2/Hz";
+  EXPECT_EQ(c.imu_faults[7].vibration.band_lo_hz, 20.0);
+  EXPECT_EQ(c.imu_faults[7].vibration.band_hi_hz, 80.0);
+  EXPECT_EQ(c.imu_faults[8].value, 0.0) << "no sinusoid";
+  EXPECT_NEAR(c.imu_faults[8].vibration.psd, 0.04 * kG * kG, 1e-12) << "g^2/Hz in (m/s^2)^2/Hz";
+  EXPECT_EQ(c.imu_faults[9].kind, ImuFaultKind::kTemperature);
+  EXPECT_EQ(c.imu_faults[9].value, -30.0);
+  EXPECT_EQ(c.imu_faults[9].window.ramp_s, 20.0);
+  EXPECT_EQ(c.imu_faults[10].kind, ImuFaultKind::kDuplicate);
+  EXPECT_EQ(c.imu_faults[10].value, 0.1);
   const GnssEvents& e = c.gnss_events;
   ASSERT_EQ(e.jamming.size(), 2u);
   EXPECT_EQ(e.jamming[0].window.start_s, 60.0);
@@ -174,10 +199,19 @@ TEST(RunConfig, EventsAndTheirErrors) {
   ASSERT_EQ(e.antenna.size(), 1u);
   EXPECT_EQ(e.antenna[0].fault, AntennaFault::kShort);
   EXPECT_EQ(e.antenna[0].window.duration_s, 2.0);
-  ASSERT_EQ(e.satellites.size(), 1u);
+  ASSERT_EQ(e.satellites.size(), 2u);
   EXPECT_EQ(e.satellites[0].sat, gps_sat(7));
   EXPECT_EQ(e.satellites[0].clock_error_m, 80.0);
   EXPECT_EQ(e.satellites[0].window.ramp_s, 50.0);
+  EXPECT_FALSE(e.satellites[0].unhealthy);
+  EXPECT_EQ(e.satellites[1].clock_error_m, 0.0);
+  EXPECT_EQ(e.satellites[1].orbit_error_rac_m, Vec3(5, -20, 3));
+  EXPECT_TRUE(e.satellites[1].unhealthy);
+  ASSERT_EQ(e.ionosphere.size(), 1u);
+  EXPECT_EQ(e.ionosphere[0].scale, 6.0);
+  EXPECT_EQ(e.ionosphere[0].window.ramp_s, 120.0);
+  ASSERT_EQ(e.multipath.size(), 1u);
+  EXPECT_EQ(e.multipath[0].scale, 3.5);
   EXPECT_TRUE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).gnss_events.jamming.empty());
   EXPECT_FALSE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).control.has_value());
   const RunConfig ctl = load_run_config(write_temp("ctl.yaml", "control: {port: 7780}\n"));
@@ -189,7 +223,7 @@ TEST(RunConfig, EventsAndTheirErrors) {
 
   const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
   const std::pair<const char*, const char*> cases[] = {
-      {"{type: meaconing, duration_s: 1}", ":2: events[0].type: 'meaconing' is not an event type navemu knows (jamming, outage, antenna, satellite, spoofing, imu)"},
+      {"{type: meaconing, duration_s: 1}", ":2: events[0].type: 'meaconing' is not an event type navemu knows (jamming, outage, antenna, satellite, spoofing, ionosphere, multipath, imu)"},
       {"{duration_s: 1, j_over_s_db: 1}", "events[0].type: missing"},
       {"{type: jamming, j_over_s_db: 40}", "events[0].duration_s: missing"},
       {"{type: jamming, duration_s: 10}", "events[0].j_over_s_db: missing"},
@@ -205,8 +239,13 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: antenna, duration_s: 10, fault: cut}", "events[0].fault: 'cut' is not one of open, short"},
       {"{type: satellite, duration_s: 10, clock_error_m: 5}", "events[0].prn: missing"},
       {"{type: satellite, duration_s: 10, prn: 33, clock_error_m: 5}", "events[0].prn: 33 outside [1, 32]"},
-      {"{type: satellite, duration_s: 10, prn: 3}", "events[0].clock_error_m: missing"},
-      {"{type: imu, duration_s: 10, sensor: gyro}", "events[0].fault: missing: bias, scale, noise, stuck or drop"},
+      {"{type: satellite, duration_s: 10, prn: 3}", "events[0].type: a satellite fault needs clock_error_m"},
+      {"{type: satellite, duration_s: 10, prn: 3, orbit_error_m: [1, 2]}", "events[0].orbit_error_m: must be [radial"},
+      {"{type: satellite, duration_s: 10, prn: 3, unhealthy: maybe}", "events[0].unhealthy"},
+      {"{type: ionosphere, duration_s: 10}", "events[0].scale: missing: the true ionospheric delay's factor"},
+      {"{type: ionosphere, duration_s: 10, scale: -1}", "events[0].scale"},
+      {"{type: multipath, duration_s: 10, factor: 2}", "events[0].scale: missing: the multipath errors' factor"},
+      {"{type: imu, duration_s: 10, sensor: gyro}", "events[0].fault: missing: bias, scale, noise, stuck, saturation, vibration, temperature, drop or duplicate"},
       {"{type: imu, duration_s: 10, fault: tilt}", "events[0].fault: 'tilt' is not one of"},
       {"{type: imu, duration_s: 10, fault: bias, bias_dps: 1}", "events[0].sensor: missing: gyro or accel"},
       {"{type: imu, duration_s: 10, fault: bias, sensor: gyro}", "events[0].bias_dps: missing"},
@@ -216,6 +255,18 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: imu, duration_s: 10, fault: stuck, sensor: accel, ramp_s: 1}", "events[0].ramp_s"},
       {"{type: imu, duration_s: 10, fault: drop, probability: 1.5}", "events[0].probability: must be at most 1"},
       {"{type: imu, duration_s: 10, fault: drop, sensor: gyro}", "events[0].sensor"},
+      {"{type: imu, duration_s: 10, fault: duplicate, probability: 2}", "events[0].probability: must be at most 1"},
+      {"{type: imu, duration_s: 10, fault: saturation, sensor: accel}", "events[0].range_mps2: missing"},
+      {"{type: imu, duration_s: 10, fault: saturation, sensor: gyro, range_dps: 0}", "events[0].range_dps"},
+      {"{type: imu, duration_s: 10, ramp_s: 1, fault: saturation, sensor: gyro, range_dps: 9}", "events[0].ramp_s"},
+      {"{type: imu, duration_s: 10, fault: vibration, sensor: gyro}", "events[0].type: a vibration needs amplitude_dps and frequency_hz"},
+      {"{type: imu, duration_s: 10, fault: vibration, sensor: gyro, amplitude_dps: 1}", "events[0].frequency_hz: a sinusoid needs both"},
+      {"{type: imu, duration_s: 10, fault: vibration, sensor: accel, frequency_hz: 3}", "events[0].amplitude_mps2: a sinusoid needs both"},
+      {"{type: imu, duration_s: 10, fault: vibration, sensor: accel, psd_g2_per_hz: 0.1}", "events[0].band_hz: random vibration needs both"},
+      {"{type: imu, duration_s: 10, fault: vibration, sensor: accel, psd_g2_per_hz: 0.1, band_hz: [50, 20]}", "events[0].band_hz: must be [low, high]"},
+      {"{type: imu, duration_s: 10, fault: vibration, sensor: accel, psd_dps2_per_hz: 0.1, band_hz: [5, 20]}", "events[0].psd_g2_per_hz: random vibration needs both"},
+      {"{type: imu, duration_s: 10, fault: temperature}", "events[0].temperature_c: missing"},
+      {"{type: imu, duration_s: 10, fault: temperature, temperature_c: 5, sensor: gyro}", "events[0].sensor"},
       {"{type: outage, duration_s: 10, at: '2394:1', start_s: 4}", "events[0].at: give either at (a GPS time) or start_s"},
       {"{type: outage, duration_s: 10, at: yesterday}", "events[0].at: 'yesterday' is not a time"},
       {"{type: spoofing, duration_s: 10}", "events[0].offset_m: missing"},

@@ -194,6 +194,65 @@ TEST(Simulate, ImuFaultsAreDeterministicAndActOnlyInTheirWindows) {
   EXPECT_EQ(noisy, 2499u);
 }
 
+// The other IMU faults offline, on a BMI160: the same seed gives the same bytes; outside each
+// fault's window every sample is the fault-free run's (once the part's 80 Hz output filter has
+// forgotten the fault: to 1e-9 from 50 ms after it, 25 time constants); random vibration moves
+// gyroscope y only in its window; the temperature column carries the warming; a duplicated
+// sample is its row twice.
+TEST(Simulate, SaturationVibrationTemperatureAndDuplicatesActOnlyInTheirWindows) {
+  const fs::path a = temp_dir("imu_faults2_a"), b = temp_dir("imu_faults2_b"), c = temp_dir("imu_faults2_c");
+  const fs::path cfg = a.parent_path() / "navemu_simulate_imu_faults2.yaml";
+  std::ofstream(cfg) << "gnss: {enabled: false}\nimu: {profile: bmi160}\nevents:\n"
+                        "  - {type: imu, start_s: 2, duration_s: 1, fault: saturation, sensor: gyro, axis: all, range_dps: 0.2}\n"
+                        "  - {type: imu, start_s: 4, duration_s: 2, fault: vibration, sensor: gyro, axis: y, "
+                        "psd_dps2_per_hz: 0.01, band_hz: [20, 60]}\n"
+                        "  - {type: imu, start_s: 7, duration_s: 2, ramp_s: 1, fault: temperature, temperature_c: -20}\n"
+                        "  - {type: imu, start_s: 10, duration_s: 1, fault: duplicate, probability: 0.5}\n";
+  const auto ra = simulate_twice(cfg, a, b, 12, {"imu.csv", "can.log"});
+  EXPECT_NE(ra.out.find("sent twice by a fault"), std::string::npos) << ra.out;
+  ASSERT_EQ(simulate(without_events(cfg, c), c, 12).exit_code, 0);
+  const test::CsvTable faulty(a / "imu.csv"), clean(c / "imu.csv");
+  ASSERT_EQ(clean.size(), 2400u);
+  ASSERT_GT(faulty.size(), clean.size() + 60) << "about half of the second's 200 samples twice";
+  ASSERT_LT(faulty.size(), clean.size() + 140);
+  std::size_t k = 0, twice = 0, clipped = 0;
+  double vibration_ss = 0.0;
+  constexpr double kRange_radps = 0.2 * 3.14159265358979323846 / 180.0;
+  for (std::size_t i = 0; i < clean.size(); ++i, ++k) {
+    ASSERT_LT(k, faulty.size());
+    if (k + 1 < faulty.size() && faulty.row(k + 1) == faulty.row(k)) {
+      const double t_s = static_cast<double>(i) / 200.0;
+      EXPECT_TRUE(t_s >= 10.0 && t_s < 11.0) << "sent twice at " << t_s << " s";
+      ++twice;
+      ++k;
+    }
+    const double t_s = static_cast<double>(i) / 200.0;
+    if (t_s >= 2.0 && t_s < 3.0) {
+      for (const char* col : {"w_x_radps", "w_y_radps", "w_z_radps"}) {
+        EXPECT_LE(std::abs(faulty.num(k, col)), kRange_radps * (1.0 + 1e-9)) << t_s;
+        clipped += std::abs(clean.num(i, col)) > kRange_radps;
+      }
+    } else if (t_s >= 4.0 && t_s < 6.0) {
+      const double d = faulty.num(k, "w_y_radps") - clean.num(i, "w_y_radps");
+      vibration_ss += d * d;
+      EXPECT_EQ(faulty(k, "w_x_radps"), clean(i, "w_x_radps")) << t_s;
+    } else if (t_s > 7.0 && t_s < 9.0) {
+      EXPECT_NE(faulty(k, "temperature_c"), clean(i, "temperature_c")) << t_s;
+    } else if (!(t_s >= 6.0 && t_s < 6.05) && !(t_s >= 9.0 && t_s < 9.05)) {
+      for (std::size_t col = 0; col < clean.row(i).size(); ++col)
+        EXPECT_NEAR(std::stod(faulty.row(k)[col]), std::stod(clean.row(i)[col]), 1e-9) << t_s << " s, column " << col;
+    }
+  }
+  EXPECT_EQ(k, faulty.size());
+  EXPECT_GT(twice, 60u);
+  EXPECT_GT(clipped, 0u) << "the turn-on bias (3 deg/s, 1-sigma) exceeds the 0.2 deg/s range on some axis";
+  // rms 0.1 x sqrt(40) = 0.63 deg/s over 400 samples, the output filter (80 Hz) passing the band.
+  const double rms_dps = std::sqrt(vibration_ss / 400.0) * 180.0 / 3.14159265358979323846;
+  EXPECT_GT(rms_dps, 0.4);
+  EXPECT_LT(rms_dps, 0.9);
+  EXPECT_NE(ra.out.find(fmt::format("{} sent twice by a fault", twice)), std::string::npos) << ra.out;
+}
+
 TEST(Simulate, ASecondRunIntoTheSameFolderReplacesEveryFile) {
   const fs::path once = temp_dir("once"), twice = temp_dir("twice");
   ASSERT_EQ(simulate(kDefault, once, 10).exit_code, 0);

@@ -396,6 +396,57 @@ TEST(Measurement, SkyMasksAntennaAndSatelliteFaultsActOnTheSignals) {
   EXPECT_GT(masked_seen, 0) << "some satellite lies in the mask";
 }
 
+// Storms, multipath intensity, orbit faults and health flags. Against the same generator
+// without events: the true ionospheric delay is x (1 + 3 level) for a storm of scale 4, the
+// multipath error x (1 + 2 level) for an intensity of 3, exactly; a radial orbit error of
+// 100 m lengthens the satellite's range by 100 m x cos(nadir angle), the nadir angle from
+// sin(eta) = R cos(el) / r (spherical Earth, R 6371 km, r 26560 km); an along-track one moves it
+// by at most 100 m x sin(eta); an unhealthy flag marks the satellite in its window only.
+TEST(Measurement, StormsMultipathOrbitFaultsAndHealthFlags) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c = all_off();
+  c.errors.ionosphere = c.errors.multipath = true;
+  MeasurementGenerator ref(nav, c);
+  const auto first = ref.generate(kStart, ecef_from_geodetic(kSite));
+  ASSERT_GE(first.sats.size(), 3u);
+  const SatId radial = first.sats[0].sat, along = first.sats[1].sat, sick = first.sats[2].sat;
+  MeasurementGenerator clear(nav, c);
+  c.events.ionosphere = {IonosphereEvent{{10.0, 20.0, 5.0}, 4.0}};
+  c.events.multipath = {MultipathEvent{{40.0, 20.0, 5.0}, 3.0}};
+  c.events.satellites = {SatelliteFaultEvent{{70.0, 10.0, 0.0}, radial, 0.0, Vec3(100.0, 0.0, 0.0)},
+                         SatelliteFaultEvent{{70.0, 10.0, 0.0}, along, 0.0, Vec3(0.0, 100.0, 0.0)},
+                         SatelliteFaultEvent{{70.0, 10.0, 0.0}, sick, 0.0, Vec3::Zero(), true}};
+  MeasurementGenerator gen(nav, c);
+  int checked = 0;
+  for (double t = 0.0; t <= 90.0; t += 0.5) {
+    const auto a = clear.generate(kStart.plus_s(t), ecef_from_geodetic(kSite));
+    const auto b = gen.generate(kStart.plus_s(t), ecef_from_geodetic(kSite));
+    ASSERT_EQ(a.sats.size(), b.sats.size()) << t;
+    const double storm = 1.0 + 3.0 * event_level(c.events.ionosphere[0].window, t);
+    const double rough = 1.0 + 2.0 * event_level(c.events.multipath[0].window, t);
+    const bool fault = t >= 70.0 && t < 80.0;
+    for (std::size_t i = 0; i < a.sats.size(); ++i) {
+      const SatMeasurement &x = a.sats[i], &y = b.sats[i];
+      ASSERT_EQ(x.sat, y.sat);
+      EXPECT_NEAR(y.iono_l1_m, storm * x.iono_l1_m, 1e-9) << t;
+      EXPECT_NEAR(y.multipath_m, rough * x.multipath_m, 1e-9) << t;
+      EXPECT_EQ(y.unhealthy, fault && y.sat == sick) << t;
+      const double dr_m = y.sat_error_m - x.sat_error_m;
+      const double eta = std::asin(6371e3 * std::cos(y.dir.el_rad) / 26560e3);
+      if (fault && y.sat == radial) {
+        EXPECT_NEAR(dr_m, 100.0 * std::cos(eta), 0.1) << t;
+        ++checked;
+      } else if (fault && y.sat == along) {
+        EXPECT_LE(std::abs(dr_m), 100.0 * std::sin(eta) + 0.1) << t;
+        EXPECT_GT(std::abs(dr_m), 0.01) << t;
+      } else {
+        EXPECT_EQ(dr_m, 0.0) << t;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 20);
+}
+
 // The built-in constellation never runs out: over three days (the data made for the start hold
 // 28 h), every epoch has the satellites above the horizon with a data set at most 1 h from its
 // toe (the 2 h uploads), their IODEs move on as new sets are uploaded, and with every error
