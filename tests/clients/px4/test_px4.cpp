@@ -27,12 +27,16 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <deque>
 #include <map>
 #include <set>
 
 #include "core/satellite.hpp"
+#include "models/constellation.hpp"
 #include "models/event_window.hpp"
+#include "models/geodesy.hpp"
+#include "models/orbit.hpp"
 #include "tests/clients/client_support.hpp"
 #include "tests/clients/ubx_frames.hpp"
 
@@ -685,6 +689,127 @@ TEST(Px4Spoofing, TheDriverIsWalkedOffAndSeesTheIndication) {
   std::printf("PX4 spoofing: walked within %.2f m of the pull (level x %.0f m north); spoofing_state 2 from %.2f s "
               "to %.2f s of the %.0f s event, %d reports during\n",
               worst_m, kNorth_m, first_indicated_s, last_indicated_s, kFor_s, during);
+}
+
+// Satellite faults and a storm as PX4's driver sees them, one after the other in one run on the
+// F9P (5 Hz, L1 single-frequency fix, so the ionosphere is not removed):
+//  - the highest satellite flagged unhealthy for 4 s: satellites_used one less from the event's
+//    start to its end (+- one epoch), the fix kept, the count back after;
+//  - the second highest satellite's clock 300 m off for 4 s (its broadcast data do not show
+//    it): the fix moves by more than 20 m from its place before, and comes back within 3 m;
+//  - an ionospheric storm (the true delay x 20, the broadcast model quiet) for 4 s: the fix
+//    moves by more than 10 m (at night the broadcast model's zenith delay is 1.5 m, IS-GPS-200
+//    20.3.3.5.2.5's 5 ns), and comes back within 3 m;
+//  - multipath x 100 for 4 s (open sky: 0.1 m at the zenith, so 10 m / sin(el) per satellite,
+//    correlated over a minute): the fix moves by more than 2 m (its 1-sigma is some 20 m: less
+//    than 2 m has a chance of about 1e-3), and comes back within 3 m.
+// The satellites are the built-in constellation's at the run's time, as the model computes them
+// (a stationary receiver at the site; the choice only, not what is checked).
+TEST(Px4SatelliteFaults, TheDriverSeesThemComeAndGo) {
+  if (!have_harness()) GTEST_SKIP() << kNoHarness;
+  const ProfileFacts facts = profile_facts("ublox-f9p-hpg132");
+  const GpsTime soon = gps_from_unix_ns(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                            std::chrono::system_clock::now().time_since_epoch())
+                                            .count())
+                           .plus_s(10.0);
+  const NavData nav = nominal_constellation(soon);
+  const Vec3 p_rx = ecef_from_geodetic(kSite);
+  std::vector<std::pair<double, int>> sky;  // elevation, PRN
+  for (int prn = 1; prn <= 32; ++prn)
+    if (const GpsEphemeris* eph = select_ephemeris(nav, gps_sat(prn), soon))
+      sky.emplace_back(azimuth_elevation(kSite, p_rx, gps_sat_state(*eph, soon).p_ecef_m).el_rad * kRadToDeg, prn);
+  std::sort(sky.rbegin(), sky.rend());
+  ASSERT_GE(sky.size(), 2u);
+  ASSERT_GT(sky[1].first, 20.0);
+  const int sick = sky[0].second, drifting = sky[1].second;
+  TempDir dir("px4-satellite-faults");
+  Px4Run run;
+  constexpr double kFor_s = 4.0, kEpoch_s = 0.2;
+  run_px4(dir, facts, facts.baud, 32.0, run,
+          fmt::format("events:\n"
+                      "  - {{type: satellite, start_s: 6, duration_s: {0}, prn: {1}, unhealthy: true}}\n"
+                      "  - {{type: satellite, start_s: 12, duration_s: {0}, prn: {2}, clock_error_m: 300}}\n"
+                      "  - {{type: ionosphere, start_s: 18, duration_s: {0}, scale: 20}}\n"
+                      "  - {{type: multipath, start_s: 24, duration_s: {0}, scale: 100}}\n",
+                      kFor_s, sick, drifting));
+  if (HasFatalFailure()) return;
+  const auto unhealthy = announced_event_start(run.log, fmt::format("satellite fault, G{:02d} flagged unhealthy", sick));
+  const auto clock = announced_event_start(run.log, fmt::format("satellite fault, G{:02d} clock error 300 m", drifting));
+  const auto storm = announced_event_start(run.log, "ionospheric storm, delay x20");
+  const auto rough = announced_event_start(run.log, "multipath x100");
+  ASSERT_TRUE(unhealthy && clock && storm && rough) << run.log;
+
+  struct Seen {
+    GpsTime t;
+    int fix, used;
+    Vec3 p_ecef_m;
+  };
+  std::vector<Seen> seen;
+  for (const YAML::Node& g : run.rep.gps) {
+    const auto utc_us = g["time_utc_usec"].as<std::int64_t>();
+    if (utc_us == 0) continue;
+    seen.push_back({gps_from_unix_ns(utc_us * 1000), g["fix_type"].as<int>(), g["satellites_used"].as<int>(),
+                    ecef_from_geodetic({g["latitude_deg"].as<double>(), g["longitude_deg"].as<double>(),
+                                        g["altitude_ellipsoid_m"].as<double>()})});
+  }
+  ASSERT_FALSE(seen.empty()) << run.where;
+  ASSERT_LT(seconds_between(seen.front().t, *unhealthy), -2.0) << "reports from before the first event" << run.where;
+  ASSERT_GT(seconds_between(seen.back().t, *rough), kFor_s + 1.0) << "reports from after the last" << run.where;
+  // Before each event (the 2 s up to one epoch before it): the satellites used and the place.
+  const auto before = [&](GpsTime on, int& used, Vec3& p) {
+    int n = 0;
+    p = Vec3::Zero();
+    for (const Seen& s : seen) {
+      const double t = seconds_between(s.t, on);
+      if (t < -2.0 || t >= -kEpoch_s) continue;
+      EXPECT_EQ(s.fix, 3) << t << " s before an event";
+      used = s.used;
+      p += s.p_ecef_m;
+      ++n;
+    }
+    ASSERT_GT(n, 5);
+    p /= n;
+  };
+  int used_before = 0, ignored = 0;
+  Vec3 p_unhealthy, p_clock, p_storm, p_rough;
+  before(*unhealthy, used_before, p_unhealthy);
+  before(*clock, ignored, p_clock);
+  before(*storm, ignored, p_storm);
+  before(*rough, ignored, p_rough);
+  if (HasFatalFailure()) return;
+  int fewer = 0;
+  double least_moved_clock_m = 1e9, least_moved_storm_m = 1e9, least_moved_rough_m = 1e9, most_after_m = 0.0;
+  for (const Seen& s : seen) {
+    const double tu = seconds_between(s.t, *unhealthy), tc = seconds_between(s.t, *clock),
+                 ts = seconds_between(s.t, *storm), tr = seconds_between(s.t, *rough);
+    const std::string at = fmt::format(" at {:.1f} s, {:.1f} s, {:.1f} s, {:.1f} s from the events", tu, tc, ts, tr);
+    if (tu >= -2.0 && tr < kFor_s + 1.0) {
+      EXPECT_EQ(s.fix, 3) << at;
+    }
+    if (tu >= kEpoch_s && tu < kFor_s - kEpoch_s) {
+      ++fewer;
+      EXPECT_EQ(s.used, used_before - 1) << at;
+    } else if ((tu >= kFor_s + kEpoch_s && tc < -kEpoch_s) || (tu > -2.0 && tu < -kEpoch_s)) {
+      EXPECT_EQ(s.used, used_before) << at;
+    }
+    const auto moved = [&](const Vec3& p0) { return (s.p_ecef_m - p0).norm(); };
+    if (tc >= kEpoch_s && tc < kFor_s - kEpoch_s) least_moved_clock_m = std::min(least_moved_clock_m, moved(p_clock));
+    if (ts >= kEpoch_s && ts < kFor_s - kEpoch_s) least_moved_storm_m = std::min(least_moved_storm_m, moved(p_storm));
+    if (tc >= kFor_s + kEpoch_s && tc < kFor_s + 2.0) most_after_m = std::max(most_after_m, moved(p_clock));
+    if (ts >= kFor_s + kEpoch_s && ts < kFor_s + 1.5) most_after_m = std::max(most_after_m, moved(p_storm));
+    if (tr >= kEpoch_s && tr < kFor_s - kEpoch_s) least_moved_rough_m = std::min(least_moved_rough_m, moved(p_rough));
+    if (tr >= kFor_s + kEpoch_s) most_after_m = std::max(most_after_m, moved(p_rough));
+  }
+  EXPECT_GE(fewer, 15) << run.where;
+  EXPECT_GT(least_moved_clock_m, 20.0) << run.where;
+  EXPECT_GT(least_moved_storm_m, 10.0) << run.where;
+  EXPECT_GT(least_moved_rough_m, 2.0) << run.where;
+  EXPECT_LT(most_after_m, 3.0) << run.where;
+  std::printf("PX4 satellite faults: G%02d unhealthy, satellites used %d -> %d over %d reports; G%02d clock +300 m moved "
+              "the fix at least %.1f m; a x20 storm at least %.1f m; multipath x100 at least %.1f m; back within %.2f m "
+              "after each\n",
+              sick, used_before, used_before - 1, fewer, drifting, least_moved_clock_m, least_moved_storm_m,
+              least_moved_rough_m, most_after_m);
 }
 
 INSTANTIATE_TEST_SUITE_P(Events, Px4Impairment,
