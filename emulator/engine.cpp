@@ -181,6 +181,11 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
     print(i.window, fmt::format("ionospheric storm, delay x{}", i.scale));
   for (const MultipathEvent& m : ev.multipath)
     print(m.window, fmt::format("multipath x{}", m.scale));
+  for (const CableEvent& c : ev.cable) print(c.window, "cable unplugged");
+  constexpr const char* kStarts[] = {"hot", "warm", "cold"};
+  for (const ResetEvent& r : ev.resets)
+    print(r.window, fmt::format("receiver reset, {} start: silent {} s, no fix for {} s", kStarts[static_cast<int>(r.kind)],
+                                kResetSilence_s, restart_ttff_s(r.kind)));
   for (const SpoofingEvent& s : ev.spoofing)
     print(s.window, fmt::format("spoofing, pull to {} m east, {} m north, {} m up, {} dB over the true signals",
                                 s.offset_enu_m.x(), s.offset_enu_m.y(), s.offset_enu_m.z(), s.power_advantage_db));

@@ -46,11 +46,15 @@ GnssChannel::GnssChannel(std::unique_ptr<NavData> nav, const ReceiverParams& rec
   chunk_.reserve(65536);
   replies_.reserve(4096);
   last_fix_.satellites.reserve(kDefinedSatellites);  // copied every epoch: no allocation
+  cable_ = receiver.measurement.events.cable;
+  resets_ = receiver.measurement.events.resets;
 }
 
 void GnssChannel::begin(GpsTime start) {
   start_ = start;
   receiver_->set_event_origin(start);
+  for (CableEvent& c : cable_) resolve_start(c.window, start);
+  for (ResetEvent& r : resets_) resolve_start(r.window, start);
   offset_ns_ = device_->grid_offset_ns(start);
   k_ = first_index_at_or_after(start, period_ns_, offset_ns_);
 }
@@ -72,6 +76,20 @@ bool GnssChannel::run_event(EventContext& ctx) {
   const GpsTime te = epoch_time(k_);
   const std::optional<ImuTruth> tr = ctx.truth.at(te);
   if (const NavEngineSettings* engine = device_->engine_settings()) receiver_->set_engine(*engine);
+  // A reset due: the receiver boots (silent), then restarts (models/measurement.hpp ResetEvent).
+  const double t_s = seconds_between(te, start_);
+  for (auto r = resets_.begin(); r != resets_.end();) {
+    if (r->window.start_s > t_s) {
+      ++r;
+      continue;
+    }
+    silent_until_ = te.plus_s(kResetSilence_s);
+    device_->restart(r->kind, true, silent_until_);
+    r = resets_.erase(r);
+  }
+  silent_ = te < silent_until_ ||
+            std::any_of(cable_.begin(), cable_.end(), [&](const CableEvent& c) { return event_level(c.window, t_s) > 0.0; });
+  silent_epochs_ += silent_ ? 1 : 0;
   const ReceiverFix& fix = receiver_->update(te, tr ? &*tr : nullptr);
   device_->update(fix, receiver_->measurements(), k_);
   const GpsTime deadline{te.ns + latency_ns_};
@@ -81,6 +99,7 @@ bool GnssChannel::run_event(EventContext& ctx) {
     chunk_.clear();
     device_->encode(io_.receiver_ports[i], chunk_);
     io_.ports[i]->service();
+    if (silent_) continue;  // encoded into nowhere
     if (!io_.ports[i]->write(chunk_)) ++chunks_dropped_;
     if (i == 0 && io_.capture_out) io_.capture_out->write(chunk_);
   }
@@ -92,10 +111,15 @@ bool GnssChannel::run_event(EventContext& ctx) {
   ++epochs_;
   ++interval_epochs_;
   if (!tr) interval_truth_lost_ = true;
-  if (fix.fix != FixType::kNone) ++fixes_;
   last_fix_ = fix;
+  if (device_->restarting(te)) {  // what the receiver reports: searching
+    last_fix_.fix = FixType::kNone;
+    last_fix_.satellites.clear();
+    last_fix_.num_used = 0;
+  }
+  if (last_fix_.fix != FixType::kNone) ++fixes_;
   last_fix_truth_ = tr;
-  const EpochRecord record{te, seconds_between(te, start_), tr, fix};
+  const EpochRecord record{te, seconds_between(te, start_), tr, last_fix_};
   for (auto& r : recorders_) r->record(record);
   ++k_;
   follow_rate(te);
@@ -120,6 +144,7 @@ void GnssChannel::service() {
     for (int n = 0; n < 16; ++n) {  // bounded: a flooding client cannot hold the loop
       const std::size_t len = p.read(input_);
       if (len == 0) break;
+      if (silent_) continue;  // the bytes go nowhere
       replies_.clear();
       const std::span<const std::uint8_t> in(input_.data(), len);
       device_->receive(in, io_.receiver_ports[i], replies_);
@@ -144,6 +169,8 @@ std::string GnssChannel::apply_control(std::string_view line) {
   const ControlCommand& cmd = std::get<ControlCommand>(parsed);
   if (std::holds_alternative<ControlClear>(cmd)) {
     receiver_->clear_events();
+    cable_.clear();
+    resets_.clear();
     return R"({"ok": true})";
   }
   GnssEvents events = std::get<ControlEvent>(cmd).events;
@@ -157,6 +184,8 @@ std::string GnssChannel::apply_control(std::string_view line) {
   else
     w->start_s += seconds_between(epoch_time(k_), start_);
   receiver_->add_events(events);
+  cable_.insert(cable_.end(), events.cable.begin(), events.cable.end());
+  resets_.insert(resets_.end(), events.resets.begin(), events.resets.end());
   const GpsTime from = start_.plus_s(w->start_s);
   return fmt::format(R"({{"ok": true, "from": "{}", "gps": "{}"}})", format_iso_utc(from), format_week_tow(from));
 }
@@ -167,7 +196,8 @@ void GnssChannel::status(fmt::memory_buffer& out, ChannelStatus& st) {
   if (interval_epochs_ == 0) {
     fmt::format_to(o, "no epoch");
   } else {
-    fmt::format_to(o, "{} {}/{} sv", fix_name(last_fix_.fix), last_fix_.num_used, last_fix_.satellites.size());
+    fmt::format_to(o, "{} {}/{} sv{}", fix_name(last_fix_.fix), last_fix_.num_used, last_fix_.satellites.size(),
+                   silent_ ? ", silent" : "");
     if (last_fix_.fix != FixType::kNone) {
       fmt::format_to(o, " PDOP {:.1f}", last_fix_.dops.pdop);
       if (last_fix_truth_) {
@@ -197,6 +227,7 @@ void GnssChannel::finish(EngineSummary& sum) {
   sum.gnss_skipped = skipped_;
   sum.gnss_late = late_;
   sum.output_chunks_dropped = chunks_dropped_;
+  sum.gnss_silent = silent_epochs_;
   for (const auto& p : io_.ports) {
     sum.client_bytes_read += p->counters().bytes_read;
     sum.stale_flushes += p->counters().stale_flushes;

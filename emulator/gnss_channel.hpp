@@ -82,6 +82,13 @@ class GnssChannel final : public SensorChannel {
   bool interval_truth_lost_ = false;
   std::int64_t epochs_ = 0, fixes_ = 0, skipped_ = 0, late_ = 0;
   std::uint64_t chunks_dropped_ = 0;
+  // The device's own events (models/measurement.hpp CableEvent, ResetEvent), windows from start_:
+  // while the cable is out or the receiver boots, its ports carry nothing either way.
+  std::vector<CableEvent> cable_;
+  std::vector<ResetEvent> resets_;  // still to come
+  GpsTime silent_until_{0};
+  bool silent_ = false;  // at the last epoch
+  std::int64_t silent_epochs_ = 0;
 };
 
 }  // namespace navemu

@@ -64,11 +64,18 @@ class GnssDevice {
   // The position engine's settings as the client configured them (u-blox CFG-NAVSPG,
   // CFG-NAV5), applied from the next epoch; none: the receiver keeps the run profile's.
   virtual const NavEngineSettings* engine_settings() const { return nullptr; }
-  // True until a client-requested restart has produced its first fix again.
-  virtual bool restarting(GpsTime t) const {
-    (void)t;
-    return false;
+  // A restart at t (u-blox CFG-RST, a `reset` event; models/measurement.hpp ResetEvent): no fix
+  // and no satellites until the time to first fix after it; `hardware`: the processor resets
+  // too (a u-blox receiver rebuilds its RAM configuration).
+  virtual void restart(RestartKind kind, bool hardware, GpsTime t) {
+    (void)hardware;
+    restart_until_ = t.plus_s(restart_ttff_s(kind));
   }
+  // True until a restart has produced its first fix again.
+  bool restarting(GpsTime t) const { return t < restart_until_; }
+
+ private:
+  GpsTime restart_until_{0};
 };
 
 // The device a profile describes: u-blox when it has a `ubx` section, NMEA otherwise.

@@ -47,8 +47,12 @@ RunConfig load(const RunOptions& opt) {
   return cfg;
 }
 
-// The IMU samples the `events:` faults lost or sent twice, for the closing line.
-std::string imu_fault_counts(const EngineSummary& s) {
+// What the `events:` cost, for the closing line: GNSS epochs not sent, IMU samples lost or sent
+// twice.
+std::string gnss_event_counts(const EngineSummary& s) {
+  return s.gnss_silent ? fmt::format(", {} not sent: cable out or resetting", s.gnss_silent) : "";
+}
+std::string imu_event_counts(const EngineSummary& s) {
   std::string out;
   if (s.imu_dropped) out += fmt::format(", {} dropped by a fault", s.imu_dropped);
   if (s.imu_duplicated) out += fmt::format(", {} sent twice by a fault", s.imu_duplicated);
@@ -151,22 +155,22 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
   if (opt.offline) {
     fmt::print(err,
                "navemu simulate: {:.0f} s of scenario in {:.2f} s ({:.0f}x real time): {} GNSS "
-               "epochs ({} with a fix), {} IMU samples{}{}; files in {}\n",
+               "epochs ({} with a fix{}), {} IMU samples{}{}; files in {}\n",
                s.scenario_s, s.wall_s, s.wall_s > 0 ? s.scenario_s / s.wall_s : 0.0, s.gnss_epochs,
-               s.gnss_fixes, s.imu_samples,
+               s.gnss_fixes, gnss_event_counts(s), s.imu_samples,
                s.imu_flagged ? fmt::format(" ({} flagged: no truth)", s.imu_flagged) : "",
-               imu_fault_counts(s), opt.out_dir);
+               imu_event_counts(s), opt.out_dir);
   } else {
     const TruthCounters truth = s.truth.value_or(TruthCounters{});
     fmt::memory_buffer reasons;
     format_truth_reasons(truth, reasons);
     fmt::print(err,
                "navemu run: stopped after {:.1f} s: {} GNSS epochs ({} with a fix, {} late, {} "
-               "skipped), {} IMU samples ({} skipped{}), {} output chunks dropped, {} stale bytes "
+               "skipped{}), {} IMU samples ({} skipped{}), {} output chunks dropped, {} stale bytes "
                "flushed in {} flushes, {} bytes from clients, {} CAN frames ({} dropped, {} failed, "
                "{} bus errors){}, truth {} accepted / {} rejected / {} lost unread{}\n",
-               s.wall_s, s.gnss_epochs, s.gnss_fixes, s.gnss_late, s.gnss_skipped, s.imu_samples,
-               s.imu_skipped, imu_fault_counts(s),
+               s.wall_s, s.gnss_epochs, s.gnss_fixes, s.gnss_late, s.gnss_skipped, gnss_event_counts(s),
+               s.imu_samples, s.imu_skipped, imu_event_counts(s),
                s.output_chunks_dropped, s.stale_bytes_flushed, s.stale_flushes,
                s.client_bytes_read, s.can_frames_written, s.can_frames_dropped, s.can_frames_failed,
                s.can_bus_errors,

@@ -453,8 +453,8 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
 
 void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
   const std::optional<std::string> type = m.text("type");
-  constexpr std::array<std::string_view, 8> kTypes = {"jamming",  "outage",     "antenna",   "satellite",
-                                                       "spoofing", "ionosphere", "multipath", "imu"};
+  constexpr std::array<std::string_view, 10> kTypes = {"jamming",    "outage",    "antenna", "satellite", "spoofing",
+                                                        "ionosphere", "multipath", "cable",   "reset",     "imu"};
   const std::string types = fmt::format("{}", fmt::join(kTypes, ", "));
   if (!type) m.fail("type", fmt::format("missing: the event's type ({})", types));
   if (std::find(kTypes.begin(), kTypes.end(), *type) == kTypes.end())
@@ -470,6 +470,18 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
     } catch (const InputError&) {
       m.fail("at", fmt::format("'{}' is not a time: ISO-8601 UTC (2026-11-27T12:00:00Z) or GPS WEEK:TOW (2394:475200)", *at));
     }
+  }
+  if (*type == "reset") {  // lasts as long as the restart does
+    if (m.has("duration_s")) m.fail("duration_s", "a reset lasts as long as the receiver's start: no duration_s");
+    ResetEvent e{w};
+    e.kind = choice<RestartKind>(m, "start", {{"hot", RestartKind::kHot},
+                                              {"warm", RestartKind::kWarm},
+                                              {"cold", RestartKind::kCold}})
+                 .value_or(RestartKind::kCold);
+    e.window.duration_s = kResetSilence_s + restart_ttff_s(e.kind);
+    out.resets.push_back(e);
+    m.reject_unknown_keys();
+    return;
   }
   const std::optional<double> duration = m.positive("duration_s");
   if (!duration) m.fail("duration_s", "missing: how long the event lasts, s");
@@ -511,6 +523,8 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
     }
     e.below_el_deg = m.positive("below_elevation_deg").value_or(e.below_el_deg);
     out.outages.push_back(e);
+  } else if (*type == "cable") {
+    out.cable.push_back({w});
   } else if (*type == "antenna") {
     const auto fault = choice<AntennaFault>(m, "fault", {{"open", AntennaFault::kOpen}, {"short", AntennaFault::kShort}});
     if (!fault) m.fail("fault", "missing: open or short");

@@ -1091,26 +1091,32 @@ void UbxDevice::handle_cfg_cfg(Payload p, std::uint8_t, Bytes& out) {
 }
 
 void UbxDevice::handle_cfg_rst(Payload p, std::uint8_t, Bytes& out) {
-  // Not acknowledged (interface description, CFG-RST). The processor resets (modes 0x00, 0x01,
-  // 0x04) and the RAM layer is rebuilt from the layers below (UBX-18010854 6.6). The fix
-  // returns after the part's time to first fix (u-blox M8 data sheet: hot start 1 s, cold start
-  // 26 s; a warm start still has to collect the ephemerides, about as long).
+  // Not acknowledged (interface description, CFG-RST). The processor resets in modes 0x00, 0x01
+  // and 0x04; navBbrMask 0x0000 is a hot start, 0x0001 a warm start, anything else (0xFFFF a
+  // cold start) as long as a cold one.
   CfgRst r;
   if (!decode(p, r)) return nak(kCfgRst, out);
-  if (r.reset_mode == CfgRst::kHardwareReset || r.reset_mode == CfgRst::kControlledSoftwareReset ||
-      r.reset_mode == CfgRst::kHardwareResetAfterShutdown) {
-    sos_restored_ = sos_backup_;  // the start-up restores a backup in flash (UPD-SOS)
+  if (r.nav_bbr_mask == CfgRst::kColdStart) status_.odo_distance_m = status_.odo_total_m = 0.0;
+  const RestartKind kind = r.nav_bbr_mask == CfgRst::kHotStart    ? RestartKind::kHot
+                           : r.nav_bbr_mask == CfgRst::kWarmStart ? RestartKind::kWarm
+                                                                  : RestartKind::kCold;
+  restart(kind,
+          r.reset_mode == CfgRst::kHardwareReset || r.reset_mode == CfgRst::kControlledSoftwareReset ||
+              r.reset_mode == CfgRst::kHardwareResetAfterShutdown,
+          last_fix_.t);
+}
+
+// A processor reset rebuilds the RAM layer from the layers below (UBX-18010854 6.6) and restores
+// a backup in flash (UPD-SOS); a survey-in starts again with the navigation.
+void UbxDevice::restart(RestartKind kind, bool hardware, GpsTime t) {
+  if (hardware) {
+    sos_restored_ = sos_backup_;
     config_.reload();
     legacy_.load();
-    stale_ = true;
   }
-  if (r.nav_bbr_mask == CfgRst::kColdStart) status_.odo_distance_m = status_.odo_total_m = 0.0;
-  survey_settings_.reset();  // a survey-in starts again with the navigation
+  survey_settings_.reset();
   stale_ = true;
-  const double outage_s = r.nav_bbr_mask == CfgRst::kHotStart    ? 1.0
-                          : r.nav_bbr_mask == CfgRst::kWarmStart ? 25.0
-                                                                 : 26.0;
-  restart_until_ = last_fix_.t.plus_s(outage_s);
+  GnssDevice::restart(kind, hardware, t);
 }
 
 void UbxDevice::handle_valset(Payload p, std::uint8_t, Bytes& out) {
@@ -1212,6 +1218,10 @@ class NmeaDevice final : public GnssDevice {
   void update(const ReceiverFix& fix, const EpochMeasurements&, std::int64_t epoch_index) override {
     fix_ = &fix;
     epoch_index_ = epoch_index;
+    if (restarting(fix.t)) {  // searching: no fix and no satellites yet
+      reset_keeping_storage(searching_, &ReceiverFix::satellites).t = fix.t;
+      fix_ = &searching_;
+    }
   }
   void encode(ReceiverPort, std::string& out) override { out_.encode(*fix_, epoch_index_, out); }
   std::int64_t period_ns() const override { return period_ns_; }
@@ -1219,7 +1229,8 @@ class NmeaDevice final : public GnssDevice {
  private:
   NmeaOutput out_;
   std::int64_t period_ns_;
-  const ReceiverFix* fix_ = nullptr;  // the caller's, between update() and its encode() calls
+  const ReceiverFix* fix_ = nullptr;  // the caller's (or searching_), between update() and encode()
+  ReceiverFix searching_;              // what a restarting receiver has
   std::int64_t epoch_index_ = 0;
 };
 }  // namespace

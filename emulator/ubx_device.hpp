@@ -48,7 +48,7 @@ class UbxDevice final : public GnssDevice {
   std::int64_t period_ns() const override { return period_ns_; }
   std::int64_t grid_offset_ns(GpsTime t) const override;
   std::optional<int> take_baud_change(ReceiverPort port) override;
-  bool restarting(GpsTime t) const override { return t < restart_until_; }
+  void restart(RestartKind kind, bool hardware, GpsTime t) override;
   const NavEngineSettings* engine_settings() const override { return &engine_; }
 
   UbxDeviceCounters counters() const;
@@ -150,7 +150,6 @@ class UbxDevice final : public GnssDevice {
   // Rates of messages without a CFG-MSGOUT item on this part (u-blox 8 only messages, and
   // messages the receiver does not send but takes a rate for): (class << 8 | id) -> per port.
   std::map<std::uint16_t, std::array<std::uint8_t, ubx::kNumPorts>> other_rates_;
-  GpsTime restart_until_{0};
   bool sos_backup_ = false;    // a backup in flash (UPD-SOS create)
   bool sos_restored_ = false;  // the last start restored it
 

@@ -116,6 +116,30 @@ struct SpoofingEvent {
   Vec3 offset_enu_m = Vec3::Zero();
   double power_advantage_db = 3.0;
 };
+// Events of the receiver as a device, acted on by its channel (emulator/gnss_channel.cpp), not
+// by the signal model:
+//  - the cable unplugged: the receiver's ports carry nothing either way while it lasts (the
+//    receiver keeps running);
+//  - a reset (a power cycle, a watchdog): the receiver goes silent for kResetSilence_s, then
+//    searches (no fix, no satellites) until its time to first fix for the start it makes
+//    (a hot start keeps ephemerides and position, a warm start the almanac, a cold start
+//    nothing); a u-blox receiver rebuilds its RAM configuration from the layers below, so a
+//    client's unsaved settings are lost. The window: its start (the duration is the reset's).
+enum class RestartKind : std::uint8_t { kHot, kWarm, kCold };
+// The time to first fix after a restart (u-blox M8 data sheet, UBX-15031086: hot start 1 s,
+// cold start 26 s; a warm start still has to collect the ephemerides, about as long: 25 s).
+inline double restart_ttff_s(RestartKind k) {
+  return k == RestartKind::kHot ? 1.0 : k == RestartKind::kWarm ? 25.0 : 26.0;
+}
+// The boot after a reset, output silent (a navemu assumption; u-blox does not publish it).
+inline constexpr double kResetSilence_s = 0.5;
+struct CableEvent {
+  EventWindow window;
+};
+struct ResetEvent {
+  EventWindow window;
+  RestartKind kind = RestartKind::kHot;
+};
 struct GnssEvents {
   std::vector<JammingEvent> jamming;
   std::vector<OutageEvent> outages;
@@ -124,9 +148,11 @@ struct GnssEvents {
   std::vector<SpoofingEvent> spoofing;
   std::vector<IonosphereEvent> ionosphere;
   std::vector<MultipathEvent> multipath;
+  std::vector<CableEvent> cable;
+  std::vector<ResetEvent> resets;
   std::size_t size() const {
     return jamming.size() + outages.size() + antenna.size() + satellites.size() + spoofing.size() +
-           ionosphere.size() + multipath.size();
+           ionosphere.size() + multipath.size() + cable.size() + resets.size();
   }
   // fn(events) for each kind's list.
   template <class Fn>
@@ -138,6 +164,8 @@ struct GnssEvents {
     fn(spoofing);
     fn(ionosphere);
     fn(multipath);
+    fn(cable);
+    fn(resets);
   }
   // fn(EventWindow&) for every event's window.
   template <class Fn>
@@ -155,6 +183,8 @@ struct GnssEvents {
     add(spoofing, e.spoofing);
     add(ionosphere, e.ionosphere);
     add(multipath, e.multipath);
+    add(cable, e.cable);
+    add(resets, e.resets);
   }
 };
 

@@ -127,6 +127,9 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: satellite, duration_s: 10, prn: 9, orbit_error_m: [5, -20, 3], unhealthy: true}\n"
       "  - {type: ionosphere, start_s: 30, duration_s: 600, ramp_s: 120, scale: 6}\n"
       "  - {type: multipath, duration_s: 60, scale: 3.5}\n"
+      "  - {type: cable, start_s: 5, duration_s: 2}\n"
+      "  - {type: reset, start_s: 8, start: warm}\n"
+      "  - {type: reset, at: '2394:475300'}\n"
       "  - {type: imu, start_s: 3, duration_s: 4, ramp_s: 1, fault: bias, sensor: gyro, axis: z, bias_dps: 180}\n"
       "  - {type: imu, duration_s: 4, fault: bias, sensor: accel, bias_mps2: -0.5}\n"
       "  - {type: imu, duration_s: 4, fault: scale, sensor: accel, axis: y, scale_ppm: 2000}\n"
@@ -212,6 +215,14 @@ TEST(RunConfig, EventsAndTheirErrors) {
   EXPECT_EQ(e.ionosphere[0].window.ramp_s, 120.0);
   ASSERT_EQ(e.multipath.size(), 1u);
   EXPECT_EQ(e.multipath[0].scale, 3.5);
+  ASSERT_EQ(e.cable.size(), 1u);
+  EXPECT_EQ(e.cable[0].window.duration_s, 2.0);
+  ASSERT_EQ(e.resets.size(), 2u);
+  EXPECT_EQ(e.resets[0].kind, RestartKind::kWarm);
+  EXPECT_EQ(e.resets[0].window.start_s, 8.0);
+  EXPECT_EQ(e.resets[0].window.duration_s, 25.5) << "the boot and the warm start's 25 s";
+  EXPECT_EQ(e.resets[1].kind, RestartKind::kCold) << "a power cycle without backup by default";
+  EXPECT_TRUE(e.resets[1].window.at.has_value());
   EXPECT_TRUE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).gnss_events.jamming.empty());
   EXPECT_FALSE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).control.has_value());
   const RunConfig ctl = load_run_config(write_temp("ctl.yaml", "control: {port: 7780}\n"));
@@ -223,7 +234,7 @@ TEST(RunConfig, EventsAndTheirErrors) {
 
   const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
   const std::pair<const char*, const char*> cases[] = {
-      {"{type: meaconing, duration_s: 1}", ":2: events[0].type: 'meaconing' is not an event type navemu knows (jamming, outage, antenna, satellite, spoofing, ionosphere, multipath, imu)"},
+      {"{type: meaconing, duration_s: 1}", ":2: events[0].type: 'meaconing' is not an event type navemu knows (jamming, outage, antenna, satellite, spoofing, ionosphere, multipath, cable, reset, imu)"},
       {"{duration_s: 1, j_over_s_db: 1}", "events[0].type: missing"},
       {"{type: jamming, j_over_s_db: 40}", "events[0].duration_s: missing"},
       {"{type: jamming, duration_s: 10}", "events[0].j_over_s_db: missing"},
@@ -242,6 +253,11 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: satellite, duration_s: 10, prn: 3}", "events[0].type: a satellite fault needs clock_error_m"},
       {"{type: satellite, duration_s: 10, prn: 3, orbit_error_m: [1, 2]}", "events[0].orbit_error_m: must be [radial"},
       {"{type: satellite, duration_s: 10, prn: 3, unhealthy: maybe}", "events[0].unhealthy"},
+      {"{type: reset, duration_s: 10}", "events[0].duration_s: a reset lasts as long as the receiver's start"},
+      {"{type: reset, start: lukewarm}", "events[0].start: 'lukewarm' is not one of cold, hot, warm"},
+      {"{type: reset, ramp_s: 1}", "events[0].ramp_s"},
+      {"{type: cable}", "events[0].duration_s: missing"},
+      {"{type: cable, duration_s: 3, ramp_s: 1}", "events[0].ramp_s"},
       {"{type: ionosphere, duration_s: 10}", "events[0].scale: missing: the true ionospheric delay's factor"},
       {"{type: ionosphere, duration_s: 10, scale: -1}", "events[0].scale"},
       {"{type: multipath, duration_s: 10, factor: 2}", "events[0].scale: missing: the multipath errors' factor"},

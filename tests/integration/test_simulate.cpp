@@ -253,6 +253,46 @@ TEST(Simulate, SaturationVibrationTemperatureAndDuplicatesActOnlyInTheirWindows)
   EXPECT_NE(ra.out.find(fmt::format("{} sent twice by a fault", twice)), std::string::npos) << ra.out;
 }
 
+// The receiver's cable out for 5 s and a hot-start reset, offline (5 Hz NMEA): no sentence
+// for the epochs of the cable window; after the reset 0.5 s of silence (its boot), then a
+// second of GGA without a fix (the hot start's time to first fix), then fixes again; gnss.csv
+// tells the same; the same seed gives the same bytes.
+TEST(Simulate, CableOutAndResetSilenceTheReceiverThenItSearches) {
+  const fs::path a = temp_dir("cable_a"), b = temp_dir("cable_b");
+  const fs::path cfg = a.parent_path() / "navemu_simulate_cable.yaml";
+  std::ofstream(cfg) << "imu: {enabled: false}\nevents:\n"
+                        "  - {type: cable, start_s: 10, duration_s: 5}\n"
+                        "  - {type: reset, start_s: 30, start: hot}\n";
+  const auto r = simulate_twice(cfg, a, b, 40, {"nmea.log", "gnss.csv"});
+  EXPECT_NE(r.out.find("200 GNSS epochs (192 with a fix, 28 not sent: cable out or resetting)"), std::string::npos)
+      << r.out;
+  std::map<int, int> gga_quality;  // by epoch (0.2 s) from 13:00:00
+  std::istringstream nmea(slurp(a / "nmea.log"));
+  for (std::string line; std::getline(nmea, line);) {
+    if (line.find("GGA,") == std::string::npos) continue;
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    ASSERT_GE(f.size(), 7u) << line;
+    const double s = std::stod(f[1].substr(4));  // hhmmss.ss at 13:00: the seconds
+    gga_quality[static_cast<int>(std::lround(s * 5.0))] = std::stoi(f[6]);
+  }
+  for (int k = 0; k < 200; ++k) {
+    const double t = k / 5.0;
+    const auto q = gga_quality.find(k);
+    if ((t >= 10.0 && t < 15.0) || (t >= 30.0 && t < 30.5)) {
+      EXPECT_EQ(q, gga_quality.end()) << "sent at " << t << " s";
+    } else {
+      ASSERT_NE(q, gga_quality.end()) << "nothing at " << t << " s";
+      EXPECT_EQ(q->second, t >= 30.5 && t < 31.5 ? 0 : 1) << t << " s";
+    }
+  }
+  const test::CsvTable g(a / "gnss.csv");
+  ASSERT_EQ(g.size(), 200u);
+  for (std::size_t i = 0; i < g.size(); ++i)
+    EXPECT_EQ(g(i, "fix"), g.num(i, "time_s") >= 30.0 && g.num(i, "time_s") < 31.5 ? "0" : "3") << g(i, "time_s");
+}
+
 TEST(Simulate, ASecondRunIntoTheSameFolderReplacesEveryFile) {
   const fs::path once = temp_dir("once"), twice = temp_dir("twice");
   ASSERT_EQ(simulate(kDefault, once, 10).exit_code, 0);

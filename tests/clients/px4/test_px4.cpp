@@ -812,6 +812,68 @@ TEST(Px4SatelliteFaults, TheDriverSeesThemComeAndGo) {
               least_moved_rough_m, most_after_m);
 }
 
+// The receiver's cable out for 3 s, then a hot-start reset, as PX4's driver lives through them
+// on the F9P:
+//  - cable: no report of an epoch inside the window (the last from before it within two
+//    epochs of its start), and reports again once it is back: the driver times out, configures
+//    the receiver again (which kept its settings) and goes on;
+//  - reset: no 3D fix for the boot (0.5 s) and the hot start's time to first fix (1 s); the
+//    reset lost the driver's settings (RAM layer rebuilt from the defaults: no NAV-PVT), so the
+//    driver has to configure the receiver again before it reports a fix, and does.
+TEST(Px4DeviceEvents, CableOutAndResetTheDriverRecovers) {
+  if (!have_harness()) GTEST_SKIP() << kNoHarness;
+  const ProfileFacts facts = profile_facts("ublox-f9p-hpg132");
+  TempDir dir("px4-cable-reset");
+  Px4Run run;
+  constexpr double kCable_s = 3.0, kEpoch_s = 0.2, kRestart_s = 0.5 + 1.0;
+  run_px4(dir, facts, facts.baud, 30.0, run,
+          fmt::format("events:\n  - {{type: cable, start_s: 6, duration_s: {}}}\n  - {{type: reset, start_s: 14, start: hot}}\n",
+                      kCable_s));
+  if (HasFatalFailure()) return;
+  const auto cable = announced_event_start(run.log, "cable unplugged");
+  const auto reset = announced_event_start(run.log, "receiver reset, hot start");
+  ASSERT_TRUE(cable && reset) << run.log;
+  struct Seen {
+    double t_harness_s;
+    GpsTime t;
+    int fix;
+  };
+  std::vector<Seen> seen;
+  for (const YAML::Node& g : run.rep.gps) {
+    const auto utc_us = g["time_utc_usec"].as<std::int64_t>();
+    if (utc_us == 0) continue;
+    seen.push_back({g["t"].as<double>(), gps_from_unix_ns(utc_us * 1000), g["fix_type"].as<int>()});
+  }
+  ASSERT_FALSE(seen.empty()) << run.where;
+  ASSERT_LT(seconds_between(seen.front().t, *cable), -2.0) << run.where;
+  ASSERT_GT(seconds_between(seen.back().t, *reset), 8.0) << run.where;
+  std::optional<double> last_before_cable, first_after_cable, first_fix_after_reset;
+  double harness_at_reset = 0.0;
+  for (const Seen& s : seen) {
+    const double tc = seconds_between(s.t, *cable), tr = seconds_between(s.t, *reset);
+    if (tc < 0.0) last_before_cable = tc;
+    if (tc >= kEpoch_s && tc < kCable_s - kEpoch_s) ADD_FAILURE() << "a report from " << tc << " s into the cable window";
+    if (tc >= kCable_s && !first_after_cable) first_after_cable = tc - kCable_s;
+    if (tr < 0.0) harness_at_reset = s.t_harness_s;
+    if (tr >= 0.0 && tr < kRestart_s) {
+      EXPECT_NE(s.fix, 3) << "a 3D fix " << tr << " s after the reset";
+    }
+    if (tr >= 0.0 && s.fix == 3 && !first_fix_after_reset) first_fix_after_reset = tr;
+  }
+  ASSERT_TRUE(last_before_cable && first_after_cable && first_fix_after_reset) << run.where;
+  EXPECT_GE(*last_before_cable, -2 * kEpoch_s - 1e-3) << run.where;
+  EXPECT_LT(*first_after_cable, 5.0) << "reports again after the cable is back" << run.where;
+  EXPECT_GE(*first_fix_after_reset, kRestart_s - 1e-3) << run.where;
+  EXPECT_LT(*first_fix_after_reset, 10.0) << run.where;
+  int reconfigured = 0;
+  for (const YAML::Node& c : run.rep.configures)
+    if (c["t"].as<double>() > harness_at_reset && c["result"].as<int>() == 0) ++reconfigured;
+  EXPECT_GE(reconfigured, 1) << "the driver configured the reset receiver again" << run.where;
+  std::printf("PX4 cable out 3 s: last report %.2f s before, first again %.2f s after it; hot reset: first 3D fix "
+              "%.2f s after it, %d successful configure() after it\n",
+              -*last_before_cable, *first_after_cable, *first_fix_after_reset, reconfigured);
+}
+
 INSTANTIATE_TEST_SUITE_P(Events, Px4Impairment,
                          ::testing::Values(ImpairmentCase{"jamming", "type: jamming, j_over_s_db: 45", 3},
                                            ImpairmentCase{"tunnel", "type: outage", 1},
