@@ -108,6 +108,12 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
     fmt::print(log, "navemu: event: {}, from {} ({}) for {} s{}\n", what, format_iso_utc(from), format_week_tow(from),
                w.duration_s, w.ramp_s > 0.0 ? fmt::format(", ramps {} s", w.ramp_s) : "");
   };
+  for (const TruthFault& f : cfg.truth_faults)
+    print(f.window, f.kind == TruthFaultKind::kFreeze ? std::string("truth frozen")
+                    : f.kind == TruthFaultKind::kTeleport
+                        ? fmt::format("truth teleported {} m east, {} m north, {} m up", f.offset_enu_m.x(),
+                                      f.offset_enu_m.y(), f.offset_enu_m.z())
+                        : fmt::format("truth time jump {:+} s", f.jump_s));
   if (cfg.imu_enabled) {
     constexpr const char* kAxes[] = {"all axes", "x", "y", "z"};
     for (const ImuFault& f : cfg.imu_faults) {
@@ -272,6 +278,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // is skipped as late at start), and the duration counts from there.
   if (clock->realtime()) start = GpsTime{start.ns + std::max<std::int64_t>(0, wall0 - clock->mono_of(start))};
   print_events(cfg, start, log);
+  truth = impaired_truth(std::move(truth), cfg.truth_faults, start);  // (the clock's reference stays the source's)
   SchedulerOptions so;
   so.start = start;
   so.end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};

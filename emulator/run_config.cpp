@@ -451,16 +451,18 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
 
 }  // namespace
 
-void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
+void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu, std::vector<TruthFault>* truth) {
   const std::optional<std::string> type = m.text("type");
-  constexpr std::array<std::string_view, 10> kTypes = {"jamming",    "outage",    "antenna", "satellite", "spoofing",
-                                                        "ionosphere", "multipath", "cable",   "reset",     "imu"};
+  constexpr std::array<std::string_view, 11> kTypes = {"jamming",   "outage", "antenna", "satellite",
+                                                        "spoofing",  "ionosphere", "multipath", "cable",
+                                                        "reset",     "imu",    "truth"};
   const std::string types = fmt::format("{}", fmt::join(kTypes, ", "));
   if (!type) m.fail("type", fmt::format("missing: the event's type ({})", types));
   if (std::find(kTypes.begin(), kTypes.end(), *type) == kTypes.end())
     m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, types));
-  if (*type == "imu" && !imu)
-    m.fail("type", "IMU faults are scheduled in the configuration's events:, not sent live");
+  if ((*type == "imu" && !imu) || (*type == "truth" && !truth))
+    m.fail("type", fmt::format("{} faults are scheduled in the configuration's events:, not sent live",
+                               *type == "imu" ? "IMU" : "truth"));
   EventWindow w;
   w.start_s = m.positive("start_s", true).value_or(0.0);
   if (const std::optional<std::string> at = m.text("at")) {  // GPS time instead of start_s
@@ -491,7 +493,22 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu) {
     if (2.0 * w.ramp_s > w.duration_s)
       m.fail("ramp_s", "ramp-in and ramp-out together would last longer than duration_s");
   };
-  if (*type == "imu") {
+  if (*type == "truth") {
+    TruthFault f{w};
+    const auto kind = choice<TruthFaultKind>(m, "fault", {{"freeze", TruthFaultKind::kFreeze},
+                                                         {"teleport", TruthFaultKind::kTeleport},
+                                                         {"time_jump", TruthFaultKind::kTimeJump}});
+    if (!kind) m.fail("fault", "missing: freeze, teleport or time_jump");
+    f.kind = *kind;
+    if (f.kind == TruthFaultKind::kTeleport) {
+      const auto offset = m.number_list("offset_m");
+      if (!offset || offset->size() != 3) m.fail("offset_m", "must be [east, north, up], metres: where the vehicle jumps to");
+      f.offset_enu_m = Vec3((*offset)[0], (*offset)[1], (*offset)[2]);
+    } else if (f.kind == TruthFaultKind::kTimeJump) {
+      f.jump_s = required(m, "jump_s", "how far the simulator's clock steps, s (negative: back)");
+    }
+    truth->push_back(f);
+  } else if (*type == "imu") {
     const std::optional<std::string> fault = m.text("fault");
     if (fault != "stuck" && fault != "saturation") ramp();
     imu->push_back(imu_fault(m, w));
@@ -604,7 +621,7 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   for (YamlMap& o : imu.map_list("outputs")) c.imu_outputs.push_back(can_output(o, false));
   imu.reject_unknown_keys();
 
-  for (YamlMap& e : root.map_list("events")) add_event(e, c.gnss_events, &c.imu_faults);
+  for (YamlMap& e : root.map_list("events")) add_event(e, c.gnss_events, &c.imu_faults, &c.truth_faults);
   if (root.has("control")) {
     YamlMap ctl = root.map("control");
     c.control.emplace();

@@ -142,6 +142,23 @@ struct ControlSpec {
   int port = 0;  // 0: any free port (navemu prints it)
 };
 
+// Truth impairments (`events:` type truth, issue "impairments" deliverable 4): what a faulty
+// simulator feeds the sensors, for testing a stack's own guards (emulator/truth_source.hpp
+// impaired_truth). Each acts while its window lasts:
+//  - freeze: the state stays what it was at the window's start (position, velocity, attitude,
+//    specific force and rates), as a simulator that keeps sending its last sample;
+//  - teleport: the position offset_enu_m (east, north, up) away, velocity, attitude, specific
+//    force and rates unchanged: a jump no motion explains;
+//  - time jump: the state of jump_s later (earlier when negative), as a simulator whose clock
+//    stepped.
+enum class TruthFaultKind : std::uint8_t { kFreeze, kTeleport, kTimeJump };
+struct TruthFault {
+  EventWindow window;
+  TruthFaultKind kind = TruthFaultKind::kFreeze;
+  Vec3 offset_enu_m = Vec3::Zero();  // kTeleport
+  double jump_s = 0.0;               // kTimeJump
+};
+
 struct RunConfig {
   std::filesystem::path file;
   std::string description;  // one line for `navemu profiles`
@@ -163,6 +180,7 @@ struct RunConfig {
 
   GnssEvents gnss_events;  // `events:`, the scheduled impairments
   std::vector<ImuFault> imu_faults;  // `events:` of type imu
+  std::vector<TruthFault> truth_faults;  // `events:` of type truth
   std::optional<ControlSpec> control;  // `control:`; none: no live control
 
   bool imu_enabled = true;
@@ -176,11 +194,11 @@ struct RunConfig {
   std::optional<int> cpu;    // pin the loop to this CPU (sched_setaffinity); unset: any
 };
 
-// One entry of `events:` (configs/default.yaml) into its list of `gnss` or `imu`; InputError
-// naming the entry's key for bad ones. Also the form of live control's event commands, which
-// take no IMU faults (imu null).
+// One entry of `events:` (configs/default.yaml) into its list of `gnss`, `imu` or `truth`;
+// InputError naming the entry's key for bad ones. Also the form of live control's event
+// commands, which take no IMU or truth faults (imu, truth null).
 class YamlMap;
-void add_event(YamlMap& m, GnssEvents& gnss, std::vector<ImuFault>* imu);
+void add_event(YamlMap& m, GnssEvents& gnss, std::vector<ImuFault>* imu, std::vector<TruthFault>* truth);
 
 // The file's configuration; relative paths inside it are relative to the file's folder.
 RunConfig load_run_config(const std::filesystem::path& file);

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "emulator/run_config.hpp"
 #include "emulator/truth_buffer.hpp"
@@ -43,6 +44,11 @@ std::optional<ImuTruth> truth_from_message(const truth_datagram::Message& m, Gps
 // Opening errors (file, socket) throw InputError/std::runtime_error.
 std::unique_ptr<TruthSource> make_truth_source(const TruthSpec& spec, GpsTime start,
                                                GpsTime host_offset);
+
+// `inner` with the truth faults of `events:` (emulator/run_config.hpp TruthFault), their windows
+// counted from the scenario's start; `inner` itself when there are none.
+std::unique_ptr<TruthSource> impaired_truth(std::unique_ptr<TruthSource> inner, std::vector<TruthFault> faults,
+                                            GpsTime start);
 
 // The UDP source's port (for tests and the start-up message), 0 for other sources.
 int truth_udp_port(const TruthSource& source);

@@ -47,6 +47,8 @@ TEST(Control, CommandsAndTheirRefusals) {
       {R"({"cmd": "event", "type": "outage"})", "command.duration_s: missing"},
       {R"({"cmd": "event", "type": "imu", "duration_s": 1, "fault": "stuck", "sensor": "gyro"})",
        "IMU faults are scheduled in the configuration's events:, not sent live"},
+      {R"({"cmd": "event", "type": "truth", "duration_s": 1, "fault": "freeze"})",
+       "truth faults are scheduled in the configuration's events:, not sent live"},
       {R"({"cmd": "event", "type": "antenna", "duration_s": 1, "fault": "cut"})", "'cut' is not one of open, short"},
       {R"({"cmd": {"a": 1}})", "command.cmd"},
       {R"([1, 2])", "a command is one JSON object per line"},

@@ -130,6 +130,9 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: cable, start_s: 5, duration_s: 2}\n"
       "  - {type: reset, start_s: 8, start: warm}\n"
       "  - {type: reset, at: '2394:475300'}\n"
+      "  - {type: truth, start_s: 3, duration_s: 2, fault: freeze}\n"
+      "  - {type: truth, start_s: 3, duration_s: 2, fault: teleport, offset_m: [1, -2, 3]}\n"
+      "  - {type: truth, start_s: 3, duration_s: 2, fault: time_jump, jump_s: -1.5}\n"
       "  - {type: imu, start_s: 3, duration_s: 4, ramp_s: 1, fault: bias, sensor: gyro, axis: z, bias_dps: 180}\n"
       "  - {type: imu, duration_s: 4, fault: bias, sensor: accel, bias_mps2: -0.5}\n"
       "  - {type: imu, duration_s: 4, fault: scale, sensor: accel, axis: y, scale_ppm: 2000}\n"
@@ -223,6 +226,13 @@ TEST(RunConfig, EventsAndTheirErrors) {
   EXPECT_EQ(e.resets[0].window.duration_s, 25.5) << "the boot and the warm start's 25 s";
   EXPECT_EQ(e.resets[1].kind, RestartKind::kCold) << "a power cycle without backup by default";
   EXPECT_TRUE(e.resets[1].window.at.has_value());
+  ASSERT_EQ(c.truth_faults.size(), 3u);
+  EXPECT_EQ(c.truth_faults[0].kind, TruthFaultKind::kFreeze);
+  EXPECT_EQ(c.truth_faults[0].window.duration_s, 2.0);
+  EXPECT_EQ(c.truth_faults[1].kind, TruthFaultKind::kTeleport);
+  EXPECT_EQ(c.truth_faults[1].offset_enu_m, Vec3(1, -2, 3));
+  EXPECT_EQ(c.truth_faults[2].kind, TruthFaultKind::kTimeJump);
+  EXPECT_EQ(c.truth_faults[2].jump_s, -1.5);
   EXPECT_TRUE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).gnss_events.jamming.empty());
   EXPECT_FALSE(load_run_config(write_temp("none.yaml", "scenario: {seed: 2}\n")).control.has_value());
   const RunConfig ctl = load_run_config(write_temp("ctl.yaml", "control: {port: 7780}\n"));
@@ -234,7 +244,7 @@ TEST(RunConfig, EventsAndTheirErrors) {
 
   const auto err = [](const std::string& entry) { return load_error("events:\n  - " + entry + "\n"); };
   const std::pair<const char*, const char*> cases[] = {
-      {"{type: meaconing, duration_s: 1}", ":2: events[0].type: 'meaconing' is not an event type navemu knows (jamming, outage, antenna, satellite, spoofing, ionosphere, multipath, cable, reset, imu)"},
+      {"{type: meaconing, duration_s: 1}", ":2: events[0].type: 'meaconing' is not an event type navemu knows (jamming, outage, antenna, satellite, spoofing, ionosphere, multipath, cable, reset, imu, truth)"},
       {"{duration_s: 1, j_over_s_db: 1}", "events[0].type: missing"},
       {"{type: jamming, j_over_s_db: 40}", "events[0].duration_s: missing"},
       {"{type: jamming, duration_s: 10}", "events[0].j_over_s_db: missing"},
@@ -253,6 +263,10 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: satellite, duration_s: 10, prn: 3}", "events[0].type: a satellite fault needs clock_error_m"},
       {"{type: satellite, duration_s: 10, prn: 3, orbit_error_m: [1, 2]}", "events[0].orbit_error_m: must be [radial"},
       {"{type: satellite, duration_s: 10, prn: 3, unhealthy: maybe}", "events[0].unhealthy"},
+      {"{type: truth, duration_s: 1}", "events[0].fault: missing: freeze, teleport or time_jump"},
+      {"{type: truth, duration_s: 1, fault: teleport}", "events[0].offset_m: must be [east, north, up]"},
+      {"{type: truth, duration_s: 1, fault: time_jump}", "events[0].jump_s: missing"},
+      {"{type: truth, duration_s: 1, fault: freeze, ramp_s: 0.2}", "events[0].ramp_s"},
       {"{type: reset, duration_s: 10}", "events[0].duration_s: a reset lasts as long as the receiver's start"},
       {"{type: reset, start: lukewarm}", "events[0].start: 'lukewarm' is not one of cold, hot, warm"},
       {"{type: reset, ramp_s: 1}", "events[0].ramp_s"},

@@ -81,17 +81,19 @@ ProfileFacts profile_facts(const std::string& profile) {
   return f;
 }
 
-std::string navemu_config(const fs::path& profile, const fs::path& link, const fs::path& capture) {
+// `truth`: the truth section's other keys (a stationary receiver at the site unless given).
+std::string navemu_config(const fs::path& profile, const fs::path& link, const fs::path& capture,
+                          const std::string& truth = "source: stationary") {
   return fmt::format(
       "scenario: {{status_interval_s: 1, start: now}}\n"
-      "truth: {{source: stationary, position: {{lat_deg: {}, lon_deg: {}, h_m: {}}}}}\n"
+      "truth: {{{}, position: {{lat_deg: {}, lon_deg: {}, h_m: {}}}}}\n"
       "gnss:\n"
       "  profile: '{}'\n"
       "  capture: '{}'\n"
       "  outputs:\n"
       "    - {{type: pty, link: '{}'}}\n"
       "imu: {{enabled: false}}\n",
-      kSite.lat_deg, kSite.lon_deg, kSite.h_m, profile.string(), capture.string(), link.string());
+      truth, kSite.lat_deg, kSite.lon_deg, kSite.h_m, profile.string(), capture.string(), link.string());
 }
 
 // ---- the harness's report (navemu_px4_gps.cpp: one JSON object per line) -------------------
@@ -314,11 +316,12 @@ struct Px4Run {
   std::string log;  // navemu's
 };
 
-// `more_yaml` adds to navemu's configuration (e.g. `events:`); navemu's log goes into out.log.
+// `more_yaml` adds to navemu's configuration (e.g. `events:`), `truth` replaces its truth (as
+// navemu_config); navemu's log goes into out.log.
 void run_px4(const TempDir& dir, const ProfileFacts& facts, int baud, double run_s, Px4Run& out,
-             const std::string& more_yaml = "") {
+             const std::string& more_yaml = "", const std::string& truth = "source: stationary") {
   const fs::path link = dir / "gps", capture = dir / "wire.ubx";
-  NavemuRun nav(dir, "navemu", navemu_config(facts.path, link, capture) + more_yaml, run_s + 60.0);
+  NavemuRun nav(dir, "navemu", navemu_config(facts.path, link, capture, truth) + more_yaml, run_s + 60.0);
   ASSERT_TRUE(nav.wait_for_pty(link, 10.0)) << nav.diagnostics();
   const fs::path report_path = dir / "px4.jsonl";
   Child px4({NAVEMU_PX4_HARNESS, "--device", link.string(), "--baud", std::to_string(baud),
@@ -872,6 +875,101 @@ TEST(Px4DeviceEvents, CableOutAndResetTheDriverRecovers) {
   std::printf("PX4 cable out 3 s: last report %.2f s before, first again %.2f s after it; hot reset: first 3D fix "
               "%.2f s after it, %d successful configure() after it\n",
               -*last_before_cable, *first_after_cable, *first_fix_after_reset, reconfigured);
+}
+
+// Truth faults as PX4's driver sees them, the vehicle driving east at 10 m/s (a straight line
+// from the site): positions are measured against the line fitted to the reports outside the
+// windows (east = e0 + v t, north constant); the fix's errors (~1 m) are far below the effects:
+//  - freeze for 4 s: the position stops where it was at the freeze's start (east behind the
+//    line by 10 m/s x the time since, within 3 m) while the velocity stays 10 m/s east;
+//  - teleport 200 m north for 4 s: 200 m north of the line (+- 3 m), the velocity unchanged;
+//  - time jump +10 s for 4 s: 100 m ahead on the line (+- 3 m);
+// each from its start to its end within one epoch, and on the line again after it.
+TEST(Px4TruthFaults, TheDriverSeesFreezeTeleportAndTimeJump) {
+  if (!have_harness()) GTEST_SKIP() << kNoHarness;
+  const ProfileFacts facts = profile_facts("ublox-f9p-hpg132");
+  TempDir dir("px4-truth-faults");
+  Px4Run run;
+  constexpr double kFor_s = 4.0, kEpoch_s = 0.2, kSpeed_mps = 10.0;
+  run_px4(dir, facts, facts.baud, 30.0, run,
+          fmt::format("events:\n"
+                      "  - {{type: truth, start_s: 8, duration_s: {0}, fault: freeze}}\n"
+                      "  - {{type: truth, start_s: 14, duration_s: {0}, fault: teleport, offset_m: [0, 200, 0]}}\n"
+                      "  - {{type: truth, start_s: 20, duration_s: {0}, fault: time_jump, jump_s: 10}}\n",
+                      kFor_s),
+          "source: line, line: {heading_deg: 90, length_m: 5000, speed_mps: 10, passes: 1, accel_mps2: 5}");
+  if (HasFatalFailure()) return;
+  const auto freeze = announced_event_start(run.log, "truth frozen");
+  const auto teleport = announced_event_start(run.log, "truth teleported");
+  const auto jump = announced_event_start(run.log, "truth time jump");
+  ASSERT_TRUE(freeze && teleport && jump) << run.log;
+  struct Seen {
+    double t_s;  // from the freeze's start
+    Vec3 enu_m;  // from the site
+    double v_e_mps;
+  };
+  std::vector<Seen> seen;
+  for (const YAML::Node& g : run.rep.gps) {
+    const auto utc_us = g["time_utc_usec"].as<std::int64_t>();
+    if (utc_us == 0 || g["fix_type"].as<int>() != 3) continue;
+    const Vec3 p = ecef_from_geodetic({g["latitude_deg"].as<double>(), g["longitude_deg"].as<double>(),
+                                       g["altitude_ellipsoid_m"].as<double>()});
+    seen.push_back({seconds_between(gps_from_unix_ns(utc_us * 1000), *freeze), enu_from_ecef(p, kSite),
+                    g["vel_e_m_s"].as<double>()});
+  }
+  const double t_teleport = seconds_between(*teleport, *freeze), t_jump = seconds_between(*jump, *freeze);
+  const auto in = [&](double t, double from) { return t >= from - kEpoch_s && t < from + kFor_s + kEpoch_s; };
+  // The line: a least-squares fit of east = e0 + v t and the mean north, outside the windows
+  // (from 1 s before the freeze, at full speed).
+  double n = 0, st = 0, stt = 0, se = 0, ste = 0, north = 0;
+  for (const Seen& s : seen)
+    if (s.t_s > -3.0 && !in(s.t_s, 0.0) && !in(s.t_s, t_teleport) && !in(s.t_s, t_jump)) {
+      n += 1;
+      st += s.t_s;
+      stt += s.t_s * s.t_s;
+      se += s.enu_m.x();
+      ste += s.t_s * s.enu_m.x();
+      north += s.enu_m.y();
+    }
+  ASSERT_GT(n, 40) << run.where;
+  const double v = (n * ste - st * se) / (n * stt - st * st), e0 = (se - v * st) / n;
+  north /= n;
+  EXPECT_NEAR(v, kSpeed_mps, 0.1) << run.where;
+  int frozen = 0, teleported = 0, jumped = 0, on_line = 0;
+  double worst_m = 0.0;
+  for (const Seen& s : seen) {
+    if (s.t_s < -3.0) continue;
+    const double t = s.t_s;
+    Vec3 expected(e0 + v * t, north, 0.0);
+    bool check = true;
+    if (t >= kEpoch_s && t < kFor_s - kEpoch_s) {
+      expected.x() = e0;  // stopped where the freeze began
+      EXPECT_NEAR(s.v_e_mps, kSpeed_mps, 0.5) << "frozen velocity at " << t;
+      ++frozen;
+    } else if (t >= t_teleport + kEpoch_s && t < t_teleport + kFor_s - kEpoch_s) {
+      expected.y() += 200.0;
+      ++teleported;
+    } else if (t >= t_jump + kEpoch_s && t < t_jump + kFor_s - kEpoch_s) {
+      expected.x() += 10.0 * v;
+      ++jumped;
+    } else if (in(t, 0.0) || in(t, t_teleport) || in(t, t_jump)) {
+      check = false;  // within an epoch of a window's edge
+    } else {
+      ++on_line;
+    }
+    if (!check) continue;
+    const double d = std::hypot(s.enu_m.x() - expected.x(), s.enu_m.y() - expected.y());
+    worst_m = std::max(worst_m, d);
+    EXPECT_LT(d, 3.0) << "at " << t << " s from the freeze: east " << s.enu_m.x() - e0 - v * t << " m, north "
+                      << s.enu_m.y() - north << " m off the line";
+  }
+  EXPECT_GE(frozen, 15);
+  EXPECT_GE(teleported, 15);
+  EXPECT_GE(jumped, 15);
+  EXPECT_GE(on_line, 40);
+  std::printf("PX4 truth faults: %d frozen, %d teleported, %d time-jumped and %d other reports within %.2f m of "
+              "where the faulty truth put them\n",
+              frozen, teleported, jumped, on_line, worst_m);
 }
 
 INSTANTIATE_TEST_SUITE_P(Events, Px4Impairment,
