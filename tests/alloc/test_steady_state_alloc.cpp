@@ -106,8 +106,34 @@ TEST(SteadyStateAllocation, OfflineUbxEveryMessage) {
   cfg.gnss_events.jamming = {JammingEvent{{100.0, 300.0, 60.0}, 40.0, InterferenceKind::kWideband, Band::kL1}};
   cfg.gnss_events.outages = {OutageEvent{{420.0, 30.0, 0.0}, 90.0, 270.0, 40.0}};
   cfg.gnss_events.antenna = {AntennaEvent{{470.0, 10.0, 0.0}, AntennaFault::kShort}};
-  cfg.gnss_events.satellites = {SatelliteFaultEvent{{500.0, 60.0, 20.0}, gps_sat(5), 30.0}};
+  // And impairments that last from 200 s to the end of either run.
+  const EventWindow on{200.0, 1e5, 20.0};
+  cfg.gnss_events.satellites = {SatelliteFaultEvent{{500.0, 60.0, 20.0}, gps_sat(5), 30.0},
+                                SatelliteFaultEvent{on, gps_sat(7), 0.0, Vec3(5, 20, 1), true}};
+  cfg.gnss_events.spoofing = {SpoofingEvent{on, Vec3(0, 100, 0)}};
+  cfg.gnss_events.ionosphere = {IonosphereEvent{on, 5.0}};
+  cfg.gnss_events.multipath = {MultipathEvent{on, 3.0}};
+  cfg.gnss_events.cable = {CableEvent{{540.0, 5.0}}};
+  cfg.gnss_events.resets = {ResetEvent{{560.0, 1.5}, RestartKind::kHot}};
   expect_offline_steady_state(cfg, "ublox-f9p");
+}
+
+// The default job with IMU and truth faults that last from 100 s to the end of either run.
+TEST(SteadyStateAllocation, OfflineImuAndTruthFaults) {
+  RunConfig cfg = config("default.yaml");
+  const EventWindow w{100.0, 1e5, 10.0};
+  ImuFault vibration{w, ImuFaultKind::kVibration, ImuSensor::kAccel, -1, 0.5};
+  vibration.vibration = {20.0, 0.01, 5.0, 50.0};
+  cfg.imu_faults = {vibration,
+                    {w, ImuFaultKind::kSaturation, ImuSensor::kGyro, 2, 0.01},
+                    {w, ImuFaultKind::kTemperature, ImuSensor::kGyro, -1, 20.0},
+                    {w, ImuFaultKind::kNoise, ImuSensor::kGyro, 0, 0.01},
+                    {w, ImuFaultKind::kDuplicate, ImuSensor::kGyro, -1, 0.3},
+                    {w, ImuFaultKind::kDrop, ImuSensor::kGyro, -1, 0.3}};
+  cfg.truth_faults = {TruthFault{EventWindow{300.0, 20.0}, TruthFaultKind::kFreeze},
+                      TruthFault{EventWindow{350.0, 1e5}, TruthFaultKind::kTeleport, Vec3(0, 50, 0)},
+                      TruthFault{EventWindow{400.0, 1e5}, TruthFaultKind::kTimeJump, Vec3::Zero(), 3.0}};
+  expect_offline_steady_state(cfg, "imu-truth-faults");
 }
 
 // The built-in constellation renews its data sets once a day (models/measurement.cpp): a
