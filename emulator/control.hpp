@@ -3,11 +3,13 @@
 // binds to loopback by default (`control:` in the configuration; `navemu ctl` sends them). One
 // JSON object per line, one reply line each:
 //   {"cmd": "event", "type": "jamming", "duration_s": 10, "j_over_s_db": 45, ...}
-//       an event with the keys of `events:` (configs/default.yaml), its start_s counted from the
-//       next GNSS epoch (0 when absent), or its start at GPS time `at`; reply {"ok": true,
-//       "from": ISO UTC, "gps": "WEEK:TOW"}
+//       an event with the keys of `events:` (configs/default.yaml; GNSS, IMU and truth), its
+//       start_s counted from the next GNSS epoch (the next IMU sample without GNSS; 0 when
+//       absent), or its start at GPS time `at`; reply {"ok": true, "from": ISO UTC, "gps":
+//       "WEEK:TOW"}
 //   {"cmd": "clear"}
 //       ends every event, those of the configuration too; reply {"ok": true}
+// emulator/control_channel.hpp applies them to the run.
 // A malformed or unknown command is refused: {"ok": false, "error": "<why>"}. Replies go to
 // every client connected to the port. At most kMaxControlLinesPerTick lines are taken per
 // service tick, the rest at the next ones, so a flood of commands cannot hold the loop; a line
@@ -18,7 +20,9 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
+#include "emulator/run_config.hpp"
 #include "models/measurement.hpp"
 #include "transports/byte_port.hpp"
 
@@ -27,8 +31,10 @@ namespace navemu {
 inline constexpr std::size_t kMaxControlLine = 4096;
 inline constexpr int kMaxControlLinesPerTick = 16;
 
-struct ControlEvent {
-  GnssEvents events;  // one event, start_s counted from now
+struct ControlEvent {  // one event in one of the lists, start_s counted from now
+  GnssEvents events;
+  std::vector<ImuFault> imu;
+  std::vector<TruthFault> truth;
 };
 struct ControlClear {};
 using ControlCommand = std::variant<ControlEvent, ControlClear>;

@@ -250,6 +250,14 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   const GpsTime host_offset{start.ns - gps_now().ns};
   RunPlan plan = resolve_run(cfg, opt, log);
   std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
+  // Truth faults (`events:`, live control) act on it through ImpairedTruth (the lockstep
+  // clock's reference below is to the wrapper, which passes the stream through).
+  ImpairedTruth* impaired = nullptr;
+  if (!cfg.truth_faults.empty() || (cfg.control && !offline)) {
+    auto wrapped = std::make_unique<ImpairedTruth>(std::move(truth));
+    impaired = wrapped.get();
+    truth = std::move(wrapped);
+  }
   // Navigation data are checked before anything opens; lockstep knows its start only at the
   // first datagram, so it checks them then.
   NavData nav;
@@ -266,7 +274,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   fmt::print(log, "navemu: scenario start {} ({}), seed {}, {}\n", format_iso_utc(start), format_week_tow(start),
              cfg.seed, offline ? "offline" : lockstep ? "lockstep" : "real time");
   const std::vector<std::unique_ptr<SensorChannel>> channels =
-      make_channels(cfg, plan, outputs, std::move(nav), opt, log);
+      make_channels(cfg, plan, outputs, std::move(nav), opt, impaired, log);
   if (!offline) try_realtime_hardening(cfg, log);
 
   const std::unique_ptr<Clock> clock =
@@ -278,7 +286,7 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // is skipped as late at start), and the duration counts from there.
   if (clock->realtime()) start = GpsTime{start.ns + std::max<std::int64_t>(0, wall0 - clock->mono_of(start))};
   print_events(cfg, start, log);
-  truth = impaired_truth(std::move(truth), cfg.truth_faults, start);  // (the clock's reference stays the source's)
+  if (impaired) impaired->set_faults(cfg.truth_faults, start);
   SchedulerOptions so;
   so.start = start;
   so.end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};

@@ -159,35 +159,18 @@ void GnssChannel::service() {
     if (const std::optional<int> baud = device_->take_baud_change(io_.receiver_ports[i]))
       transport::set_serial_baud(*io_.ports[i], *baud);
   follow_rate(epoch_time(k_ - 1));
-  if (io_.control) io_.control->service([this](std::string_view line) { return apply_control(line); });
 }
 
-std::string GnssChannel::apply_control(std::string_view line) {
-  const std::variant<ControlCommand, std::string> parsed = parse_control_line(line);
-  if (const std::string* why = std::get_if<std::string>(&parsed))
-    return fmt::format(R"({{"ok": false, "error": {}}})", json_string(*why));
-  const ControlCommand& cmd = std::get<ControlCommand>(parsed);
-  if (std::holds_alternative<ControlClear>(cmd)) {
-    receiver_->clear_events();
-    cable_.clear();
-    resets_.clear();
-    return R"({"ok": true})";
-  }
-  GnssEvents events = std::get<ControlEvent>(cmd).events;
-  // The one event's window on the scenario's clock: from its GPS time, or from "now" (the next
-  // epoch).
-  EventWindow* w = nullptr;
-  events.for_each_window([&](EventWindow& x) { w = &x; });
-  if (w == nullptr) return R"({"ok": false, "error": "no event"})";
-  if (w->at)
-    resolve_start(*w, start_);
-  else
-    w->start_s += seconds_between(epoch_time(k_), start_);
+void GnssChannel::add_events(const GnssEvents& events) {
   receiver_->add_events(events);
   cable_.insert(cable_.end(), events.cable.begin(), events.cable.end());
   resets_.insert(resets_.end(), events.resets.begin(), events.resets.end());
-  const GpsTime from = start_.plus_s(w->start_s);
-  return fmt::format(R"({{"ok": true, "from": "{}", "gps": "{}"}})", format_iso_utc(from), format_week_tow(from));
+}
+
+void GnssChannel::clear_events() {
+  receiver_->clear_events();
+  cable_.clear();
+  resets_.clear();
 }
 
 void GnssChannel::status(fmt::memory_buffer& out, ChannelStatus& st) {

@@ -17,7 +17,6 @@
 #include <vector>
 
 #include "emulator/channel.hpp"
-#include "emulator/control.hpp"
 #include "emulator/gnss_device.hpp"
 #include "emulator/recorders.hpp"
 #include "emulator/run_config.hpp"
@@ -34,7 +33,6 @@ struct GnssPorts {
   std::vector<std::unique_ptr<transport::BytePort>> ports;
   std::vector<ReceiverPort> receiver_ports;  // one per port
   std::unique_ptr<transport::BytePort> capture_out, capture_in;
-  std::unique_ptr<ControlPort> control;  // live control (emulator/control.hpp); none: off
   void service();  // accepts TCP clients and the like while nothing runs yet (lockstep)
 };
 
@@ -56,11 +54,15 @@ class GnssChannel final : public SensorChannel {
   void flush_logs() override;
   void finish(EngineSummary& summary) override;
 
+  // Live control (emulator/control_channel.hpp): events whose windows count from the start; the
+  // next epoch's time (what "now" means to them); every event ended.
+  void add_events(const GnssEvents& events);
+  GpsTime next_epoch() const { return epoch_time(k_); }
+  void clear_events();
+
  private:
   static constexpr std::int64_t kComputeLead_ns = 2'000'000;  // computed 2 ms before output
   void follow_rate(GpsTime last);
-  // One control line's reply; events start from the next epoch.
-  std::string apply_control(std::string_view line);
   GpsTime epoch_time(std::int64_t k) const { return GpsTime{k * period_ns_ + offset_ns_}; }
 
   std::unique_ptr<NavData> nav_;  // before the receiver and device, which refer to it

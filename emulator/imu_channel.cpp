@@ -82,6 +82,27 @@ void ImuChannel::begin(GpsTime start) {
   pipe_.resume_at(j_ * pipe_.steps_per_output());
 }
 
+std::optional<std::string> unfit_fault(const ImuFault& f, const ImuParams& p) {
+  if (fault_fits(f, p)) return std::nullopt;
+  return fmt::format("a random vibration from {} to {} Hz: the IMU profile {} samples at {} Hz, so the band must end "
+                     "below {} Hz",
+                     f.vibration.band_lo_hz, f.vibration.band_hi_hz, p.name, p.internal_rate_hz,
+                     p.internal_rate_hz / 2.0);
+}
+
+std::optional<std::string> ImuChannel::add_faults(const std::vector<ImuFault>& faults) {
+  for (const ImuFault& f : faults)
+    if (std::optional<std::string> why = unfit_fault(f, pipe_.params())) return why;
+  faults_.insert(faults_.end(), faults.begin(), faults.end());
+  pipe_.set_faults(faults_, start_);
+  return std::nullopt;
+}
+
+void ImuChannel::clear_faults() {
+  faults_.clear();
+  pipe_.set_faults(faults_, start_);
+}
+
 std::optional<SensorChannel::Event> ImuChannel::next_event(GpsTime end) const {
   if (!(GpsTime{j_ * pipe_.output_period_ns()} < end)) return std::nullopt;
   const GpsTime due{j_ * pipe_.output_period_ns() + latency_ns_};

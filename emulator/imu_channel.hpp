@@ -54,6 +54,10 @@ class ImuPipeline {
   IdealImu last_ideal_;
 };
 
+// Why a fault cannot act on this sensor (models/imu_model.hpp fault_fits), for the user; none
+// when it can.
+std::optional<std::string> unfit_fault(const ImuFault& f, const ImuParams& p);
+
 class ImuChannel final : public SensorChannel {
  public:
   // `can`: the CAN outputs (none: null); `recorders`: imu.csv or the live log; `offline`: CAN
@@ -64,6 +68,13 @@ class ImuChannel final : public SensorChannel {
 
   // The sensor faults of `events:` (type imu), counted from the run's start (begin()).
   void set_faults(std::vector<ImuFault> faults) { faults_ = std::move(faults); }
+  // Live control (emulator/control_channel.hpp): faults whose windows count from the start (the
+  // sensor's fault state starts over: a random vibration's filter from rest); the next
+  // sample's measurement time (what "now" means to them); every fault ended.
+  // Refused (the reason) when one does not fit the sensor (unfit_fault).
+  std::optional<std::string> add_faults(const std::vector<ImuFault>& faults);
+  GpsTime next_sample() const { return GpsTime{j_ * pipe_.output_period_ns()}; }
+  void clear_faults();
 
   std::string_view status_key() const override { return "imu"; }
   void begin(GpsTime start) override;

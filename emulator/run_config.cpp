@@ -461,8 +461,7 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu, std::vec
   if (std::find(kTypes.begin(), kTypes.end(), *type) == kTypes.end())
     m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, types));
   if ((*type == "imu" && !imu) || (*type == "truth" && !truth))
-    m.fail("type", fmt::format("{} faults are scheduled in the configuration's events:, not sent live",
-                               *type == "imu" ? "IMU" : "truth"));
+    m.fail("type", fmt::format("{} faults are not taken here", *type == "imu" ? "IMU" : "truth"));
   EventWindow w;
   w.start_s = m.positive("start_s", true).value_or(0.0);
   if (const std::optional<std::string> at = m.text("at")) {  // GPS time instead of start_s

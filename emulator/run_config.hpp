@@ -195,8 +195,8 @@ struct RunConfig {
 };
 
 // One entry of `events:` (configs/default.yaml) into its list of `gnss`, `imu` or `truth`;
-// InputError naming the entry's key for bad ones. Also the form of live control's event
-// commands, which take no IMU or truth faults (imu, truth null).
+// InputError naming the entry's key for bad ones; the kinds whose list is null are refused.
+// Also the form of live control's event commands.
 class YamlMap;
 void add_event(YamlMap& m, GnssEvents& gnss, std::vector<ImuFault>* imu, std::vector<TruthFault>* truth);
 

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "emulator/commands.hpp"
+#include "emulator/control_channel.hpp"
 #include "emulator/geoid_loader.hpp"
 #include "emulator/gnss_scene.hpp"
 #include "emulator/imu_channel.hpp"
@@ -120,13 +121,6 @@ void print_gnss_outputs(const RunConfig& cfg, const GnssPorts& io, bool offline,
                  "navemu: warning: the GNSS tcp output listens on {}, not loopback: any host "
                  "that reaches it receives the receiver's output and can configure it\n",
                  o.address);
-  if (io.control) {
-    fmt::print(log, "navemu: control on {} (JSON lines: navemu ctl --port {} '{{\"cmd\": \"event\", ...}}')\n",
-               io.control->describe(), transport::tcp_server_port(io.control->port()));
-    if (!transport::is_loopback_address(cfg.control->address))
-      fmt::print(log, "navemu: warning: the control port listens on {}, not loopback: any host that reaches it "
-                      "can inject faults\n", cfg.control->address);
-  }
   if (io.capture_out)
     fmt::print(log, "navemu: GNSS capture: sent bytes to {0}, received bytes to {0}.in\n", cfg.gnss_capture);
 }
@@ -166,11 +160,11 @@ RunOutputs open_outputs(const RunConfig& cfg, const RunPlan& plan, const EngineO
         out.gnss.capture_out = transport::open_log_file(cfg.gnss_capture);
         out.gnss.capture_in = transport::open_log_file(cfg.gnss_capture + ".in");
       }
-      if (cfg.control)
-        out.gnss.control = std::make_unique<ControlPort>(
-            transport::open_tcp_server({cfg.control->address, cfg.control->port, 4, 65536}));
     }
   }
+  if (cfg.control && !offline)
+    out.control =
+        std::make_unique<ControlPort>(transport::open_tcp_server({cfg.control->address, cfg.control->port, 4, 65536}));
   if (plan.imu) {
     // The IMU's CAN frames: offline into can.log (candump -L), live on the configured ports.
     const std::vector<CanOutputSpec> specs =
@@ -196,6 +190,15 @@ void print_outputs(const RunConfig& cfg, const RunPlan& plan, const RunOutputs& 
     else if (!offline)
       fmt::print(log, "navemu: IMU has no output (imu.outputs; set imu.log to record samples)\n");
   }
+  if (out.control) {
+    fmt::print(log, "navemu: control on {} (JSON lines: navemu ctl --port {} '{{\"cmd\": \"event\", ...}}')\n",
+               out.control->describe(), transport::tcp_server_port(out.control->port()));
+    if (!transport::is_loopback_address(cfg.control->address))
+      fmt::print(log, "navemu: warning: the control port listens on {}, not loopback: any host that reaches it "
+                      "can inject faults\n", cfg.control->address);
+  } else if (cfg.control && offline) {
+    fmt::print(log, "navemu: note: control: is for navemu run; simulate takes the events: of the configuration\n");
+  }
   log.flush();
 }
 
@@ -208,8 +211,10 @@ NavData scenario_nav(const RunPlan& plan, GpsTime start, const EngineOptions& op
 
 std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, const RunPlan& plan,
                                                           RunOutputs& outputs, NavData nav,
-                                                          const EngineOptions& opt, std::ostream& log) {
+                                                          const EngineOptions& opt, ImpairedTruth* truth,
+                                                          std::ostream& log) {
   std::vector<std::unique_ptr<SensorChannel>> channels;
+  ControlChannel::Targets targets{nullptr, nullptr, truth};
   if (plan.gnss) {
     std::set<SatId> sats;
     for (const GpsEphemeris& e : nav.gps) sats.insert(e.sat);
@@ -217,24 +222,23 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
                cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode),
                cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, sats.size());
     fmt::print(log, "navemu: {}\n", egm96_geoid().description);
-    channels.push_back(std::make_unique<GnssChannel>(std::make_unique<NavData>(std::move(nav)),
-                                                     plan.gnss->receiver, cfg.gnss, cfg.gnss_mode,
-                                                     std::move(outputs.gnss), std::move(outputs.epoch_recorders)));
+    auto gnss = std::make_unique<GnssChannel>(std::make_unique<NavData>(std::move(nav)), plan.gnss->receiver, cfg.gnss,
+                                              cfg.gnss_mode, std::move(outputs.gnss),
+                                              std::move(outputs.epoch_recorders));
+    targets.gnss = gnss.get();
+    channels.push_back(std::move(gnss));
   }
   if (plan.imu) {
     auto imu = std::make_unique<ImuChannel>(plan.imu->params, cfg.seed, plan.imu->initial, std::move(outputs.can),
                                             std::move(outputs.sample_recorders), !opt.realtime);
     for (const ImuFault& f : cfg.imu_faults)
-      if (f.kind == ImuFaultKind::kVibration && f.vibration.psd > 0.0 &&
-          f.vibration.band_hi_hz >= plan.imu->params.internal_rate_hz / 2.0)
-        throw InputError(cfg.file.string(), 0, "band_hz",
-                         fmt::format("a random vibration up to {} Hz: the IMU profile {} samples at {} Hz, so the "
-                                     "band must end below {} Hz",
-                                     f.vibration.band_hi_hz, plan.imu->params.name, plan.imu->params.internal_rate_hz,
-                                     plan.imu->params.internal_rate_hz / 2.0));
+      if (const std::optional<std::string> why = unfit_fault(f, plan.imu->params))
+        throw InputError(cfg.file.string(), 0, "band_hz", *why);
     imu->set_faults(cfg.imu_faults);
+    targets.imu = imu.get();
     channels.push_back(std::move(imu));
   }
+  if (outputs.control) channels.push_back(std::make_unique<ControlChannel>(std::move(outputs.control), targets));
   log.flush();
   return channels;
 }

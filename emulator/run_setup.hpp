@@ -13,11 +13,13 @@
 #include <optional>
 #include <vector>
 
+#include "emulator/control.hpp"
 #include "emulator/engine.hpp"
 #include "emulator/gnss_channel.hpp"
 #include "emulator/imu_can.hpp"
 #include "emulator/recorders.hpp"
 #include "emulator/run_config.hpp"
+#include "emulator/truth_source.hpp"
 #include "models/ephemeris.hpp"
 #include "models/imu_model.hpp"
 #include "models/receiver.hpp"
@@ -44,6 +46,7 @@ RunPlan resolve_run(const RunConfig& cfg, const EngineOptions& opt, std::ostream
 
 struct RunOutputs {
   GnssPorts gnss;  // offline: nmea.log or ubx.bin
+  std::unique_ptr<ControlPort> control;  // live control (emulator/control.hpp); none: off
   std::unique_ptr<ImuCanOutputs> can;  // offline: can.log
   std::vector<std::unique_ptr<EpochRecorder>> epoch_recorders;    // offline: truth.csv, gnss.csv
   std::vector<std::unique_ptr<SampleRecorder>> sample_recorders;  // imu.csv, or the live imu.log
@@ -61,10 +64,12 @@ void print_outputs(const RunConfig& cfg, const RunPlan& plan, const RunOutputs& 
 // constellation around `start`; InputError unless it covers the scenario.
 NavData scenario_nav(const RunPlan& plan, GpsTime start, const EngineOptions& opt, std::ostream& log);
 
-// The channels, in the order their events run at equal times (GNSS, IMU), taking over the
-// outputs; `nav`: scenario_nav()'s (unused without GNSS). Start-up lines on `log`.
+// The channels, in the order their events run at equal times (GNSS, IMU, then live control),
+// taking over the outputs; `nav`: scenario_nav()'s (unused without GNSS); `truth`: the run's
+// truth, when it takes faults (live control acts on it). Start-up lines on `log`.
 std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, const RunPlan& plan,
                                                           RunOutputs& outputs, NavData nav,
-                                                          const EngineOptions& opt, std::ostream& log);
+                                                          const EngineOptions& opt, ImpairedTruth* truth,
+                                                          std::ostream& log);
 
 }  // namespace navemu

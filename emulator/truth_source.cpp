@@ -207,59 +207,40 @@ std::optional<ImuTruth> truth_from_message(const truth_datagram::Message& m, Gps
   return s;
 }
 
-namespace {
+void ImpairedTruth::set_faults(std::vector<TruthFault> faults, GpsTime start) {
+  start_ = start;
+  faults_ = std::move(faults);
+  for (TruthFault& f : faults_) resolve_start(f.window, start);
+  frozen_.assign(faults_.size(), std::nullopt);
+}
 
-// The truth as a faulty simulator gives it (TruthFault). A frozen state is taken once, at the
-// first query inside the window, from the window's start (a streamed source forgets old
-// samples).
-class ImpairedTruth final : public TruthSource {
- public:
-  ImpairedTruth(std::unique_ptr<TruthSource> inner, std::vector<TruthFault> faults, GpsTime start)
-      : inner_(std::move(inner)), faults_(std::move(faults)), start_(start), frozen_(faults_.size()) {
-    for (TruthFault& f : faults_) resolve_start(f.window, start);
-  }
-  void poll(std::optional<GpsTime> clock) override { inner_->poll(clock); }
-  std::optional<ImuTruth> at(GpsTime t) override {
-    const double t_s = seconds_between(t, start_);
-    GpsTime query = t;
-    for (const TruthFault& f : faults_)
-      if (f.kind == TruthFaultKind::kTimeJump && event_level(f.window, t_s) > 0.0) query = query.plus_s(f.jump_s);
-    std::optional<ImuTruth> s = inner_->at(query);
-    for (std::size_t i = 0; i < faults_.size(); ++i) {
-      const TruthFault& f = faults_[i];
-      if (event_level(f.window, t_s) <= 0.0) {
-        frozen_[i].reset();
-        continue;
-      }
-      if (f.kind == TruthFaultKind::kFreeze) {
-        if (!frozen_[i]) frozen_[i] = inner_->at(start_.plus_s(f.window.start_s));
-        s = frozen_[i];
-      } else if (f.kind == TruthFaultKind::kTeleport && s) {
-        s->position = geodetic_from_ecef(ecef_from_geodetic(s->position) +
-                                         R_enu_from_ecef(s->position).transpose() * f.offset_enu_m);
-      }
+void ImpairedTruth::add_faults(const std::vector<TruthFault>& faults) {
+  faults_.insert(faults_.end(), faults.begin(), faults.end());
+  frozen_.resize(faults_.size());
+}
+
+std::optional<ImuTruth> ImpairedTruth::at(GpsTime t) {
+  const double t_s = seconds_between(t, start_);
+  GpsTime query = t;
+  for (const TruthFault& f : faults_)
+    if (f.kind == TruthFaultKind::kTimeJump && event_level(f.window, t_s) > 0.0) query = query.plus_s(f.jump_s);
+  std::optional<ImuTruth> s = inner_->at(query);
+  for (std::size_t i = 0; i < faults_.size(); ++i) {
+    const TruthFault& f = faults_[i];
+    if (event_level(f.window, t_s) <= 0.0) {
+      frozen_[i].reset();
+      continue;
     }
-    if (s) s->t = t;
-    return s;
+    if (f.kind == TruthFaultKind::kFreeze) {
+      if (!frozen_[i]) frozen_[i] = inner_->at(start_.plus_s(f.window.start_s));
+      s = frozen_[i];
+    } else if (f.kind == TruthFaultKind::kTeleport && s) {
+      s->position = geodetic_from_ecef(ecef_from_geodetic(s->position) +
+                                       R_enu_from_ecef(s->position).transpose() * f.offset_enu_m);
+    }
   }
-  std::optional<GpsTime> newest() const override { return inner_->newest(); }
-  const TruthCounters* counters() const override { return inner_->counters(); }
-  std::optional<std::string> take_warning() override { return inner_->take_warning(); }
-  std::string describe() const override { return inner_->describe(); }
-
- private:
-  std::unique_ptr<TruthSource> inner_;
-  std::vector<TruthFault> faults_;
-  GpsTime start_;
-  std::vector<std::optional<ImuTruth>> frozen_;  // per fault
-};
-
-}  // namespace
-
-std::unique_ptr<TruthSource> impaired_truth(std::unique_ptr<TruthSource> inner, std::vector<TruthFault> faults,
-                                            GpsTime start) {
-  if (faults.empty()) return inner;
-  return std::make_unique<ImpairedTruth>(std::move(inner), std::move(faults), start);
+  if (s) s->t = t;
+  return s;
 }
 
 std::unique_ptr<TruthSource> make_truth_source(const TruthSpec& spec, GpsTime start,

@@ -45,10 +45,30 @@ std::optional<ImuTruth> truth_from_message(const truth_datagram::Message& m, Gps
 std::unique_ptr<TruthSource> make_truth_source(const TruthSpec& spec, GpsTime start,
                                                GpsTime host_offset);
 
-// `inner` with the truth faults of `events:` (emulator/run_config.hpp TruthFault), their windows
-// counted from the scenario's start; `inner` itself when there are none.
-std::unique_ptr<TruthSource> impaired_truth(std::unique_ptr<TruthSource> inner, std::vector<TruthFault> faults,
-                                            GpsTime start);
+// A source with the truth faults of `events:` or live control (emulator/run_config.hpp
+// TruthFault) on it. A frozen state is taken once, at the first query inside the window, from
+// the window's start (a streamed source forgets old samples).
+class ImpairedTruth final : public TruthSource {
+ public:
+  explicit ImpairedTruth(std::unique_ptr<TruthSource> inner) : inner_(std::move(inner)) {}
+  // The faults from now on, their windows counted from the scenario's `start`.
+  void set_faults(std::vector<TruthFault> faults, GpsTime start);
+  // More, their windows already counted from the start.
+  void add_faults(const std::vector<TruthFault>& faults);
+
+  void poll(std::optional<GpsTime> clock) override { inner_->poll(clock); }
+  std::optional<ImuTruth> at(GpsTime t) override;
+  std::optional<GpsTime> newest() const override { return inner_->newest(); }
+  const TruthCounters* counters() const override { return inner_->counters(); }
+  std::optional<std::string> take_warning() override { return inner_->take_warning(); }
+  std::string describe() const override { return inner_->describe(); }
+
+ private:
+  std::unique_ptr<TruthSource> inner_;
+  std::vector<TruthFault> faults_;
+  GpsTime start_;
+  std::vector<std::optional<ImuTruth>> frozen_;  // per fault
+};
 
 // The UDP source's port (for tests and the start-up message), 0 for other sources.
 int truth_udp_port(const TruthSource& source);

@@ -468,12 +468,15 @@ bool ImuModel::step(GpsTime t, const IdealImu& ideal, double temperature_c, ImuS
   return true;
 }
 
+bool fault_fits(const ImuFault& f, const ImuParams& p) {
+  return f.kind != ImuFaultKind::kVibration || f.vibration.psd <= 0.0 ||
+         (f.vibration.band_lo_hz > 0.0 && f.vibration.band_lo_hz < f.vibration.band_hi_hz &&
+          f.vibration.band_hi_hz < p.internal_rate_hz / 2.0);
+}
+
 void ImuModel::set_faults(std::vector<ImuFault> faults, GpsTime origin) {
   for (const ImuFault& f : faults)
-    if (f.kind == ImuFaultKind::kVibration && f.vibration.psd > 0.0)
-      require(f.vibration.band_lo_hz > 0.0 && f.vibration.band_lo_hz < f.vibration.band_hi_hz &&
-                  f.vibration.band_hi_hz < p_.internal_rate_hz / 2.0,
-              "a random vibration's band must lie between 0 and half the internal rate");
+    require(fault_fits(f, p_), "a random vibration's band must lie between 0 and half the internal rate");
   faults_ = std::move(faults);
   fault_origin_ = origin;
   fault_sigma_per_density_ = internal_white_sigma(p_, 1.0);

@@ -153,6 +153,9 @@ struct ImuFault {
   double value = 0.0;
   ImuVibration vibration{};  // kVibration only
 };
+// Whether a fault can act on a sensor of parameters p: a random vibration's band lies between 0
+// and half the internal rate.
+bool fault_fits(const ImuFault& f, const ImuParams& p);
 // Whether a fault acts in the IMU channel (on whole samples) rather than in the sensor model.
 inline bool channel_fault(ImuFaultKind k) { return k == ImuFaultKind::kDrop || k == ImuFaultKind::kDuplicate; }
 

@@ -34,6 +34,13 @@ TEST(Control, CommandsAndTheirRefusals) {
   const auto at = parse_control_line(R"({"cmd": "event", "type": "outage", "duration_s": 3, "at": "2394:475200"})");
   ASSERT_TRUE(std::holds_alternative<ControlCommand>(at));
   EXPECT_EQ(std::get<ControlEvent>(std::get<ControlCommand>(at)).events.outages.at(0).window.at, parse_time("2394:475200"));
+  const auto imu = parse_control_line(
+      R"({"cmd": "event", "type": "imu", "duration_s": 3, "fault": "bias", "sensor": "gyro", "bias_dps": 1})");
+  ASSERT_TRUE(std::holds_alternative<ControlCommand>(imu)) << refusal("");
+  EXPECT_EQ(std::get<ControlEvent>(std::get<ControlCommand>(imu)).imu.size(), 1u);
+  const auto truth = parse_control_line(R"({"cmd": "event", "type": "truth", "duration_s": 3, "fault": "freeze"})");
+  ASSERT_TRUE(std::holds_alternative<ControlCommand>(truth));
+  EXPECT_EQ(std::get<ControlEvent>(std::get<ControlCommand>(truth)).truth.size(), 1u);
   const auto clear = parse_control_line(R"({"cmd": "clear"})");
   ASSERT_TRUE(std::holds_alternative<ControlCommand>(clear));
   EXPECT_TRUE(std::holds_alternative<ControlClear>(std::get<ControlCommand>(clear)));
@@ -45,10 +52,8 @@ TEST(Control, CommandsAndTheirRefusals) {
       {R"({"cmd": "event", "type": "meaconing", "duration_s": 1})", "'meaconing' is not an event type"},
       {R"({"cmd": "event", "type": "spoofing", "duration_s": 1})", "command.offset_m: missing"},
       {R"({"cmd": "event", "type": "outage"})", "command.duration_s: missing"},
-      {R"({"cmd": "event", "type": "imu", "duration_s": 1, "fault": "stuck", "sensor": "gyro"})",
-       "IMU faults are scheduled in the configuration's events:, not sent live"},
-      {R"({"cmd": "event", "type": "truth", "duration_s": 1, "fault": "freeze"})",
-       "truth faults are scheduled in the configuration's events:, not sent live"},
+      {R"({"cmd": "event", "type": "imu", "duration_s": 1, "fault": "stuck"})", "command.sensor: missing"},
+      {R"({"cmd": "event", "type": "truth", "duration_s": 1, "fault": "jump"})", "'jump' is not one of"},
       {R"({"cmd": "event", "type": "antenna", "duration_s": 1, "fault": "cut"})", "'cut' is not one of open, short"},
       {R"({"cmd": {"a": 1}})", "command.cmd"},
       {R"([1, 2])", "a command is one JSON object per line"},

@@ -1,4 +1,4 @@
-// Truth impairments (emulator/truth_source.hpp impaired_truth) against the same source without
+// Truth impairments (emulator/truth_source.hpp ImpairedTruth) against the same source without
 // them: a straight line east at 10 m/s, faults from 10 s.
 
 #include "emulator/truth_source.hpp"
@@ -25,13 +25,14 @@ TruthSpec line_east() {
 }
 
 std::unique_ptr<TruthSource> with(std::vector<TruthFault> faults) {
-  return impaired_truth(make_truth_source(line_east(), kStart, GpsTime{0}), std::move(faults), kStart);
+  auto t = std::make_unique<ImpairedTruth>(make_truth_source(line_east(), kStart, GpsTime{0}));
+  t->set_faults(std::move(faults), kStart);
+  return t;
 }
 
 // Each fault acts exactly over its window and nowhere else; the state carries the query's time.
 TEST(ImpairedTruth, FreezeTeleportAndTimeJumpActOverTheirWindows) {
-  EXPECT_EQ(impaired_truth(make_truth_source(line_east(), kStart, GpsTime{0}), {}, kStart)->describe(),
-            make_truth_source(line_east(), kStart, GpsTime{0})->describe());
+  EXPECT_EQ(with({})->describe(), make_truth_source(line_east(), kStart, GpsTime{0})->describe());
   auto clean = make_truth_source(line_east(), kStart, GpsTime{0});
   auto frozen = with({TruthFault{EventWindow{10.0, 5.0}, TruthFaultKind::kFreeze}});
   auto teleported = with({TruthFault{EventWindow{10.0, 5.0}, TruthFaultKind::kTeleport, Vec3(0.0, 200.0, -3.0)}});

@@ -32,6 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t piece = 1 + (data[0] & 0x3F);
   auto input = navemu::fuzz::bytes_of(data + 1, size - 1);
   navemu::GnssEvents accepted;
+  std::vector<navemu::ImuFault> imu_faults;
   while (!input.empty()) {
     const std::size_t n = std::min(piece, input.size());
     memory.pending = input.first(n);
@@ -42,12 +43,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const auto parsed = navemu::parse_control_line(line);
       if (const std::string* why = std::get_if<std::string>(&parsed))
         return "{\"ok\": false, \"error\": " + navemu::json_string(*why) + "}";
-      if (const auto* e = std::get_if<navemu::ControlEvent>(&std::get<navemu::ControlCommand>(parsed))) {
-        for (const auto& j : e->events.jamming) check_window(j.window);
-        for (const auto& o : e->events.outages) check_window(o.window);
-        for (const auto& a : e->events.antenna) check_window(a.window);
-        for (const auto& s : e->events.satellites) check_window(s.window);
-        if (accepted.size() < 64) accepted.append(e->events);
+      if (auto* e = std::get_if<navemu::ControlEvent>(&std::get<navemu::ControlCommand>(parsed))) {
+        navemu::ControlEvent copy = *e;
+        copy.events.for_each_window(check_window);
+        for (const auto& f : copy.imu) check_window(f.window);
+        for (const auto& f : copy.truth) check_window(f.window);
+        if (accepted.size() < 64) accepted.append(copy.events);
+        if (imu_faults.size() < 64) imu_faults.insert(imu_faults.end(), copy.imu.begin(), copy.imu.end());
       }
       return std::string("{\"ok\": true}");
     });
@@ -56,6 +58,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const char c : memory.written)
     if (static_cast<unsigned char>(c) >= 0x80 || (static_cast<unsigned char>(c) < 0x20 && c != '\n')) std::abort();
 
+  // Accepted IMU faults through a sensor model (those that do not fit it are refused, as the
+  // IMU channel does).
+  if (!imu_faults.empty()) {
+    navemu::ImuParams p;
+    p.internal_rate_hz = p.output_rate_hz = 100.0;
+    std::erase_if(imu_faults, [&](const navemu::ImuFault& f) { return !navemu::fault_fits(f, p); });
+    navemu::ImuModel model(p, 1);
+    model.set_faults(imu_faults, navemu::GpsTime{0});
+    navemu::ImuSample out;
+    for (std::int64_t n = 0; n < 300; ++n) model.step(navemu::GpsTime{n * 10'000'000}, navemu::IdealImu{}, 25.0, out);
+  }
   if (accepted.size() == 0) return 0;
   static const navemu::GpsTime t0 = navemu::from_week_tow(2244, 36000.0);
   static const navemu::NavData nav = navemu::nominal_constellation(t0);
