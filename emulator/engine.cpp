@@ -193,8 +193,10 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
     print(r.window, fmt::format("receiver reset, {} start: silent {} s, no fix for {} s", kStarts[static_cast<int>(r.kind)],
                                 kResetSilence_s, restart_ttff_s(r.kind)));
   for (const SpoofingEvent& s : ev.spoofing)
-    print(s.window, fmt::format("spoofing, pull to {} m east, {} m north, {} m up, {} dB over the true signals",
-                                s.offset_enu_m.x(), s.offset_enu_m.y(), s.offset_enu_m.z(), s.power_advantage_db));
+    print(s.window, fmt::format("spoofing, pull to {} m east, {} m north, {} m up{}, {} dB over the true signals",
+                                s.offset_enu_m.x(), s.offset_enu_m.y(), s.offset_enu_m.z(),
+                                s.time_offset_s != 0.0 ? fmt::format(", time {:+} s", s.time_offset_s) : "",
+                                s.power_advantage_db));
 }
 
 }  // namespace

@@ -524,9 +524,11 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu, std::vec
     ramp();
     SpoofingEvent e{w};
     const auto offset = m.number_list("offset_m");
-    if (!offset) m.fail("offset_m", "missing: [east, north, up], metres from the antenna at full level");
-    if (offset->size() != 3) m.fail("offset_m", "must be [east, north, up], metres");
-    e.offset_enu_m = Vec3((*offset)[0], (*offset)[1], (*offset)[2]);
+    e.time_offset_s = m.number("time_offset_s").value_or(0.0);
+    if (!offset && e.time_offset_s == 0.0)
+      m.fail("offset_m", "missing: [east, north, up], metres from the antenna at full level (or time_offset_s, s)");
+    if (offset && offset->size() != 3) m.fail("offset_m", "must be [east, north, up], metres");
+    if (offset) e.offset_enu_m = Vec3((*offset)[0], (*offset)[1], (*offset)[2]);
     e.power_advantage_db = m.positive("power_advantage_db", true).value_or(e.power_advantage_db);
     out.spoofing.push_back(e);
   } else if (*type == "outage") {

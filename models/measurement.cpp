@@ -260,6 +260,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   out.interference = {};
   out.antenna_fault.reset();
   out.spoofed = out.spoofing_indicated = false;
+  out.spoofed_time_s = 0.0;
   const double t_event_s = seconds_between(t_receiver, *st.event_origin);
   const Geodetic geo = geodetic_from_ecef(p_rx);
   const Mat3 R_enu = R_enu_from_ecef(geo);
@@ -287,6 +288,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     if (level <= 0.0) continue;
     spoof_offset_m += R_enu.transpose() * s.offset_enu_m * level;
     spoof_velocity_mps += R_enu.transpose() * s.offset_enu_m * event_level_rate(s.window, t_event_s);
+    out.spoofed_time_s += s.time_offset_s * level;
     spoof_gain_db = std::max(spoof_gain_db, s.power_advantage_db);
     out.spoofed = true;
     out.spoofing_indicated = out.spoofing_indicated || s.power_advantage_db >= kSpoofDetectPower_db;
@@ -296,6 +298,11 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   for (const IonosphereEvent& i : ev.ionosphere) iono_scale += (i.scale - 1.0) * event_level(i.window, t_event_s);
   for (const MultipathEvent& m : ev.multipath) multipath_scale += (m.scale - 1.0) * event_level(m.window, t_event_s);
   const ReceiverPlace rx{p_rx + spoof_offset_m, v_rx + spoof_velocity_mps, R_enu};
+  // A time spoofer sends the sky of spoofed_time_s later (satellites where they will be, their
+  // signals stamped so), which the receiver, locked to it, takes for now: its time tag moves
+  // with it and its fix stays where it is.
+  const GpsTime t_signal = out.t_true.plus_s(out.spoofed_time_s);
+  out.t_receiver = t_receiver.plus_s(out.spoofed_time_s);
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
   const TropoDelay tropo_zenith = tropo_zenith_delay(geo, meteo);
   // What the atmosphere models need of the receiver and the epoch, for every satellite.
@@ -316,14 +323,14 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   for (SatId sat : st.sat_ids) {
     if (const double* until = st.below_horizon_until_s.find(sat); until && t_s < *until) continue;
     EphemerisSelection& chosen = st.selection.try_emplace(sat).first;
-    if (!chosen.covers(out.t_true))
-      chosen = select_ephemeris_span(*st.records.find(sat), out.t_true);
+    if (!chosen.covers(t_signal))
+      chosen = select_ephemeris_span(*st.records.find(sat), t_signal);
     const GpsEphemeris* eph = chosen.eph;
-    if (eph == nullptr || std::abs(seconds_between(out.t_true, eph->toe)) > kMaxEphemerisAge_s)
+    if (eph == nullptr || std::abs(seconds_between(t_signal, eph->toe)) > kMaxEphemerisAge_s)
       continue;
     State::FlightTime& flight = st.flight_time.try_emplace(sat, State::FlightTime{t_s, 0.075, 0.0}).first;
     const SatGeometry g =
-        gps_sat_geometry(*eph, out.t_true, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
+        gps_sat_geometry(*eph, t_signal, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
     flight = {t_s, g.flight_time_s, g.range_rate_mps / c};
     if (g.dir.el_rad < kFarBelow_rad) st.below_horizon_until_s.try_emplace(sat).first = t_s + kFarBelowSkip_s;
     // The scene: blocked, reflected, attenuated signals (open sky without one).

@@ -110,11 +110,15 @@ struct MultipathEvent {
 // more above the true ones: C/N0 above what the sky gives is the monitor's telltale, and a
 // spoofer matched in power goes unnoticed (a navemu assumption: u-blox does not publish its
 // detector).
+// A time spoofer pulls the receiver's time instead (or as well): it sends the sky as it will be
+// time_offset_s x level later (earlier when negative), satellites and time stamps alike, so the
+// receiver's fix stays where it is and the time it keeps, and reports, is off by that much.
 inline constexpr double kSpoofDetectPower_db = 3.0;
 struct SpoofingEvent {
   EventWindow window;
   Vec3 offset_enu_m = Vec3::Zero();
   double power_advantage_db = 3.0;
+  double time_offset_s = 0.0;
 };
 // Events of the receiver as a device, acted on by its channel (emulator/gnss_channel.cpp), not
 // by the signal model:
@@ -294,7 +298,7 @@ struct SatMeasurement {
 };
 
 struct EpochMeasurements {
-  GpsTime t_receiver;           // the receiver's time tag (GPS time + clock bias)
+  GpsTime t_receiver;           // the receiver's time tag (GPS time + clock bias + a spoofer's pull)
   GpsTime t_true;               // true GPS time of reception
   double rx_clock_bias_s = 0.0;
   double rx_clock_drift_sps = 0.0;
@@ -303,6 +307,7 @@ struct EpochMeasurements {
   std::optional<AntennaFault> antenna_fault;       // at the epoch
   bool spoofed = false;             // a spoofer's signals are tracked (SpoofingEvent)
   bool spoofing_indicated = false;  // and the spoofing monitor sees it
+  double spoofed_time_s = 0.0;      // how far the spoofer pulled the receiver's time
 };
 
 // Receiver classes: tracking loops, antenna and site as they differ between a geodetic receiver

@@ -38,6 +38,8 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   const Vec3 v_ecef = R_ned_from_ecef(truth->position).transpose() * truth->v_ned_mps;
   EpochMeasurements& e = meas_;
   gen_.generate(t, p_ecef, v_ecef, e);
+  // The receiver keeps its time by its clock solution: a time spoofer's pull moves it.
+  out.t = t.plus_s(e.spoofed_time_s);
 
   // Channels: the highest satellites when more are in view than the receiver can track.
   if (static_cast<int>(e.sats.size()) > p_.max_channels) {

@@ -146,8 +146,12 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: imu, duration_s: 40, ramp_s: 20, fault: temperature, temperature_c: -30}\n"
       "  - {type: imu, duration_s: 4, fault: duplicate, probability: 0.1}\n"
       "  - {type: outage, at: '2394:475200.5', duration_s: 20}\n"
-      "  - {type: spoofing, start_s: 10, duration_s: 60, ramp_s: 20, offset_m: [0, 500, -5], power_advantage_db: 1.5}\n"));
-  ASSERT_EQ(c.gnss_events.spoofing.size(), 1u);
+      "  - {type: spoofing, start_s: 10, duration_s: 60, ramp_s: 20, offset_m: [0, 500, -5], power_advantage_db: 1.5}\n"
+      "  - {type: spoofing, start_s: 10, duration_s: 60, time_offset_s: -0.25}\n"));
+  ASSERT_EQ(c.gnss_events.spoofing.size(), 2u);
+  EXPECT_EQ(c.gnss_events.spoofing[0].time_offset_s, 0.0);
+  EXPECT_EQ(c.gnss_events.spoofing[1].time_offset_s, -0.25);
+  EXPECT_EQ(c.gnss_events.spoofing[1].offset_enu_m, Vec3::Zero());
   EXPECT_EQ(c.gnss_events.spoofing[0].offset_enu_m, Vec3(0, 500, -5));
   EXPECT_EQ(c.gnss_events.spoofing[0].power_advantage_db, 1.5);
   EXPECT_EQ(c.gnss_events.spoofing[0].window.ramp_s, 20.0);

@@ -447,6 +447,35 @@ TEST(Measurement, StormsMultipathOrbitFaultsAndHealthFlags) {
   EXPECT_EQ(checked, 20);
 }
 
+// A time spoofer: the measurements are those of the sky pull x level later (the same
+// generator asked at that time, to the millimetre: the error processes follow the true time
+// and are off here) and carry the pulled time tag; a fix from them lies where the receiver is
+// and its time is the pulled one.
+TEST(Measurement, TimeSpoofingSendsTheSkyOfAnotherTime) {
+  const NavData nav = nominal_constellation(kStart);
+  MeasurementConfig c = all_off();
+  c.events.spoofing = {SpoofingEvent{{10.0, 20.0, 5.0}, Vec3::Zero(), 6.0, 2.0}};
+  MeasurementGenerator gen(nav, c);
+  const Vec3 p = ecef_from_geodetic(kSite);
+  for (double t = 0.0; t <= 40.0; t += 0.5) {
+    const double level = event_level(c.events.spoofing[0].window, t);
+    MeasurementGenerator later(nav, all_off());
+    later.set_event_origin(kStart);
+    const auto a = later.generate(kStart.plus_s(t + 2.0 * level), p);
+    const auto b = gen.generate(kStart.plus_s(t), p);
+    EXPECT_NEAR(b.spoofed_time_s, 2.0 * level, 1e-12) << t;
+    EXPECT_EQ(b.spoofed, level > 0.0) << t;
+    EXPECT_EQ(b.t_receiver, kStart.plus_s(t + 2.0 * level)) << t;
+    ASSERT_EQ(a.sats.size(), b.sats.size()) << t;
+    for (std::size_t i = 0; i < a.sats.size(); ++i)
+      EXPECT_NEAR(b.sats[i].signals[0]->pseudorange_m, a.sats[i].signals[0]->pseudorange_m, 1e-3) << t;
+    std::vector<RangeMeasurement> in;
+    gen.solver_input(b, in);
+    const Solution sol = solve(in, b.t_receiver, SolverOptions{});
+    EXPECT_LT((sol.p_ecef_m - p).norm(), 1e-3) << t;
+  }
+}
+
 // The built-in constellation never runs out: over three days (the data made for the start hold
 // 28 h), every epoch has the satellites above the horizon with a data set at most 1 h from its
 // toe (the 2 h uploads), their IODEs move on as new sets are uploaded, and with every error

@@ -694,6 +694,73 @@ TEST(Px4Spoofing, TheDriverIsWalkedOffAndSeesTheIndication) {
               worst_m, kNorth_m, first_indicated_s, last_indicated_s, kFor_s, during);
 }
 
+// A time spoofer (issue "impairments"): PX4's driver reports UTC time pulled 2 s ahead along a
+// 2 s ramp and back, against its own monotonic clock (the offset between the two, less its
+// value before, is 2 s x the event's level within 30 ms: the report's latency varies by a few
+// ms), the position staying (within 3 m) and the spoofing indicated.
+TEST(Px4Spoofing, TheDriverSeesTheTimePulledAway) {
+  if (!have_harness()) GTEST_SKIP() << kNoHarness;
+  const ProfileFacts facts = profile_facts("ublox-f9p-hpg132");
+  TempDir dir("px4-time-spoofing");
+  Px4Run run;
+  constexpr double kOn_s = 6.0, kFor_s = 8.0, kRamp_s = 2.0, kPull_s = 2.0;
+  run_px4(dir, facts, facts.baud, 20.0, run,
+          fmt::format("events:\n  - {{type: spoofing, start_s: {}, duration_s: {}, ramp_s: {}, time_offset_s: {}, "
+                      "power_advantage_db: 6}}\n",
+                      kOn_s, kFor_s, kRamp_s, kPull_s));
+  if (HasFatalFailure()) return;
+  const std::optional<GpsTime> start = announced_event_start(run.log, "spoofing");
+  ASSERT_TRUE(start) << run.log;
+  const EventWindow w{0.0, kFor_s, kRamp_s};
+  struct Seen {
+    double t_harness_s, utc_s;
+    Vec3 p_ecef_m;
+    int spoofing;
+  };
+  std::vector<Seen> seen;
+  for (const YAML::Node& g : run.rep.gps) {
+    const auto utc_us = g["time_utc_usec"].as<std::int64_t>();
+    if (utc_us == 0 || g["fix_type"].as<int>() < 3) continue;
+    seen.push_back({g["t"].as<double>(), static_cast<double>(utc_us) * 1e-6,
+                    ecef_from_geodetic({g["latitude_deg"].as<double>(), g["longitude_deg"].as<double>(),
+                                        g["altitude_ellipsoid_m"].as<double>()}),
+                    g["spoofing_state"].as<int>()});
+  }
+  // Before: the offset of UTC from the harness's clock and the place (the 2 s up to 1 s before).
+  const double start_utc_s = static_cast<double>(unix_ns_from_gps(*start)) * 1e-9;
+  double offset0 = 0.0;
+  Vec3 p0 = Vec3::Zero();
+  int n0 = 0;
+  for (const Seen& s : seen)
+    if (s.utc_s > start_utc_s - 3.0 && s.utc_s < start_utc_s - 1.0) {
+      offset0 += s.utc_s - s.t_harness_s;
+      p0 += s.p_ecef_m;
+      ++n0;
+    }
+  ASSERT_GT(n0, 5) << run.where;
+  offset0 /= n0;
+  p0 /= n0;
+  int checked = 0, indicated = 0;
+  double worst_s = 0.0, worst_m = 0.0;
+  for (const Seen& s : seen) {
+    // The event's time of this report: the harness's clock on the scenario's (before the pull).
+    const double t = s.t_harness_s + offset0 - start_utc_s;
+    if (t < -3.0 || t > kFor_s + 3.0) continue;
+    const double pulled_s = (s.utc_s - s.t_harness_s) - offset0;
+    EXPECT_NEAR(pulled_s, kPull_s * event_level(w, t), 0.03) << "at " << t << " s";
+    worst_s = std::max(worst_s, std::abs(pulled_s - kPull_s * event_level(w, t)));
+    worst_m = std::max(worst_m, (s.p_ecef_m - p0).norm());
+    EXPECT_LT((s.p_ecef_m - p0).norm(), 3.0) << "at " << t << " s";
+    if (t > 0.4 && t < kFor_s - 0.4) indicated += s.spoofing == 2;
+    ++checked;
+  }
+  EXPECT_GE(checked, 60) << run.where;
+  EXPECT_GE(indicated, 30) << run.where;
+  std::printf("PX4 time spoofing: UTC pulled as the ramp says within %.3f s over %d reports, the position within %.2f m, "
+              "spoofing indicated in %d reports\n",
+              worst_s, checked, worst_m, indicated);
+}
+
 // Satellite faults and a storm as PX4's driver sees them, one after the other in one run on the
 // F9P (5 Hz, L1 single-frequency fix, so the ionosphere is not removed):
 //  - the highest satellite flagged unhealthy for 4 s: satellites_used one less from the event's
