@@ -159,6 +159,12 @@ void print_events(const RunConfig& cfg, GpsTime start, std::ostream& log) {
         case ImuFaultKind::kDuplicate:
           print(f.window, fmt::format("IMU samples sent twice, probability {}", f.value));
           break;
+        case ImuFaultKind::kBusOff:
+          print(f.window, "IMU CAN bus-off");
+          break;
+        case ImuFaultKind::kErrorFrames:
+          print(f.window, fmt::format("IMU CAN error frames, {} per second", f.value));
+          break;
       }
     }
   }

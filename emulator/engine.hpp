@@ -49,7 +49,8 @@ struct EngineSummary {
   std::int64_t gnss_epochs = 0, gnss_fixes = 0, gnss_skipped = 0, gnss_late = 0;
   std::int64_t gnss_silent = 0;  // epochs not sent: the cable out, a reset's boot
   std::int64_t imu_samples = 0, imu_flagged = 0, imu_skipped = 0;
-  std::int64_t imu_dropped = 0, imu_duplicated = 0;  // by a fault
+  std::int64_t imu_dropped = 0, imu_duplicated = 0, imu_bus_off = 0;  // by a fault
+  std::int64_t can_error_frames = 0;  // sent by a fault
   std::uint64_t output_chunks_dropped = 0;
   // Summed over the GNSS ports (transport::PortCounters): bytes the clients sent (commands, or
   // whatever a client floods in), and unread output discarded as stale (a lower bound, pty).

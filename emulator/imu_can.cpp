@@ -78,6 +78,16 @@ void ImuCanOutputs::send(const can::ImuSample& sample, std::int64_t unix_time_ns
   }
 }
 
+void ImuCanOutputs::send_error(std::uint32_t error_class, const std::array<std::uint8_t, 8>& data,
+                               std::int64_t unix_time_ns) {
+  transport::CanFrameView f;
+  f.id = error_class;
+  f.error = true;
+  f.data = data;
+  for (Output& out : outputs_)
+    if (out.port->carries_error_frames()) out.port->write(f, unix_time_ns);
+}
+
 void ImuCanOutputs::service() {
   for (Output& out : outputs_) out.port->service();
 }

@@ -20,6 +20,12 @@ struct CanOutputTotals {
                 errors = 0;
 };
 
+// SocketCAN error classes and details (linux/can/error.h): the controller went bus-off and was
+// restarted; a protocol violation (data[2]: a bit-stuffing error) seen as a bus error.
+inline constexpr std::uint32_t kCanErrBusOff = 0x040, kCanErrRestarted = 0x100;
+inline constexpr std::uint32_t kCanErrProt = 0x008, kCanErrBusError = 0x080;
+inline constexpr std::uint8_t kCanErrProtStuff = 0x04;
+
 class ImuCanOutputs {
  public:
   // Opens every output. A socketcan output that cannot be opened falls back to its fallback
@@ -30,6 +36,8 @@ class ImuCanOutputs {
   bool empty() const { return outputs_.empty(); }
   // Sends one sample's frames on every output; `unix_time_ns` stamps them in candump logs.
   void send(const can::ImuSample& sample, std::int64_t unix_time_ns);
+  // Sends an error frame of `error_class` (below) with `data` on the outputs that carry them.
+  void send_error(std::uint32_t error_class, const std::array<std::uint8_t, 8>& data, std::int64_t unix_time_ns);
   void service();
   // One line per output: "socketcan vcan0: j1939, highres".
   std::vector<std::string> describe() const;

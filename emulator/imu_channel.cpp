@@ -131,6 +131,11 @@ bool ImuChannel::run_event(EventContext& ctx) {
       ++j_;
       return true;
     }
+    if (can_bus_faults(t_meas)) {  // the controller is bus-off: the sample's frames are lost
+      ++bus_off_lost_;
+      ++j_;
+      return true;
+    }
     ++samples_;
     if (!valid) {
       ++flagged_;
@@ -172,6 +177,29 @@ bool ImuChannel::fault_hits(ImuFaultKind kind, GpsTime t, RandomStream& rng) con
   return missed < 1.0 && rng.uniform() >= missed;
 }
 
+// The CAN bus faults at the sample measured at t (true: bus-off, the sample is lost). A bus-off
+// begins with the controller's CAN_ERR_BUSOFF error frame and ends with CAN_ERR_RESTARTED;
+// kErrorFrames send bus errors (CAN_ERR_PROT | CAN_ERR_BUSERROR, a stuffing error) at their rate
+// x level, spread evenly over the samples (linux/can/error.h).
+bool ImuChannel::can_bus_faults(GpsTime t) {
+  bool off = false;
+  double rate_hz = 0.0;
+  for (const ImuFault& f : faults_) {
+    const double level = event_level(f.window, seconds_between(t, start_));
+    if (f.kind == ImuFaultKind::kBusOff && level > 0.0) off = true;
+    if (f.kind == ImuFaultKind::kErrorFrames) rate_hz += f.value * level;
+  }
+  if (can_) {
+    const std::int64_t stamp = offline_ ? unix_ns_from_gps(GpsTime{t.ns + latency_ns_}) : realtime_ns();
+    if (off != bus_off_) can_->send_error(off ? kCanErrBusOff : kCanErrRestarted, {}, stamp);
+    error_frames_due_ += rate_hz * static_cast<double>(pipe_.output_period_ns()) * 1e-9;
+    for (; error_frames_due_ >= 1.0; error_frames_due_ -= 1.0, ++error_frames_)
+      can_->send_error(kCanErrProt | kCanErrBusError, {0, 0, kCanErrProtStuff, 0, 0, 0, 0, 0}, stamp);
+  }
+  bus_off_ = off;
+  return off;
+}
+
 void ImuChannel::service() {
   if (can_) can_->service();
 }
@@ -200,6 +228,8 @@ void ImuChannel::finish(EngineSummary& sum) {
   sum.imu_skipped = skipped_;
   sum.imu_dropped = dropped_;
   sum.imu_duplicated = duplicated_;
+  sum.imu_bus_off = bus_off_lost_;
+  sum.can_error_frames = error_frames_;
   if (can_) {
     const CanOutputTotals t = can_->totals();
     sum.can_frames_written = t.frames_written;

@@ -91,11 +91,14 @@ class ImuChannel final : public SensorChannel {
  private:
   static constexpr std::int64_t kImuCatchUp_ns = 500'000'000;  // later samples are skipped
   bool fault_hits(ImuFaultKind kind, GpsTime t, RandomStream& rng) const;
+  bool can_bus_faults(GpsTime t);
 
   ImuPipeline pipe_;
   std::vector<ImuFault> faults_;
   RandomStream drop_rng_;       // "imu.drop": which samples a kDrop fault loses
   RandomStream duplicate_rng_;  // "imu.duplicate": which a kDuplicate fault sends twice
+  bool bus_off_ = false;        // at the last sample (kBusOff)
+  double error_frames_due_ = 0.0;  // kErrorFrames: owed, fractions carried from sample to sample
   std::unique_ptr<ImuCanOutputs> can_;
   std::vector<std::unique_ptr<SampleRecorder>> recorders_;
   GpsTime start_;
@@ -104,7 +107,8 @@ class ImuChannel final : public SensorChannel {
   std::int64_t j_ = 0, j0_ = 0;  // the next output sample's index; the first one's (sequence 0)
   ImuSample sample_;
   bool interval_truth_lost_ = false;
-  std::int64_t samples_ = 0, flagged_ = 0, skipped_ = 0, dropped_ = 0, duplicated_ = 0;
+  std::int64_t samples_ = 0, flagged_ = 0, skipped_ = 0, dropped_ = 0, duplicated_ = 0, bus_off_lost_ = 0,
+               error_frames_ = 0;
 };
 
 }  // namespace navemu

@@ -56,6 +56,8 @@ std::string imu_event_counts(const EngineSummary& s) {
   std::string out;
   if (s.imu_dropped) out += fmt::format(", {} dropped by a fault", s.imu_dropped);
   if (s.imu_duplicated) out += fmt::format(", {} sent twice by a fault", s.imu_duplicated);
+  if (s.imu_bus_off) out += fmt::format(", {} lost to a CAN bus-off", s.imu_bus_off);
+  if (s.can_error_frames) out += fmt::format(", {} CAN error frames", s.can_error_frames);
   return out;
 }
 

@@ -376,10 +376,18 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
                                                       {"vibration", ImuFaultKind::kVibration},
                                                       {"temperature", ImuFaultKind::kTemperature},
                                                       {"drop", ImuFaultKind::kDrop},
-                                                      {"duplicate", ImuFaultKind::kDuplicate}});
+                                                      {"duplicate", ImuFaultKind::kDuplicate},
+                                                      {"bus_off", ImuFaultKind::kBusOff},
+                                                      {"error_frames", ImuFaultKind::kErrorFrames}});
   if (!kind)
-    m.fail("fault", "missing: bias, scale, noise, stuck, saturation, vibration, temperature, drop or duplicate");
+    m.fail("fault", "missing: bias, scale, noise, stuck, saturation, vibration, temperature, drop, duplicate, "
+                    "bus_off or error_frames");
   f.kind = *kind;
+  if (f.kind == ImuFaultKind::kBusOff) return f;  // the bus: no sensor or axis
+  if (f.kind == ImuFaultKind::kErrorFrames) {
+    f.value = m.positive("rate_hz").value_or(10.0);
+    return f;
+  }
   if (channel_fault(f.kind)) {  // whole samples: no sensor or axis
     f.value = m.positive("probability").value_or(1.0);
     if (f.value > 1.0) m.fail("probability", "must be at most 1 (each sample's chance to be hit)");
@@ -509,7 +517,7 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu, std::vec
     truth->push_back(f);
   } else if (*type == "imu") {
     const std::optional<std::string> fault = m.text("fault");
-    if (fault != "stuck" && fault != "saturation") ramp();
+    if (fault != "stuck" && fault != "saturation" && fault != "bus_off") ramp();
     imu->push_back(imu_fault(m, w));
   } else if (*type == "jamming") {
     ramp();

@@ -133,6 +133,8 @@ enum class ImuFaultKind : std::uint8_t {
                  // a ramp drives the datasheet's temperature coefficients
   kDrop,         // output samples lost, each with probability `value` x level (the IMU channel's)
   kDuplicate,    // output samples sent twice, each with probability `value` x level (the channel's)
+  kBusOff,       // the CAN controller bus-off while the level is > 0: no frames (the channel's)
+  kErrorFrames,  // CAN bus errors, `value` x level error frames per second (the channel's)
 };
 // Vibration felt by the sensor: a sinusoid of amplitude `value` (unit) at frequency_hz, plus
 // random vibration of one-sided power spectral density psd (unit^2/Hz) over [band_lo_hz,
@@ -157,7 +159,10 @@ struct ImuFault {
 // and half the internal rate.
 bool fault_fits(const ImuFault& f, const ImuParams& p);
 // Whether a fault acts in the IMU channel (on whole samples) rather than in the sensor model.
-inline bool channel_fault(ImuFaultKind k) { return k == ImuFaultKind::kDrop || k == ImuFaultKind::kDuplicate; }
+inline bool channel_fault(ImuFaultKind k) {
+  return k == ImuFaultKind::kDrop || k == ImuFaultKind::kDuplicate || k == ImuFaultKind::kBusOff ||
+         k == ImuFaultKind::kErrorFrames;
+}
 
 // The sensor: advanced at its internal rate, emits at its output rate. One random stream per
 // error term and axis.

@@ -17,11 +17,14 @@
 namespace navemu::transport {
 
 struct CanFrameView {
-  std::uint32_t id = 0;  // 11-bit or 29-bit identifier, no flag bits
+  std::uint32_t id = 0;  // 11-bit or 29-bit identifier, no flag bits; an error frame's class
   bool extended = false;
   bool fd = false;  // CAN FD frame (payload 0..8, 12, 16, 20, 24, 32, 48 or 64 bytes)
   bool brs = false;  // CAN FD bit-rate switch
   std::span<const std::uint8_t> data;
+  // A SocketCAN error frame (linux/can/error.h): id holds its error class bits (CAN_ERR_BUSOFF,
+  // CAN_ERR_PROT | CAN_ERR_BUSERROR, ...), 8 data bytes; only ports with carries_error_frames().
+  bool error = false;
 };
 
 struct CanCounters {
@@ -55,6 +58,9 @@ class FramePort {
   virtual std::string describe() const = 0;
   // Whether CAN FD frames can be sent here.
   virtual bool fd_capable() const = 0;
+  // Whether error frames can be sent here (SocketCAN, candump logs; not slcan, whose protocol
+  // has none).
+  virtual bool carries_error_frames() const { return false; }
   const CanCounters& counters() const { return counters_; }
 
  protected:

@@ -33,6 +33,7 @@ std::uint8_t can_dlc_from_length(std::size_t len) {
 std::size_t can_length_from_dlc(std::uint8_t dlc) { return kLengthOfDlc[dlc & 0x0Fu]; }
 
 bool valid_can_frame(const CanFrameView& frame) {
+  if (frame.error) return !frame.extended && !frame.fd && frame.id <= 0x1FFFFFFFu && frame.data.size() == 8;
   const std::uint32_t max_id = frame.extended ? 0x1FFFFFFFu : 0x7FFu;
   return frame.id <= max_id && valid_can_length(frame.data.size(), frame.fd);
 }

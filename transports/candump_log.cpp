@@ -42,6 +42,7 @@ class CandumpLog final : public FramePort {
   void service() override { file_->service(); }
   std::string describe() const override { return "candump log " + path_; }
   bool fd_capable() const override { return true; }
+  bool carries_error_frames() const override { return true; }
 
  private:
   std::unique_ptr<BytePort> file_;
@@ -76,8 +77,10 @@ void format_candump_line(const CanFrameView& frame, std::int64_t unix_time_ns,
   std::array<char, 12 + 2 * 64 + 1> body{};
   char* p = body.data();
   *p++ = ' ';
-  p = frame.extended ? fmt::format_to(p, FMT_COMPILE("{:08X}"), frame.id)
-                     : fmt::format_to(p, FMT_COMPILE("{:03X}"), frame.id);
+  // An error frame: its can_id with CAN_ERR_FLAG (0x20000000), 8 digits (lib.c sprint_canframe).
+  p = frame.error      ? fmt::format_to(p, FMT_COMPILE("{:08X}"), frame.id | 0x20000000u)
+      : frame.extended ? fmt::format_to(p, FMT_COMPILE("{:08X}"), frame.id)
+                       : fmt::format_to(p, FMT_COMPILE("{:03X}"), frame.id);
   *p++ = '#';
   if (frame.fd) {
     *p++ = '#';

@@ -88,7 +88,7 @@ class SocketCanPort final : public FramePort {
       // canfd_frame with flags 0; a CAN FD frame is canfd_frame (CANFD_MTU bytes). The size
       // tells the kernel which it is.
       canfd_frame& f = structs[n];
-      f.can_id = frame.extended ? (frame.id | CAN_EFF_FLAG) : frame.id;
+      f.can_id = frame.error ? (frame.id | CAN_ERR_FLAG) : frame.extended ? (frame.id | CAN_EFF_FLAG) : frame.id;
       f.len = static_cast<std::uint8_t>(frame.data.size());
       f.flags = frame.fd && frame.brs ? CANFD_BRS : 0;
       std::memcpy(f.data, frame.data.data(), frame.data.size());
@@ -145,6 +145,7 @@ class SocketCanPort final : public FramePort {
     return "socketcan " + name_ + (fd_frames_ ? " (CAN FD)" : "");
   }
   bool fd_capable() const override { return fd_frames_; }
+  bool carries_error_frames() const override { return true; }
 
  private:
   // Checks the interface, sets the socket options and binds (can.rst, "RAW protocol sockets").

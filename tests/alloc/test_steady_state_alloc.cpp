@@ -129,7 +129,9 @@ TEST(SteadyStateAllocation, OfflineImuAndTruthFaults) {
                     {w, ImuFaultKind::kTemperature, ImuSensor::kGyro, -1, 20.0},
                     {w, ImuFaultKind::kNoise, ImuSensor::kGyro, 0, 0.01},
                     {w, ImuFaultKind::kDuplicate, ImuSensor::kGyro, -1, 0.3},
-                    {w, ImuFaultKind::kDrop, ImuSensor::kGyro, -1, 0.3}};
+                    {w, ImuFaultKind::kDrop, ImuSensor::kGyro, -1, 0.3},
+                    {w, ImuFaultKind::kErrorFrames, ImuSensor::kGyro, -1, 20.0},
+                    {EventWindow{150.0, 10.0}, ImuFaultKind::kBusOff, ImuSensor::kGyro, -1, 0.0}};
   cfg.truth_faults = {TruthFault{EventWindow{300.0, 20.0}, TruthFaultKind::kFreeze},
                       TruthFault{EventWindow{350.0, 1e5}, TruthFaultKind::kTeleport, Vec3(0, 50, 0)},
                       TruthFault{EventWindow{400.0, 1e5}, TruthFaultKind::kTimeJump, Vec3::Zero(), 3.0}};

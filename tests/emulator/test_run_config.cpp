@@ -145,6 +145,8 @@ TEST(RunConfig, EventsAndTheirErrors) {
       "  - {type: imu, duration_s: 4, fault: vibration, sensor: accel, psd_g2_per_hz: 0.04, band_hz: [20, 200]}\n"
       "  - {type: imu, duration_s: 40, ramp_s: 20, fault: temperature, temperature_c: -30}\n"
       "  - {type: imu, duration_s: 4, fault: duplicate, probability: 0.1}\n"
+      "  - {type: imu, duration_s: 4, fault: bus_off}\n"
+      "  - {type: imu, duration_s: 4, ramp_s: 1, fault: error_frames, rate_hz: 40}\n"
       "  - {type: outage, at: '2394:475200.5', duration_s: 20}\n"
       "  - {type: spoofing, start_s: 10, duration_s: 60, ramp_s: 20, offset_m: [0, 500, -5], power_advantage_db: 1.5}\n"
       "  - {type: spoofing, start_s: 10, duration_s: 60, time_offset_s: -0.25}\n"));
@@ -155,7 +157,7 @@ TEST(RunConfig, EventsAndTheirErrors) {
   EXPECT_EQ(c.gnss_events.spoofing[0].offset_enu_m, Vec3(0, 500, -5));
   EXPECT_EQ(c.gnss_events.spoofing[0].power_advantage_db, 1.5);
   EXPECT_EQ(c.gnss_events.spoofing[0].window.ramp_s, 20.0);
-  ASSERT_EQ(c.imu_faults.size(), 11u);
+  ASSERT_EQ(c.imu_faults.size(), 13u);
   EXPECT_EQ(c.imu_faults[0].kind, ImuFaultKind::kBias);
   EXPECT_EQ(c.imu_faults[0].sensor, ImuSensor::kGyro);
   EXPECT_EQ(c.imu_faults[0].axis, 2);
@@ -188,6 +190,9 @@ TEST(RunConfig, EventsAndTheirErrors) {
   EXPECT_EQ(c.imu_faults[9].window.ramp_s, 20.0);
   EXPECT_EQ(c.imu_faults[10].kind, ImuFaultKind::kDuplicate);
   EXPECT_EQ(c.imu_faults[10].value, 0.1);
+  EXPECT_EQ(c.imu_faults[11].kind, ImuFaultKind::kBusOff);
+  EXPECT_EQ(c.imu_faults[12].kind, ImuFaultKind::kErrorFrames);
+  EXPECT_EQ(c.imu_faults[12].value, 40.0);
   const GnssEvents& e = c.gnss_events;
   ASSERT_EQ(e.jamming.size(), 2u);
   EXPECT_EQ(e.jamming[0].window.start_s, 60.0);
@@ -279,7 +284,7 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: ionosphere, duration_s: 10}", "events[0].scale: missing: the true ionospheric delay's factor"},
       {"{type: ionosphere, duration_s: 10, scale: -1}", "events[0].scale"},
       {"{type: multipath, duration_s: 10, factor: 2}", "events[0].scale: missing: the multipath errors' factor"},
-      {"{type: imu, duration_s: 10, sensor: gyro}", "events[0].fault: missing: bias, scale, noise, stuck, saturation, vibration, temperature, drop or duplicate"},
+      {"{type: imu, duration_s: 10, sensor: gyro}", "events[0].fault: missing: bias, scale, noise, stuck, saturation, vibration, temperature, drop, duplicate, bus_off or error_frames"},
       {"{type: imu, duration_s: 10, fault: tilt}", "events[0].fault: 'tilt' is not one of"},
       {"{type: imu, duration_s: 10, fault: bias, bias_dps: 1}", "events[0].sensor: missing: gyro or accel"},
       {"{type: imu, duration_s: 10, fault: bias, sensor: gyro}", "events[0].bias_dps: missing"},
@@ -290,6 +295,9 @@ TEST(RunConfig, EventsAndTheirErrors) {
       {"{type: imu, duration_s: 10, fault: drop, probability: 1.5}", "events[0].probability: must be at most 1"},
       {"{type: imu, duration_s: 10, fault: drop, sensor: gyro}", "events[0].sensor"},
       {"{type: imu, duration_s: 10, fault: duplicate, probability: 2}", "events[0].probability: must be at most 1"},
+      {"{type: imu, duration_s: 10, fault: bus_off, ramp_s: 1}", "events[0].ramp_s"},
+      {"{type: imu, duration_s: 10, fault: bus_off, sensor: gyro}", "events[0].sensor"},
+      {"{type: imu, duration_s: 10, fault: error_frames, rate_hz: 0}", "events[0].rate_hz"},
       {"{type: imu, duration_s: 10, fault: saturation, sensor: accel}", "events[0].range_mps2: missing"},
       {"{type: imu, duration_s: 10, fault: saturation, sensor: gyro, range_dps: 0}", "events[0].range_dps"},
       {"{type: imu, duration_s: 10, ramp_s: 1, fault: saturation, sensor: gyro, range_dps: 9}", "events[0].ramp_s"},

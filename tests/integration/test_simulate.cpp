@@ -293,6 +293,48 @@ TEST(Simulate, CableOutAndResetSilenceTheReceiverThenItSearches) {
     EXPECT_EQ(g(i, "fix"), g.num(i, "time_s") >= 30.0 && g.num(i, "time_s") < 31.5 ? "0" : "3") << g(i, "time_s");
 }
 
+// CAN bus faults offline (the paper's IMU, 125 Hz, J1939 frames in can.log): a bus-off from
+// 5 s for 1 s loses the samples of that second (their frames and log lines), with SocketCAN's
+// CAN_ERR_BUSOFF error frame (can_id 0x20000040 in candump's log format) at its start and
+// CAN_ERR_RESTARTED (0x20000100) at its end; 50 bus errors per second for 2 s from 8 s are 100
+// error frames (CAN_ERR_PROT | CAN_ERR_BUSERROR, a stuffing error in data[2]) in that window.
+TEST(Simulate, CanBusOffAndErrorFramesInTheCandumpLog) {
+  const fs::path a = temp_dir("bus_off");
+  const fs::path cfg = a.parent_path() / "navemu_simulate_bus_off.yaml";
+  std::ofstream(cfg) << "gnss: {enabled: false}\nevents:\n"
+                        "  - {type: imu, start_s: 5, duration_s: 1, fault: bus_off}\n"
+                        "  - {type: imu, start_s: 8, duration_s: 2, fault: error_frames, rate_hz: 50}\n";
+  const auto r = simulate(cfg, a, 12);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("1375 IMU samples, 125 lost to a CAN bus-off, 100 CAN error frames"), std::string::npos) << r.out;
+  const double t0 = static_cast<double>(unix_ns_from_gps(parse_time("2010-11-17T13:00:00Z"))) * 1e-9;
+  std::vector<double> bus_off, restarted, errors;
+  std::size_t frames_in_bus_off = 0, frames = 0;
+  std::istringstream log(slurp(a / "can.log"));
+  for (std::string line; std::getline(log, line);) {
+    const double t = std::stod(line.substr(1, line.find(')') - 1)) - t0;
+    const std::string frame = line.substr(line.rfind(' ') + 1);
+    if (frame == "20000040#0000000000000000") {
+      bus_off.push_back(t);
+    } else if (frame == "20000100#0000000000000000") {
+      restarted.push_back(t);
+    } else if (frame == "20000088#0000040000000000") {
+      errors.push_back(t);
+      EXPECT_TRUE(t >= 8.0 && t < 10.1) << t;
+    } else {
+      ++frames;
+      frames_in_bus_off += t > 5.0 + 0.005 && t < 6.0 - 0.005;
+    }
+  }
+  ASSERT_EQ(bus_off.size(), 1u);
+  ASSERT_EQ(restarted.size(), 1u);
+  EXPECT_NEAR(bus_off[0], 5.0, 0.02);
+  EXPECT_NEAR(restarted[0], 6.0, 0.02);
+  EXPECT_EQ(errors.size(), 100u);
+  EXPECT_EQ(frames_in_bus_off, 0u);
+  EXPECT_EQ(frames, 2u * 1375u) << "ARI and ACCS per sample sent";
+}
+
 TEST(Simulate, ASecondRunIntoTheSameFolderReplacesEveryFile) {
   const fs::path once = temp_dir("once"), twice = temp_dir("twice");
   ASSERT_EQ(simulate(kDefault, once, 10).exit_code, 0);

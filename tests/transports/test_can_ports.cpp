@@ -312,6 +312,11 @@ TEST(CandumpLog, LinesAreInCandumpLFormat) {
             "(1700000000.123456) can0 510##1000102030405060708090A0B\n");
   EXPECT_EQ(candump_line(frame(0x1ABCDEF, {0xAB}, true, true, false), t, "can1"),
             "(1700000000.123456) can1 01ABCDEF##0AB\n");
+  // An error frame: CAN_ERR_FLAG | class, 8 digits (can-utils lib.c sprint_canframe).
+  const std::vector<std::uint8_t> zeros(8, 0);
+  CanFrameView bus_off = frame(0x040, zeros);
+  bus_off.error = true;
+  EXPECT_EQ(candump_line(bus_off, t, "can0"), "(1700000000.123456) can0 20000040#0000000000000000\n");
 }
 
 std::filesystem::path temp_file(const std::string& name) {

@@ -178,5 +178,85 @@ TEST(CanFaults, FullTransmitQueueDropsAndCounts) {
               static_cast<unsigned long long>(rec.dropped));
 }
 
+// The CAN bus faults of `events:` on SocketCAN as candump records them (with an error mask): a bus-off for 1 s
+// (SocketCAN's CAN_ERR_BUSOFF error frame, can_id 0x20000040, no IMU frame, then
+// CAN_ERR_RESTARTED 0x20000100 and the frames again) and 20 bus errors a second for 1 s (error
+// frames 0x20000088, a stuffing error in data[2]), each within 0.1 s of its scheduled time;
+// the IMU frames decode to navemu's log.
+TEST(CanFaults, BusOffAndBusErrorsReachCandumpAsErrorFrames) {
+  NAVEMU_REQUIRE_KERNEL_CAN();
+  if (find_program("candump").empty()) GTEST_SKIP() << "can-utils is not installed (tools/install-deps)";
+  ScratchVcan vcan("navemu-err");
+  if (!vcan.created()) GTEST_SKIP() << "cannot create an interface (ip link add needs CAP_NET_ADMIN)";
+  TempDir dir("can-errors");
+  CandumpRecording dump(dir, "navemu-err", 150.0, kReaderStallS, true);
+  ASSERT_TRUE(dump.receiving()) << dump.diagnostics();
+  NavemuRun nav(dir, "navemu",
+                fmt::format("gnss: {{enabled: false}}\n"
+                            "imu:\n  log: '{}'\n  outputs:\n"
+                            "    - {{type: socketcan, interface: navemu-err, layouts: [highres-fd]}}\n"
+                            "events:\n"
+                            "  - {{type: imu, start_s: 2, duration_s: 1, fault: bus_off}}\n"
+                            "  - {{type: imu, start_s: 4, duration_s: 1, fault: error_frames, rate_hz: 20}}\n",
+                            (dir / "imu.log").string()),
+                6.0);
+  const auto st = nav.child().wait_exit(30.0);
+  ASSERT_TRUE(st && WIFEXITED(*st) && WEXITSTATUS(*st) == 0) << describe_status(st) << nav.diagnostics();
+  const CandumpResult rec = dump.finish();
+  ASSERT_TRUE(rec.ended) << rec.problem << dump.diagnostics();
+  const std::string err = nav.err();
+  const auto bus_off = announced_event_start(err, "IMU CAN bus-off");
+  const auto errors = announced_event_start(err, "IMU CAN error frames");
+  ASSERT_TRUE(bus_off && errors) << nav.diagnostics();
+  const double off_s = static_cast<double>(unix_ns_from_gps(*bus_off)) * 1e-9;
+  const double errors_s = static_cast<double>(unix_ns_from_gps(*errors)) * 1e-9;
+
+  std::vector<LoggedFrame> samples;
+  std::vector<double> off_at, restarted_at, bus_errors_at;
+  bool off = false;
+  std::size_t frames_while_off = 0;
+  for (const LoggedFrame& f : rec.frames) {
+    if ((f.id & 0x20000000u) == 0) {
+      frames_while_off += off ? 1 : 0;
+      samples.push_back(f);
+      continue;
+    }
+    ASSERT_EQ(f.data.size(), 8u);
+    if (f.id == 0x20000040u) {
+      off_at.push_back(f.t_s);
+      off = true;
+    } else if (f.id == 0x20000100u) {
+      restarted_at.push_back(f.t_s);
+      off = false;
+    } else if (f.id == 0x20000088u) {
+      bus_errors_at.push_back(f.t_s);
+      EXPECT_EQ(f.data[2], 0x04) << "a stuffing error";
+    } else {
+      ADD_FAILURE() << "an error frame of class " << std::hex << f.id;
+    }
+  }
+  ASSERT_EQ(off_at.size(), 1u) << dump.diagnostics();
+  ASSERT_EQ(restarted_at.size(), 1u);
+  EXPECT_NEAR(off_at[0], off_s, 0.1);
+  EXPECT_NEAR(restarted_at[0], off_s + 1.0, 0.1);
+  EXPECT_EQ(frames_while_off, 0u);
+  // What navemu reports sending (a sample the real-time loop skipped as late sends none).
+  std::smatch m;
+  static const std::regex sent_re(R"((\d+) lost to a CAN bus-off, (\d+) CAN error frames)");
+  ASSERT_TRUE(std::regex_search(err, m, sent_re)) << nav.diagnostics();
+  EXPECT_NEAR(std::stod(m[1]), 125.0, 5.0) << "1 s at 125 Hz";
+  EXPECT_NEAR(std::stod(m[2]), 20.0, 1.0);
+  if (rec.dropped == 0) {
+    EXPECT_EQ(bus_errors_at.size(), std::stoul(m[2]));
+  }
+  for (double t : bus_errors_at) EXPECT_TRUE(t > errors_s - 0.1 && t < errors_s + 1.1) << t - errors_s;
+  const CanCheck c = check_frames_against_log(samples, read_imu_rows(dir / "imu.log"));
+  EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
+  std::printf("bus-off: error frame %+.3f s from its start, restarted %+.3f s after its end, %zu frames between; "
+              "%zu bus-error frames; %zu IMU frames decoded, %llu dropped by candump\n",
+              off_at[0] - off_s, restarted_at[0] - off_s - 1.0, frames_while_off, bus_errors_at.size(), samples.size(),
+              static_cast<unsigned long long>(rec.dropped));
+}
+
 }  // namespace
 }  // namespace navemu::test::clients

@@ -105,13 +105,18 @@ class CandumpRecording {
  public:
   static constexpr std::uint32_t kMarkerId = 0x7FF;
 
-  // The receive queue holds `stall_s` of frames at `frames_per_s` (0: the kernel's default).
-  CandumpRecording(const TempDir& dir, std::string iface, double frames_per_s, double stall_s = kReaderStallS)
+  // The receive queue holds `stall_s` of frames at `frames_per_s` (0: the kernel's default);
+  // `error_frames`: error frames too (an accept-all filter and the error mask on the interface,
+  // "IFACE,0:0,#FFFFFFFF": candump refuses -e with -L; logged with CAN_ERR_FLAG in the
+  // identifier).
+  CandumpRecording(const TempDir& dir, std::string iface, double frames_per_s, double stall_s = kReaderStallS,
+                   bool error_frames = false)
       : iface_(std::move(iface)), log_(dir / "candump.log"), err_(dir / "candump.stderr") {
     const std::string candump = find_program("candump");
     const long queue = receive_queue_bytes(frames_per_s, stall_s);
     if (candump.empty()) return;
-    dump_.start({candump, "-L", "-d", "-D", "-r", std::to_string(queue / 2), iface_}, log_, err_);
+    dump_.start({candump, "-L", "-d", "-D", "-r", std::to_string(queue / 2), iface_ + (error_frames ? ",0:0,#FFFFFFFF" : "")},
+                log_, err_);
     sock_ = ::socket(AF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
     if (sock_ >= 0) ::setsockopt(sock_, SOL_CAN_RAW, CAN_RAW_FILTER, nullptr, 0);  // sends only
     sockaddr_can addr{};
