@@ -28,6 +28,24 @@ std::pair<std::optional<int>, std::string> ctl(const TempDir& dir, int port, con
   return {st && WIFEXITED(*st) ? std::optional<int>(WEXITSTATUS(*st)) : std::nullopt, slurp(dir / (name + ".out"))};
 }
 
+// The GGA sentences of an NMEA log: each one's fields and its time (UTC time of day) in ms from
+// `from`'s.
+std::vector<std::pair<std::int64_t, std::vector<std::string>>> gga_from(const fs::path& nmea, GpsTime from) {
+  const CalendarTime utc = utc_from_gps(from);
+  const std::int64_t from_ms = ((utc.hour * 60 + utc.minute) * 60) * 1000 + std::llround(utc.second * 1000.0);
+  std::vector<std::pair<std::int64_t, std::vector<std::string>>> out;
+  std::stringstream ss(slurp(nmea));
+  for (std::string line; std::getline(ss, line);) {
+    if (line.size() < 7 || line.compare(3, 4, "GGA,") != 0) continue;
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    if (f.size() < 7) continue;
+    out.emplace_back(nmea_ms_of_day(f[1]) - from_ms, std::move(f));
+  }
+  return out;
+}
+
 TEST(LiveControl, AnOutageSentWhileRunningCutsTheFixFromTheNamedEpoch) {
   TempDir dir("live-control");
   const fs::path nmea = dir / "nmea.log";
@@ -69,16 +87,8 @@ TEST(LiveControl, AnOutageSentWhileRunningCutsTheFixFromTheNamedEpoch) {
   EXPECT_EQ(sum->skipped, 0);
 
   // GGA quality by epoch (UTC time of day in the sentence), against the outage's epochs.
-  const CalendarTime utc = utc_from_gps(from);
-  const std::int64_t from_ms = ((utc.hour * 60 + utc.minute) * 60) * 1000 + std::llround(utc.second * 1000.0);
   int before = 0, during = 0, reacquiring = 0, after = 0;
-  std::stringstream ss(slurp(nmea));
-  for (std::string line; std::getline(ss, line);) {
-    if (line.size() < 7 || line.compare(3, 4, "GGA,") != 0) continue;
-    std::vector<std::string> f;
-    std::stringstream ls(line);
-    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    const std::int64_t dt_ms = nmea_ms_of_day(f[1]) - from_ms;
+  for (const auto& [dt_ms, f] : gga_from(nmea, from)) {
     const int quality = std::stoi(f[6]);
     if (dt_ms >= -1000 && dt_ms < 0) before += quality == 1 ? 1 : -100;
     if (dt_ms >= 0 && dt_ms < 2000) during += quality == 0 ? 1 : -100;
@@ -168,18 +178,9 @@ TEST(LiveControl, ImuAndTruthFaultsSentWhileRunningActFromTheNamedTime) {
   EXPECT_GE(stepped, 97);
   // GGA latitude against the mean of the second before: 12 m, some 5 sigma of this
   // consumer-class receiver's north error.
-  const CalendarTime utc = utc_from_gps(*teleport_at);
-  const std::int64_t from_ms = ((utc.hour * 60 + utc.minute) * 60) * 1000 + std::llround(utc.second * 1000.0);
   std::vector<std::pair<std::int64_t, double>> gga;  // ms from the teleport, latitude
-  std::stringstream ss(slurp(nmea));
-  for (std::string line; std::getline(ss, line);) {
-    if (line.size() < 7 || line.compare(3, 4, "GGA,") != 0) continue;
-    std::vector<std::string> f;
-    std::stringstream ls(line);
-    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    if (f.size() < 7 || f[2].empty()) continue;
-    gga.emplace_back(nmea_ms_of_day(f[1]) - from_ms, std::stod(f[2].substr(0, 2)) + std::stod(f[2].substr(2)) / 60.0);
-  }
+  for (const auto& [dt_ms, f] : gga_from(nmea, *teleport_at))
+    if (!f[2].empty()) gga.emplace_back(dt_ms, std::stod(f[2].substr(0, 2)) + std::stod(f[2].substr(2)) / 60.0);
   double lat0 = 0.0;
   int before = 0, moved = 0, back = 0;
   for (const auto& [dt_ms, lat] : gga)
