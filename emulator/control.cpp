@@ -29,7 +29,7 @@ std::variant<ControlCommand, std::string> parse_control_line(std::string_view li
     }
     if (*cmd != "event") m.fail("cmd", fmt::format("'{}' is not a command (event, clear)", *cmd));
     ControlEvent e;
-    add_event(m, e.events, &e.imu, &e.truth);
+    add_event(m, e.events, e.imu, e.truth);
     return ControlCommand{e};
   } catch (const InputError& e) {
     return std::string(e.what());

@@ -459,17 +459,15 @@ ImuFault imu_fault(YamlMap& m, const EventWindow& w) {
 
 }  // namespace
 
-void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu, std::vector<TruthFault>* truth) {
+void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>& imu, std::vector<TruthFault>& truth) {
   const std::optional<std::string> type = m.text("type");
-  constexpr std::array<std::string_view, 11> kTypes = {"jamming",   "outage", "antenna", "satellite",
+  constexpr std::array<std::string_view, 11> kTypes = {"jamming",   "outage",    "antenna", "satellite",
                                                         "spoofing",  "ionosphere", "multipath", "cable",
-                                                        "reset",     "imu",    "truth"};
+                                                        "reset",     "imu",       "truth"};
   const std::string types = fmt::format("{}", fmt::join(kTypes, ", "));
   if (!type) m.fail("type", fmt::format("missing: the event's type ({})", types));
   if (std::find(kTypes.begin(), kTypes.end(), *type) == kTypes.end())
     m.fail("type", fmt::format("'{}' is not an event type navemu knows ({})", *type, types));
-  if ((*type == "imu" && !imu) || (*type == "truth" && !truth))
-    m.fail("type", fmt::format("{} faults are not taken here", *type == "imu" ? "IMU" : "truth"));
   EventWindow w;
   w.start_s = m.positive("start_s", true).value_or(0.0);
   if (const std::optional<std::string> at = m.text("at")) {  // GPS time instead of start_s
@@ -514,11 +512,11 @@ void add_event(YamlMap& m, GnssEvents& out, std::vector<ImuFault>* imu, std::vec
     } else if (f.kind == TruthFaultKind::kTimeJump) {
       f.jump_s = required(m, "jump_s", "how far the simulator's clock steps, s (negative: back)");
     }
-    truth->push_back(f);
+    truth.push_back(f);
   } else if (*type == "imu") {
     const std::optional<std::string> fault = m.text("fault");
     if (fault != "stuck" && fault != "saturation" && fault != "bus_off") ramp();
-    imu->push_back(imu_fault(m, w));
+    imu.push_back(imu_fault(m, w));
   } else if (*type == "jamming") {
     ramp();
     JammingEvent e{w, required(m, "j_over_s_db", "the jammer-to-signal ratio at full power, dB")};
@@ -630,7 +628,7 @@ RunConfig load_run_config(const std::filesystem::path& file) {
   for (YamlMap& o : imu.map_list("outputs")) c.imu_outputs.push_back(can_output(o, false));
   imu.reject_unknown_keys();
 
-  for (YamlMap& e : root.map_list("events")) add_event(e, c.gnss_events, &c.imu_faults, &c.truth_faults);
+  for (YamlMap& e : root.map_list("events")) add_event(e, c.gnss_events, c.imu_faults, c.truth_faults);
   if (root.has("control")) {
     YamlMap ctl = root.map("control");
     c.control.emplace();

@@ -195,10 +195,10 @@ struct RunConfig {
 };
 
 // One entry of `events:` (configs/default.yaml) into its list of `gnss`, `imu` or `truth`;
-// InputError naming the entry's key for bad ones; the kinds whose list is null are refused.
-// Also the form of live control's event commands.
+// InputError naming the entry's key for bad ones. Also the form of live control's event
+// commands.
 class YamlMap;
-void add_event(YamlMap& m, GnssEvents& gnss, std::vector<ImuFault>* imu, std::vector<TruthFault>* truth);
+void add_event(YamlMap& m, GnssEvents& gnss, std::vector<ImuFault>& imu, std::vector<TruthFault>& truth);
 
 // The file's configuration; relative paths inside it are relative to the file's folder.
 RunConfig load_run_config(const std::filesystem::path& file);
