@@ -164,10 +164,10 @@ TEST(CanSlcan, PythonCanSeesImuFaultsComeAndGoOnTime) {
 // The other IMU faults as python-can sees them, on a BMI160 (its datasheet temperature
 // coefficients; output at 100 Hz here): the accelerometer's z axis saturating at 5 m/s^2 (its
 // saturation flag set), a 2 Hz sinusoidal vibration of 20 deg/s on gyroscope x, the part
-// warming by 40 degC over a 1 s ramp (gyroscope bias 0.05 deg/s per degC: +2 deg/s), and every
-// sample sent twice for half a second; each from its scheduled time to its end within one
-// sample period (10 ms, plus the millisecond navemu prints), and python-can's frames decode to
-// what navemu logged.
+// warming by 40 degC over a 1 s ramp (gyroscope bias 0.05 deg/s per degC: +2 deg/s), every
+// sample sent twice for half a second, then a scale-factor error and added noise; each from its
+// scheduled time to its end within one sample period (10 ms, plus the millisecond navemu
+// prints), and python-can's frames decode to what navemu logged.
 TEST(CanSlcan, PythonCanSeesSaturationVibrationTemperatureAndDuplicates) {
   if (!fs::exists("/usr/lib/python3/dist-packages/can"))
     GTEST_SKIP() << "python3-can is not installed (tools/install-deps)";
@@ -188,11 +188,15 @@ TEST(CanSlcan, PythonCanSeesSaturationVibrationTemperatureAndDuplicates) {
                             "  - {{type: imu, start_s: 4.5, duration_s: 1.5, fault: vibration, sensor: gyro, axis: x, "
                             "amplitude_dps: 20, frequency_hz: 2}}\n"
                             "  - {{type: imu, start_s: 6.5, duration_s: 2.5, ramp_s: 1, fault: temperature, temperature_c: 40}}\n"
-                            "  - {{type: imu, start_s: 9.2, duration_s: 0.5, fault: duplicate}}\n",
+                            "  - {{type: imu, start_s: 9.2, duration_s: 0.5, fault: duplicate}}\n"
+                            "  - {{type: imu, start_s: 10.2, duration_s: 1, fault: scale, sensor: accel, axis: z, "
+                            "scale_ppm: 20000}}\n"
+                            "  - {{type: imu, start_s: 10.2, duration_s: 1, fault: noise, sensor: gyro, axis: x, "
+                            "noise_radps_per_rthz: 0.01}}\n",
                             (dir / "bmi160-100hz.yaml").string(), (dir / "imu.log").string(), link.string()),
-                13);
+                15);
   std::vector<LoggedFrame> frames;
-  capture_with_python_can(dir, link, nav, "10", frames);
+  capture_with_python_can(dir, link, nav, "12", frames);
   if (HasFatalFailure()) return;
   const auto nav_status = nav.child().wait_exit(20.0);
   ASSERT_TRUE(nav_status && WIFEXITED(*nav_status) && WEXITSTATUS(*nav_status) == 0) << nav.diagnostics();
@@ -201,7 +205,9 @@ TEST(CanSlcan, PythonCanSeesSaturationVibrationTemperatureAndDuplicates) {
   const auto vibration = announced_event_start(err, "IMU vibration, gyroscope x, 20 deg/s at 2 Hz");
   const auto warm = announced_event_start(err, "IMU temperature change");
   const auto twice = announced_event_start(err, "IMU samples sent twice, probability 1");
-  ASSERT_TRUE(saturation && vibration && warm && twice) << nav.diagnostics();
+  const auto scale = announced_event_start(err, "IMU scale-factor error, accelerometer z, 20000 ppm");
+  const auto noise = announced_event_start(err, "IMU added noise, gyroscope x");
+  ASSERT_TRUE(saturation && vibration && warm && twice && scale && noise) << nav.diagnostics();
   const CanCheck c = check_frames_against_log(frames, read_imu_rows(dir / "imu.log"));
   EXPECT_EQ(c.mismatches, 0u) << c.first_problem;
 
@@ -223,9 +229,9 @@ TEST(CanSlcan, PythonCanSeesSaturationVibrationTemperatureAndDuplicates) {
       group.clear();
     }
   }
-  ASSERT_GE(got.size(), 950u) << "10 s at 100 Hz, less python-can's start";
+  ASSERT_GE(got.size(), 1150u) << "12 s at 100 Hz, less python-can's start";
   ASSERT_LE(got.front().gps_time_ns, saturation->ns - 500'000'000) << "python-can was reading before the first fault";
-  ASSERT_GE(got.back().gps_time_ns, twice->ns + 700'000'000) << "and after the last";
+  ASSERT_GE(got.back().gps_time_ns, scale->ns + 1'500'000'000) << "and after the last";
 
   constexpr std::int64_t kTol_ns = 10'000'000 + 1'000'000;  // a sample period + the printed ms
   constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -300,6 +306,37 @@ TEST(CanSlcan, PythonCanSeesSaturationVibrationTemperatureAndDuplicates) {
       EXPECT_FALSE(outside(got[i], *twice, 0.5)) << "sent twice at " << static_cast<double>(got[i].gps_time_ns - twice->ns) * 1e-9 << " s";
     }
   EXPECT_NEAR(static_cast<double>(doubled), 50.0, 1.0);
+  // Scale factor and added noise, 1 s each: accelerometer z's mean x 1.02 (its noise is
+  // 0.014 m/s^2 per sample), gyroscope x's standard deviation sqrt(0.05^2 + 0.01^2 x 100) ~ 0.1
+  // rad/s against ~0.001 before; after it, both back.
+  const auto stats = [&](int axis, bool gyro, std::int64_t from_ns, std::int64_t to_ns) {
+    double sum = 0.0, sum2 = 0.0;
+    int n = 0;
+    for (const auto& d : got)
+      if (d.gps_time_ns >= from_ns && d.gps_time_ns < to_ns) {
+        const double v = gyro ? d.w_body_radps[static_cast<std::size_t>(axis)] : d.f_body_mps2[static_cast<std::size_t>(axis)];
+        sum += v;
+        sum2 += v * v;
+        ++n;
+      }
+    const double mean = sum / n;
+    return std::pair<double, double>(mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean)));
+  };
+  const std::int64_t s0 = scale->ns, n0 = noise->ns, kSecond = 1'000'000'000;
+  const double fz_before = stats(2, false, s0 - kSecond / 2, s0 - kTol_ns).first;
+  const double fz_during = stats(2, false, s0 + kTol_ns, s0 + kSecond - kTol_ns).first;
+  const double fz_after = stats(2, false, s0 + kSecond + kTol_ns, s0 + kSecond + kSecond / 2).first;
+  EXPECT_NEAR(fz_during / fz_before, 1.02, 0.002);
+  EXPECT_NEAR(fz_after / fz_before, 1.0, 0.002);
+  const double wx_before_sd = stats(0, true, n0 - kSecond / 2, n0 - kTol_ns).second;
+  const double wx_during_sd = stats(0, true, n0 + kTol_ns, n0 + kSecond - kTol_ns).second;
+  const double wx_after_sd = stats(0, true, n0 + kSecond + kTol_ns, n0 + kSecond + kSecond / 2).second;
+  EXPECT_NEAR(wx_during_sd, 0.1, 0.02) << "0.01 rad/s/sqrt(Hz) at 100 Hz";
+  EXPECT_LT(wx_before_sd, 0.01);
+  EXPECT_LT(wx_after_sd, 0.01);
+  fmt::print("scale 20000 ppm: accelerometer z x{:.4f}, then x{:.4f}; noise 0.01 rad/s/sqrt(Hz): gyroscope x sd {:.4f} "
+             "rad/s (before {:.4f}, after {:.4f})\n",
+             fz_during / fz_before, fz_after / fz_before, wx_during_sd, wx_before_sd, wx_after_sd);
   fmt::print("saturation: {} samples clipped at 5 m/s^2; vibration: {:.2f} deg/s in phase, {:.2f} in quadrature "
              "(20 deg/s at 2 Hz); temperature +40 degC: gyroscope y +{:.3f} deg/s half way up the ramp, "
              "+{:.3f} on the plateau, {:+.3f} after; {} samples sent twice\n",
