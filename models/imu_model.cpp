@@ -428,6 +428,8 @@ ImuModel::ImuModel(const ImuParams& p, std::uint64_t seed) : p_(p) {
   state_ = std::make_unique<State>(p_, seed);
 }
 
+ImuModel::~ImuModel() = default;
+
 // One internal sample: (1 + s + s_T(T) + k2 x) (M x) + turn-on + null offset + b_GM + b_RW +
 // b_T(T) + white + g-sensitivity, through the output low-pass; every k-th sample is quantized,
 // saturated and emitted at t + latency.
@@ -490,8 +492,6 @@ void ImuModel::set_faults(std::vector<ImuFault> faults, GpsTime origin) {
     tr->fault_range.setZero();
   }
 }
-
-ImuModel::~ImuModel() = default;
 
 // The faults' sum at t: bias steps, scale errors, vibration and temperature offsets add, noise
 // densities add in variance (each at the internal rate as internal_white_sigma() sets the
