@@ -4,9 +4,9 @@
 // JSON object per line, one reply line each:
 //   {"cmd": "event", "type": "jamming", "duration_s": 10, "j_over_s_db": 45, ...}
 //       an event with the keys of `events:` (configs/default.yaml; GNSS, IMU and truth), its
-//       start_s counted from the next GNSS epoch (the next IMU sample without GNSS; 0 when
-//       absent), or its start at GPS time `at`; reply {"ok": true, "from": ISO UTC, "gps":
-//       "WEEK:TOW"}
+//       start_s counted from "now" (a GNSS event's next epoch, an IMU fault's next sample, the
+//       later of the two for a truth fault; 0 when absent), or its start at GPS time `at`;
+//       reply {"ok": true, "from": ISO UTC, "gps": "WEEK:TOW"}
 //   {"cmd": "clear"}
 //       ends every event, those of the configuration too; reply {"ok": true}
 // emulator/control_channel.hpp applies them to the run.

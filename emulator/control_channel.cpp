@@ -1,5 +1,7 @@
 #include "emulator/control_channel.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 namespace navemu {
@@ -24,8 +26,11 @@ std::string ControlChannel::apply(std::string_view line) {
     return R"({"ok": true})";
   }
   ControlEvent e = std::get<ControlEvent>(cmd);
-  // The one event's window, on the scenario's clock: from its GPS time, or from "now" (the
-  // next GNSS epoch; the next IMU sample without a receiver).
+  // The one event's window, on the scenario's clock: from its GPS time, or from "now": the next
+  // instant the channels it acts on have not yet measured. A receiver's event starts at its
+  // next epoch and an IMU fault at its next sample; a truth fault at the later of the two, as
+  // each channel runs ahead of the other by up to its own output latency (the receiver's
+  // epoch goes out some 40 ms after the IMU has measured past it).
   EventWindow* w = nullptr;
   e.events.for_each_window([&](EventWindow& x) { w = &x; });
   for (ImuFault& f : e.imu) w = &f.window;
@@ -37,7 +42,9 @@ std::string ControlChannel::apply(std::string_view line) {
   if (w->at) {
     resolve_start(*w, start_);
   } else {
-    const GpsTime now = to_.gnss ? to_.gnss->next_epoch() : to_.imu ? to_.imu->next_sample() : start_;
+    GpsTime now = start_;
+    if (to_.gnss && (e.events.size() > 0 || !e.truth.empty())) now = std::max(now, to_.gnss->next_epoch());
+    if (to_.imu && (!e.imu.empty() || !e.truth.empty())) now = std::max(now, to_.imu->next_sample());
     w->start_s += seconds_between(now, start_);
   }
   if (!e.imu.empty())
