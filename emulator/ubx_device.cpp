@@ -264,21 +264,27 @@ void UbxDevice::refresh() {
                                                                  (flag(item("CFG-SIGNAL-BDS_ENA"), true) ? 0x04 : 0) |
                                                                  (flag(item("CFG-SIGNAL-GAL_ENA"), true) ? 0x08 : 0))
                                      : 0x03;  // the u-blox 8's default GPS + GLONASS (CFG-GNSS kept, not applied)
-  // NMEA version and main talker ID (F9 interface description CFG-NMEA-PROTVER, -MAINTALKERID:
-  // 0 as the GNSS configuration says, 1 GP, 2 GL, 3 GN, 4 GA, 5 GB, 7 GQ). The u-blox 8 keeps
-  // its legacy CFG-NMEA, not applied: the profile's.
-  talker_ = profile_.talker;
+  // NMEA version and main talker ID: the F9's CFG-NMEA-PROTVER and -MAINTALKERID, the u-blox 8's
+  // legacy CFG-NMEA nmeaVersion (BCD: 0x40 is 4.0, its power-up value) and mainTalkerId
+  // (UBX-13003221 "UBX-CFG-NMEA"). Talker 0: as the GNSS configuration says (the profile's),
+  // 1 GP, 2 GL, 3 GN, 4 GA, 5 GB, 7 GQ.
+  std::uint64_t talker = 0;
   nmea_version_.reset();
-  // High precision mode "cannot be used while in NMEA compatibility mode or when NMEA output is
-  // limited to 82 characters" (ZED-F9P integration manual UBX-18010802 3.1.4.5).
-  const bool high_precision = protocol27_ && flag(item("CFG-NMEA-HIGHPREC"), false) &&
-                              !flag(item("CFG-NMEA-COMPAT"), false) && !flag(item("CFG-NMEA-LIMIT82"), false);
   if (protocol27_) {
     nmea_version_ = static_cast<int>(config_.get(item("CFG-NMEA-PROTVER")));
-    static constexpr const char* kTalkers[] = {"", "GP", "GL", "GN", "GA", "GB", "", "GQ"};
-    const std::uint64_t t = config_.get(item("CFG-NMEA-MAINTALKERID"));
-    if (t < std::size(kTalkers) && *kTalkers[t] != '\0') talker_ = kTalkers[t];
+    talker = config_.get(item("CFG-NMEA-MAINTALKERID"));
+  } else if (CfgNmea m; decode(legacy_.current(kCfgNmea), m)) {
+    nmea_version_ = (m.nmea_version >> 4) * 10 + (m.nmea_version & 0xF);
+    talker = m.main_talker_id;
   }
+  static constexpr const char* kTalkers[] = {"", "GP", "GL", "GN", "GA", "GB", "", "GQ"};
+  talker_ = talker < std::size(kTalkers) && *kTalkers[talker] != '\0' ? kTalkers[talker] : profile_.talker;
+  // High precision mode "cannot be used while in NMEA compatibility mode or when NMEA output is
+  // limited to 82 characters" (ZED-F9P integration manual UBX-18010802 3.1.4.5); the u-blox 8
+  // profile's protocol 18 has no high precision mode (UBX-13003221 CFG-NMEA flags: highPrec
+  // "not supported in protocol versions < 20.01").
+  const bool high_precision = protocol27_ && flag(item("CFG-NMEA-HIGHPREC"), false) &&
+                              !flag(item("CFG-NMEA-COMPAT"), false) && !flag(item("CFG-NMEA-LIMIT82"), false);
   for (std::uint8_t p = 0; p < kReceiverPorts; ++p) {
     PortSettings& s = ports_[p];
     s.in_ubx = flag(proto_item(p, true, "UBX"), true);
@@ -460,6 +466,7 @@ void UbxDevice::handle(std::uint8_t cls, std::uint8_t id, Payload p, std::uint8_
     if (c.set) return (this->*c.set)(p, port, out);
     break;
   }
+  if (cls == kClassMga && !p.empty()) return acknowledge_aiding(msg, p, out);
   if (cls != kClassCfg) {
     // A poll of an output message is answered with the latest epoch's message.
     if (p.empty() && output_message(msg, out)) ++counters_.polls;
@@ -581,6 +588,26 @@ void UbxDevice::handle_aid_aop(Payload p, std::uint8_t, Bytes& out) {
 }
 
 void UbxDevice::poll_mga_dbd(std::uint8_t, Bytes& out) { append_mga_dbd_dump(last_meas_, out); }
+
+// Assistance data in (MGA-GPS, -GAL, -BDS, -QZSS, -GLO, -ANO, -INI, and MGA-DBD entries sent
+// back): acknowledged with MGA-ACK-DATA0 when acknowledgements are on (UBX-18010854 5.12.1,
+// 5.12.3.2; CFG-NAVSPG-ACKAIDING, or a CFG-NAVX5 that sets ackAiding, UBX-13003221 32.10.16),
+// as accepted (type 1, infoCode 0), echoing the message ID and its first four payload bytes.
+// navemu's receiver does not use the data: its start-up is the profile's. Other MGA IDs are
+// not input messages (MGA-ACK is the receiver's own; MGA-FLASH, the u-blox 8's flash upload,
+// answers with its own MGA-FLASH-ACK and is not modelled) and get nothing.
+void UbxDevice::acknowledge_aiding(MsgId msg, Payload p, Bytes& out) {
+  static constexpr std::uint8_t kInputs[] = {0x00, 0x02, 0x03, 0x05, 0x06, 0x20, 0x40, kMgaDbd.id};
+  if (std::find(std::begin(kInputs), std::end(kInputs), msg.id) == std::end(kInputs)) return;
+  constexpr std::uint16_t kAckAid = 1u << 10;  // CFG-NAVX5 mask1: apply ackAiding
+  CfgNavx5 navx5;
+  const bool legacy_on = decode(legacy_.current(kCfgNavx5), navx5) && (navx5.mask1 & kAckAid) && navx5.ack_aiding;
+  if (!legacy_on && !(protocol27_ && config_.get(item("CFG-NAVSPG-ACKAIDING")) != 0)) return;
+  MgaAck ack;
+  ack.msg_id = msg.id;
+  for (std::size_t i = 0; i < 4 && i < p.size(); ++i) ack.msg_payload_start |= std::uint32_t{p[i]} << (8 * i);
+  append(ack, out);
+}
 
 // UPD-SOS (UBX-18010854 5.18.1): the poll is answered with whether the last start restored a
 // backup; "create" makes one and is answered with the creation acknowledgement; "clear" removes

@@ -92,6 +92,7 @@ class UbxDevice final : public GnssDevice {
   void handle_aid_eph(Payload payload, std::uint8_t port, Bytes& out);
   void handle_aid_aop(Payload payload, std::uint8_t port, Bytes& out);
   void poll_mga_dbd(std::uint8_t port, Bytes& out);
+  void acknowledge_aiding(ubx::MsgId msg, Payload payload, Bytes& out);
   void poll_upd_sos(std::uint8_t port, Bytes& out);
   void handle_upd_sos(Payload payload, std::uint8_t port, Bytes& out);
   void poll_cfg_rate(std::uint8_t port, Bytes& out);
@@ -155,7 +156,7 @@ class UbxDevice final : public GnssDevice {
 
   NavEngineSettings engine_;  // from CFG-NAVSPG
   std::string talker_;        // the NMEA talker ID the output uses (CFG-NMEA-MAINTALKERID)
-  std::optional<int> nmea_version_;  // CFG-NMEA-PROTVER on the F9; none: the profile's
+  std::optional<int> nmea_version_;  // CFG-NMEA-PROTVER (the u-blox 8: legacy CFG-NMEA); none: the profile's
   // What the monitor and odometer messages report (traffic, odometer, switches).
   UbxDeviceStatus status_;
   std::optional<GpsTime> odo_last_t_;  // the previous fix the odometer counted from

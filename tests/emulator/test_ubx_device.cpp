@@ -12,6 +12,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <optional>
@@ -27,6 +30,7 @@
 #include "protocols/nmea.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
+#include "tests/test_support.hpp"
 
 namespace navemu {
 namespace {
@@ -2027,6 +2031,53 @@ TEST_F(UbxDeviceTest, NmeaVersionAndTalkerFollowTheirItems) {
   EXPECT_EQ(sentence("GGA")[0], "GNGGA");
 }
 
+// The u-blox 8 applies its legacy CFG-NMEA (UBX-13003221 "UBX-CFG-NMEA"): at power-up NMEA 4.0
+// (nmeaVersion 0x40), whose RMC has the mode indicator but no navigational status (13 fields)
+// and whose GSA has no system ID (18), as a real u-blox 8 sends them (the gpsd capture in
+// ../shared/data, when present); version 4.1 adds both, mainTalkerId 3 makes the talker GN,
+// and 2.1 drops the mode indicator.
+TEST_F(UbxDeviceTest, TheUblox8AppliesItsLegacyCfgNmea) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());
+  std::int64_t k = 0;
+  std::string out;
+  const auto sentence = [&](const std::string& type) {
+    const std::size_t at = out.find(type + ",");
+    if (at == std::string::npos || at < 3) return std::vector<std::string>{};
+    return fields_of(out.substr(at - 3, out.find("\r\n", at) - (at - 3)));
+  };
+  out = epoch_output(d, k++);
+  EXPECT_EQ(sentence("RMC").size(), 13u) << out;
+  EXPECT_EQ(sentence("GSA").size(), 18u) << out;
+  if (const std::filesystem::path capture = test::shared_data("receiver_logs/gpsd/ublox8-uniqid-monhw.log"); std::filesystem::exists(capture)) {
+    std::ifstream in(capture, std::ios::binary);
+    const std::string real((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* type : {"RMC", "GSA"}) {
+      const std::size_t at = real.find(std::string("$GN") + type + ",");
+      ASSERT_NE(at, std::string::npos) << type;
+      EXPECT_EQ(fields_of(real.substr(at, real.find("\r\n", at) - at)).size(), sentence(type).size()) << type;
+    }
+  }
+
+  ubx::CfgNmea m;
+  m.nmea_version = 0x41;
+  m.has_v0 = m.has_v1 = true;
+  m.main_talker_id = 3;  // GN
+  m.version = 1;
+  EXPECT_TRUE(only_ack(send(d, frame(m)), ubx::kCfgNmea));
+  out = epoch_output(d, k++);
+  std::vector<std::string> rmc = sentence("RMC");
+  ASSERT_EQ(rmc.size(), 14u) << out;
+  EXPECT_EQ(rmc[0], "GNRMC");
+  EXPECT_EQ(sentence("GSA").size(), 19u) << out;
+  m.nmea_version = 0x21;
+  EXPECT_TRUE(only_ack(send(d, frame(m)), ubx::kCfgNmea));
+  out = epoch_output(d, k++);
+  EXPECT_EQ(sentence("RMC").size(), 12u) << out;
+  const std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgNmea)));
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f[0].payload, payload_of(frame(m))) << "the poll gives the set back";
+}
+
 // CFG-NMEA-HIGHPREC (ZED-F9P integration manual UBX-18010802 3.1.4.5): latitude and longitude
 // with seven digits after the decimal point and altitude with three, unless compatibility mode
 // or the 82-character limit is on, with which the mode "cannot be used".
@@ -2243,6 +2294,52 @@ TEST_F(UbxDeviceTest, NavigationDatabaseDumpAndFlashBackup) {
   EXPECT_TRUE(frames_of(send(d, raw_frame(ubx::kUpdSos, {1, 0, 0, 0}))).empty());  // clear: no answer
   reset();
   EXPECT_EQ(sos(poll(ubx::kUpdSos)), std::pair(3, 3));
+}
+
+// Assistance data in is acknowledged only when asked for (UBX-18010854 5.12.1 MGA-ACK-DATA0,
+// "Acknowledgments are enabled by setting the ackAiding parameter"): nothing at power-up; with
+// CFG-NAVSPG-ACKAIDING (the F9P) or a CFG-NAVX5 that sets ackAiding (mask1 bit 10; the u-blox
+// 8) an MGA-INI-TIME_UTC gets type 1 (accepted), msgId 0x40 and its first four payload bytes,
+// and each MGA-DBD entry of a dump sent back gets one with msgId 0x80. MGA-ACK itself, an
+// output, gets nothing.
+TEST_F(UbxDeviceTest, AssistanceIsAcknowledgedWhenAskedFor) {
+  const ModelEpoch e(f9p_);
+  std::vector<std::uint8_t> ini_time(24, 0);  // MGA-INI-TIME_UTC: type 0x10, version 0, ref, leapSecs
+  ini_time[0] = 0x10;
+  ini_time[3] = 0x80;  // leapSecs -128: unknown
+  for (const GnssProfile* p : {&m8_, &f9p_}) {
+    SCOPED_TRACE(p->name);
+    UbxDevice d(*p, ReceiverMode::kStandalone, e.nav);
+    std::string epoch;
+    d.encode_epoch(e.fix, e.meas, 0, epoch);
+    const ubx::MsgId ini{ubx::kClassMga, 0x40};
+    EXPECT_TRUE(frames_of(send(d, raw_frame(ini, ini_time))).empty()) << "acknowledgements off";
+    if (p == &f9p_) {
+      set_items(d, {{"CFG-NAVSPG-ACKAIDING", 1}});
+    } else {
+      ubx::CfgNavx5 navx5;
+      navx5.mask1 = 1u << 10;  // ackAid
+      navx5.ack_aiding = 1;
+      EXPECT_TRUE(only_ack(send(d, frame(navx5)), ubx::kCfgNavx5));
+    }
+    std::vector<Frame> f = frames_of(send(d, raw_frame(ini, ini_time)));
+    ubx::MgaAck ack;
+    ASSERT_EQ(f.size(), 1u);
+    ASSERT_TRUE(f[0].id == ubx::kMgaAck && ubx::decode(f[0].payload, ack));
+    EXPECT_EQ(ack.type, 1);
+    EXPECT_EQ(ack.info_code, 0);
+    EXPECT_EQ(ack.msg_id, 0x40);
+    EXPECT_EQ(ack.msg_payload_start, 0x80000010u);
+
+    const std::vector<Frame> dump = frames_of(send(d, poll(ubx::kMgaDbd)));
+    ASSERT_GT(dump.size(), 1u);
+    std::vector<std::uint8_t> back;
+    for (std::size_t i = 0; i + 1 < dump.size(); ++i) ubx::append_frame(ubx::kMgaDbd.cls, ubx::kMgaDbd.id, dump[i].payload, back);
+    f = frames_of(send(d, back));
+    ASSERT_EQ(f.size(), dump.size() - 1);
+    for (const Frame& a : f) EXPECT_TRUE(a.id == ubx::kMgaAck && ubx::decode(a.payload, ack) && ack.msg_id == 0x80);
+    EXPECT_TRUE(frames_of(send(d, raw_frame(ubx::kMgaAck, std::vector<std::uint8_t>(8, 0)))).empty());
+  }
 }
 
 // RXM-MEASX (M8 32.18.4, UBX-18010854 5.15.1): per tracked signal the code phase and Doppler of
