@@ -111,12 +111,7 @@ bool GnssChannel::run_event(EventContext& ctx) {
   ++epochs_;
   ++interval_epochs_;
   if (!tr) interval_truth_lost_ = true;
-  last_fix_ = fix;
-  if (device_->restarting(te)) {  // what the receiver reports: searching
-    last_fix_.fix = FixType::kNone;
-    last_fix_.satellites.clear();
-    last_fix_.num_used = 0;
-  }
+  last_fix_ = device_->reported_fix();
   if (last_fix_.fix != FixType::kNone) ++fixes_;
   last_fix_truth_ = tr;
   const EpochRecord record{te, seconds_between(te, start_), tr, last_fix_};

@@ -13,6 +13,7 @@
 #include "emulator/run_config.hpp"
 #include "models/ephemeris.hpp"
 #include "models/receiver.hpp"
+#include "models/reuse.hpp"
 
 namespace navemu {
 
@@ -25,8 +26,18 @@ class GnssDevice {
  public:
   virtual ~GnssDevice() = default;
   // The solution and measurements of one navigation epoch (index = whole periods since the GPS
-  // epoch); then encode() for each port.
-  virtual void update(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) = 0;
+  // epoch); then encode() for each port. While restarting (restart()) the receiver is searching:
+  // it has no fix and no satellites whatever the solution was.
+  void update(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) {
+    if (!restarting(fix.t)) return take_epoch(fix, meas, epoch_index);
+    reset_keeping_storage(searching_, &ReceiverFix::satellites).t = fix.t;
+    searching_meas_ = meas;
+    searching_meas_.sats.clear();
+    take_epoch(searching_, searching_meas_, epoch_index);
+  }
+  // The fix the receiver reported at the last update (searching, a held position), until the
+  // next update.
+  virtual const ReceiverFix& reported_fix() const = 0;
   // Appends the bytes of the last updated epoch that `port` sends.
   virtual void encode(ReceiverPort port, std::string& out) = 0;
   // update() and encode() for UART1.
@@ -75,7 +86,12 @@ class GnssDevice {
   bool restarting(GpsTime t) const { return t < restart_until_; }
 
  private:
+  // update() of the device: the epoch as the receiver has it.
+  virtual void take_epoch(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) = 0;
+
   GpsTime restart_until_{0};
+  ReceiverFix searching_;  // what a restarting receiver has (storage reused)
+  EpochMeasurements searching_meas_;
 };
 
 // The device a profile describes: u-blox when it has a `ubx` section, NMEA otherwise.

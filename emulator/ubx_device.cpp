@@ -317,11 +317,37 @@ void UbxDevice::refresh() {
 
 // The time mode (F9 interface description CFG-TMODE-*; the u-blox 8 profile is a standard
 // precision part without it): survey-in (mode 1) starts anew with new settings, fixed (2) and
-// disabled (0) have none.
+// disabled (0) have none. Fixed mode's position is the ARP's, ECEF (CFG-TMODE-ECEF_X/Y/Z in cm
+// plus the _HP parts in 0.1 mm) or LLH (CFG-TMODE-LAT/LON in 1e-7 deg plus _HP in 1e-9 deg,
+// HEIGHT in cm plus _HP in 0.1 mm above the WGS 84 ellipsoid), accurate to
+// CFG-TMODE-FIXED_POS_ACC (0.1 mm).
 void UbxDevice::refresh_time_mode() {
-  constexpr std::uint64_t kSurveyIn = 1;
+  constexpr std::uint64_t kSurveyIn = 1, kFixed = 2;
   std::array<std::uint64_t, 3> settings{};
   for (std::size_t i = 0; i < settings.size(); ++i) settings[i] = config_.get(keys_.tmode[i]);
+  fixed_position_.reset();
+  if (settings[0] == kFixed) {
+    const auto get = [&](const char* key, std::int64_t bits) {  // signed items as their two's complement
+      const std::uint64_t v = config_.get(item(key));
+      return static_cast<double>(bits == 8 ? std::int64_t{static_cast<std::int8_t>(v)}
+                                           : std::int64_t{static_cast<std::int32_t>(v)});
+    };
+    const auto coordinate = [&](const char* key, double whole_unit, const std::string& hp_key, double hp_unit) {
+      return get(key, 32) * whole_unit + get(hp_key.c_str(), 8) * hp_unit;
+    };
+    Vec3 p = Vec3::Zero();
+    if (config_.get(item("CFG-TMODE-POS_TYPE")) == 1) {
+      p = ecef_from_geodetic({coordinate("CFG-TMODE-LAT", 1e-7, "CFG-TMODE-LAT_HP", 1e-9),
+                              coordinate("CFG-TMODE-LON", 1e-7, "CFG-TMODE-LON_HP", 1e-9),
+                              coordinate("CFG-TMODE-HEIGHT", 1e-2, "CFG-TMODE-HEIGHT_HP", 1e-4)});
+    } else {
+      for (int i = 0; i < 3; ++i) {
+        const std::string axis = std::string("CFG-TMODE-ECEF_") + "XYZ"[i];
+        p[i] = coordinate(axis.c_str(), 1e-2, axis + "_HP", 1e-4);
+      }
+    }
+    fixed_position_ = FixedPosition{p, static_cast<double>(config_.get(item("CFG-TMODE-FIXED_POS_ACC"))) * 1e-4};
+  }
   if (survey_settings_ == settings) return;
   survey_settings_ = settings;
   if (settings[0] == kSurveyIn)
@@ -1177,14 +1203,14 @@ bool UbxDevice::output_message(MsgId id, Bytes& out) {
   return false;
 }
 
-void UbxDevice::update(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) {
+void UbxDevice::take_epoch(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) {
   last_fix_ = fix;
   last_meas_ = meas;
   epoch_index_ = epoch_index;
-  if (restarting(fix.t)) {  // after CFG-RST: searching, no fix and no satellites yet
-    reset_keeping_storage(last_fix_, &ReceiverFix::satellites).t = fix.t;
-    last_meas_.sats.clear();
-  }
+  if (last_fix_.fix == FixType::k3D)
+    survey_.add(last_fix_.t, last_fix_.p_ecef_m, std::hypot(last_fix_.sigma_h_m, last_fix_.sigma_v_m));
+  status_.svin = survey_.state();
+  hold_time_mode_position(last_fix_);
   count_distance(last_fix_);
   // A fix outside the output filters is no fix to NMEA: status V, quality 0, navMode 1 and
   // empty fields (F9 interface description 4.1.6 "Position Fix Flags", "GNSS fix, but user
@@ -1194,9 +1220,29 @@ void UbxDevice::update(const ReceiverFix& fix, const EpochMeasurements& meas, st
     nmea_fix_ = last_fix_;
     nmea_fix_.fix = FixType::kNone;
   }
-  if (last_fix_.fix == FixType::k3D)
-    survey_.add(last_fix_.t, last_fix_.p_ecef_m, std::hypot(last_fix_.sigma_h_m, last_fix_.sigma_v_m));
-  status_.svin = survey_.state();
+}
+
+// Time mode (ZED-F9P integration manual UBX-18010802 "Base station", ZED-F9T integration manual
+// "Timing receiver position": "the position of the receiver is known and fixed and only the
+// time and frequency is calculated"): once the survey-in has finished, or with a fixed
+// position, a receiver that solves reports the time-only fix (NAV-PVT fixType 5) at that
+// position, standing still, as accurate as the survey's mean or the configured accuracy. NMEA
+// has no row for it (F9 interface description 4.1.6); its sentences carry that position as a
+// fix.
+void UbxDevice::hold_time_mode_position(ReceiverFix& fix) {
+  status_.time_only = false;
+  if (fix.fix == FixType::kNone) return;
+  const SurveyInState& svin = status_.svin;
+  std::optional<FixedPosition> base = fixed_position_;
+  if (svin.valid) base = FixedPosition{svin.mean_ecef_m, svin.mean_acc_m};
+  if (!base) return;
+  status_.time_only = true;
+  fix.p_ecef_m = base->p_ecef_m;
+  fix.position = geodetic_from_ecef(base->p_ecef_m);
+  if (fix.v_ned_mps) fix.v_ned_mps = Vec3::Zero();
+  // The 3D accuracy shared out: equal horizontal and vertical parts, equal north and east.
+  fix.sigma_h_m = fix.sigma_v_m = base->acc_m / std::sqrt(2.0);
+  fix.sigma_n_m = fix.sigma_e_m = fix.sigma_h_m / std::sqrt(2.0);
 }
 
 // The odometer (CFG-ODO-USE_ODO; UBX-13003221 "Odometer"): the ground speed integrated over
@@ -1242,22 +1288,20 @@ namespace {
 class NmeaDevice final : public GnssDevice {
  public:
   NmeaDevice(const GnssProfile& p, ReceiverMode mode) : out_(p, mode), period_ns_(std::llround(1e9 / p.rate_hz)) {}
-  void update(const ReceiverFix& fix, const EpochMeasurements&, std::int64_t epoch_index) override {
-    fix_ = &fix;
-    epoch_index_ = epoch_index;
-    if (restarting(fix.t)) {  // searching: no fix and no satellites yet
-      reset_keeping_storage(searching_, &ReceiverFix::satellites).t = fix.t;
-      fix_ = &searching_;
-    }
-  }
+  const ReceiverFix& reported_fix() const override { return *fix_; }
   void encode(ReceiverPort, std::string& out) override { out_.encode(*fix_, epoch_index_, out); }
   std::int64_t period_ns() const override { return period_ns_; }
 
  private:
+  void take_epoch(const ReceiverFix& fix, const EpochMeasurements&, std::int64_t epoch_index) override {
+    fix_ = &fix;
+    epoch_index_ = epoch_index;
+  }
+
   NmeaOutput out_;
   std::int64_t period_ns_;
-  const ReceiverFix* fix_ = nullptr;  // the caller's (or searching_), between update() and encode()
-  ReceiverFix searching_;              // what a restarting receiver has
+  const ReceiverFix* fix_ = &none_;  // the caller's, between update() and encode()
+  ReceiverFix none_;                 // before the first update
   std::int64_t epoch_index_ = 0;
 };
 }  // namespace

@@ -42,7 +42,7 @@ class UbxDevice final : public GnssDevice {
 
   using GnssDevice::receive;
   using GnssDevice::take_baud_change;
-  void update(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) override;
+  const ReceiverFix& reported_fix() const override { return last_fix_; }
   void encode(ReceiverPort port, std::string& out) override;
   void receive(std::span<const std::uint8_t> bytes, ReceiverPort port, std::string& replies) override;
   std::int64_t period_ns() const override { return period_ns_; }
@@ -58,6 +58,7 @@ class UbxDevice final : public GnssDevice {
 
  private:
   using Bytes = std::vector<std::uint8_t>;
+  void take_epoch(const ReceiverFix& fix, const EpochMeasurements& meas, std::int64_t epoch_index) override;
   using Payload = std::span<const std::uint8_t>;
   struct Command;
   static const Command kCommands[];
@@ -120,6 +121,7 @@ class UbxDevice final : public GnssDevice {
   void handle_valdel(Payload payload, std::uint8_t port, Bytes& out);
   bool output_message(ubx::MsgId id, Bytes& out);
   void count_distance(const ReceiverFix& fix);
+  void hold_time_mode_position(ReceiverFix& fix);
   // A port's protocol masks (ubx::kProto*) and baud (0: unchanged) as configuration items
   // (CFG-PRT, PUBX,41).
   void port_values(std::uint8_t port, std::uint16_t in_mask, std::uint16_t out_mask, std::uint32_t baud,
@@ -163,6 +165,12 @@ class UbxDevice final : public GnssDevice {
   // The time mode (F9): a survey-in starts anew when its settings change or the receiver resets.
   SurveyIn survey_;
   std::optional<std::array<std::uint64_t, 3>> survey_settings_;  // the settings it started with
+  // Time mode "fixed" (CFG-TMODE-MODE 2): the configured antenna position and its accuracy.
+  struct FixedPosition {
+    Vec3 p_ecef_m = Vec3::Zero();
+    double acc_m = 0.0;
+  };
+  std::optional<FixedPosition> fixed_position_;
 
   // The latest epoch, for the output and polled messages and the restart clock.
   ReceiverFix last_fix_;

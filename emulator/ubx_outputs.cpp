@@ -120,6 +120,8 @@ struct EpochView {
   WeekTow wt = to_week_tow(fix.t);
   std::uint32_t i_tow = static_cast<std::uint32_t>(std::llround(wt.tow_s * 1000.0)) % 604'800'000u;
   bool valid = fix.fix != FixType::kNone;
+  // NAV-PVT fixType, NAV-STATUS / NAV-SOL gpsFix: 5 "time only fix" in time mode.
+  std::uint8_t gps_fix = status.time_only && valid ? kFixTimeOnly : fix_type(fix.fix);
   Accuracy acc = accuracy(fix);
   bool fix_ok = within_output_filters(fix, mode, status);
   Vec3 v_ned = fix.v_ned_mps.value_or(Vec3::Zero());
@@ -156,7 +158,7 @@ void emit_nav_pvt(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.nano_ns = static_cast<std::int32_t>(std::lround((c.second - whole) * 1e9));
   m.valid = NavPvt::kValidDate | NavPvt::kValidTime | NavPvt::kFullyResolved;
   m.t_acc_ns = 20;
-  m.fix_type = fix_type(fix.fix);
+  m.fix_type = e.gps_fix;
   m.flags = static_cast<std::uint8_t>((e.fix_ok ? NavPvt::kGnssFixOk : 0) |
                                       (e.mode == ReceiverMode::kDgps ? NavPvt::kDiffSoln : 0) |
                                       (e.mode == ReceiverMode::kRtkFixed && e.valid ? 0x80 : 0));
@@ -231,7 +233,7 @@ void emit_nav_velecef(const EpochView& e, std::vector<std::uint8_t>& out) {
 void emit_nav_status(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavStatus m;
   m.i_tow_ms = e.i_tow;
-  m.gps_fix = fix_type(e.fix.fix);
+  m.gps_fix = e.gps_fix;
   m.flags = e.status_flags;
   // flags2 spoofDetState (bits 3-4, UBX-13003221 32.17.x NAV-STATUS; the F9 descriptions
   // alike): 1 no spoofing indicated, 2 spoofing indicated (models/measurement.hpp SpoofingEvent).
@@ -249,7 +251,7 @@ void emit_nav_sol(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.i_tow_ms = e.i_tow;
   m.f_tow_ns = clamp_cast<std::int32_t>((tow_ms - std::round(tow_ms)) * 1e6);
   m.week = static_cast<std::int16_t>(e.wt.week);
-  m.gps_fix = fix_type(e.fix.fix);
+  m.gps_fix = e.gps_fix;
   m.flags = e.status_flags;
   m.ecef_x_cm = p.x;
   m.ecef_y_cm = p.y;

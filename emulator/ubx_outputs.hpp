@@ -52,6 +52,7 @@ struct UbxDeviceStatus {
   std::uint8_t gnss_enabled = 0x01;  // MON-GNSS bits: GPS 0, GLONASS 1, BeiDou 2, Galileo 3
   std::string_view hw_version;   // MON-VER's, for MON-HW3
   SurveyInState svin;            // the time mode's survey-in (NAV-SVIN)
+  bool time_only = false;        // the fix is time mode's time-only fix at the held position
   // The navigation output filters (CFG-NAVSPG-OUTFIL_PDOP, _PACC; CFG-NAV5 pDop, pAcc).
   double outfil_pdop = 25.0, outfil_pacc_m = 100.0;
 };

@@ -2342,6 +2342,81 @@ TEST_F(UbxDeviceTest, AssistanceIsAcknowledgedWhenAskedFor) {
   }
 }
 
+// Time mode (ZED-F9P integration manual "Base station"; F9 interface description CFG-TMODE-*,
+// NAV-PVT fixType 5 "time-only fix"): with a fixed position (LLH with its HP parts, then ECEF)
+// or once the survey-in has finished, the receiver reports the time-only fix at that position,
+// standing still, with the configured accuracy (0.1 m: hAcc = vAcc = 0.1 / sqrt(2) m) or the
+// survey's; GGA carries the position; time mode off gives the 3D fix back.
+TEST_F(UbxDeviceTest, TimeModeReportsTheTimeOnlyFixAtTheHeldPosition) {
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
+  std::int64_t k = 0;
+  const auto epoch = [&](ReceiverFix fix) {
+    d.update(fix, EpochMeasurements{}, k++);
+    ubx::NavPvt pvt;
+    ubx::NavStatus status;
+    EXPECT_TRUE(ubx::decode(frames_of(send(d, poll(ubx::kNavPvt))).at(0).payload, pvt));
+    EXPECT_TRUE(ubx::decode(frames_of(send(d, poll(ubx::kNavStatus))).at(0).payload, status));
+    EXPECT_EQ(status.gps_fix, pvt.fix_type);
+    return pvt;
+  };
+  ReceiverFix moving = a_fix(kT0);
+  moving.v_ned_mps = Vec3(3.0, 4.0, 0.0);
+  EXPECT_EQ(epoch(moving).fix_type, 3);
+
+  ubx::CfgTmode3 llh;
+  llh.flags = 2 | ubx::CfgTmode3::kLla;  // fixed, LLH
+  llh.ecef_x_or_lat = 323'000'123;        // 32.3000123 deg - 5e-9
+  llh.ecef_x_or_lat_hp = -5;
+  llh.ecef_y_or_lon = -909'000'456;
+  llh.ecef_z_or_alt_cm = 6'012;  // 60.12 m + 0.3 mm
+  llh.ecef_z_or_alt_hp_0p1mm = 3;
+  llh.fixed_pos_acc_0p1mm = 1'000;
+  EXPECT_TRUE(only_ack(send(d, frame(llh)), ubx::kCfgTmode3));
+  moving.t = kT0.plus_s(1);
+  ubx::NavPvt pvt = epoch(moving);
+  EXPECT_EQ(pvt.fix_type, 5);
+  EXPECT_EQ(pvt.lat_1e7deg, 323'000'123);
+  EXPECT_EQ(pvt.lon_1e7deg, -909'000'456);
+  EXPECT_EQ(pvt.height_mm, 60'120);
+  EXPECT_EQ(pvt.g_speed_mmps, 0);
+  EXPECT_EQ(pvt.h_acc_mm, 71u);
+  EXPECT_EQ(pvt.v_acc_mm, 71u);
+  std::string out;
+  d.encode_epoch(moving, EpochMeasurements{}, k++, out);
+  EXPECT_NE(out.find("GGA,130001.00,3218.00074,N,09054.00274,W,1,"), std::string::npos) << out;
+
+  const Vec3 p = a_fix(kT0).p_ecef_m + Vec3(10.0, -20.0, 30.0);
+  std::vector<std::pair<const char*, std::int64_t>> ecef{{"CFG-TMODE-ECEF_X", 0}, {"CFG-TMODE-ECEF_Y", 0}, {"CFG-TMODE-ECEF_Z", 0}};
+  for (int i = 0; i < 3; ++i) ecef[static_cast<std::size_t>(i)].second = std::llround(p[i] * 100.0);
+  set_items(d, {{"CFG-TMODE-POS_TYPE", 0},
+                {ecef[0].first, static_cast<std::uint32_t>(ecef[0].second)},
+                {ecef[1].first, static_cast<std::uint32_t>(ecef[1].second)},
+                {ecef[2].first, static_cast<std::uint32_t>(ecef[2].second)}});
+  epoch(moving);
+  ubx::NavPosecef pos;
+  ASSERT_TRUE(ubx::decode(frames_of(send(d, poll(ubx::kNavPosecef))).at(0).payload, pos));
+  EXPECT_EQ(pos.ecef_x_cm, ecef[0].second);
+  EXPECT_EQ(pos.ecef_y_cm, ecef[1].second);
+  EXPECT_EQ(pos.ecef_z_cm, ecef[2].second);
+  EXPECT_LT((d.reported_fix().p_ecef_m - p).norm(), 0.01) << "what the run records (gnss.csv)";
+
+  set_items(d, {{"CFG-TMODE-MODE", 1}, {"CFG-TMODE-SVIN_MIN_DUR", 2}, {"CFG-TMODE-SVIN_ACC_LIMIT", 1'000'000}});
+  for (int i = 0; i < 3; ++i) {
+    ReceiverFix f = a_fix(kT0.plus_s(10 + i));
+    f.p_ecef_m.x() += i;  // mean: +1 m in x
+    pvt = epoch(f);
+    if (i < 2) {
+      EXPECT_EQ(pvt.fix_type, 3) << "surveying at " << i << " s";
+    }
+  }
+  EXPECT_EQ(pvt.fix_type, 5) << "the survey finished with the fix 2 s after its first";
+  ASSERT_TRUE(ubx::decode(frames_of(send(d, poll(ubx::kNavPosecef))).at(0).payload, pos));
+  EXPECT_EQ(pos.ecef_x_cm, std::llround((a_fix(kT0).p_ecef_m.x() + 1.0) * 100.0));
+
+  set_items(d, {{"CFG-TMODE-MODE", 0}});
+  EXPECT_EQ(epoch(moving).fix_type, 3);
+}
+
 // RXM-MEASX (M8 32.18.4, UBX-18010854 5.15.1): per tracked signal the code phase and Doppler of
 // RRLP (3GPP TS 44.031), checked against RXM-RAWX of the same epoch: the whole ms plus the code
 // phase is the pseudorange (to 2^-21 ms, 0.14 m), the chips (1023 per ms, in 1/1024) are the

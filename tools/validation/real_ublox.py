@@ -45,7 +45,8 @@ CAPTURES = [
      "ublox-m8", True, ""),
     ("gpsd/ublox-lea-m8f.log", "LEA-M8F", "u-blox LEA-M8F, PROTVER 16", "ublox-m8", False,
      "time mode (fixType 5): the receiver holds a fixed antenna position, so hAcc/vAcc are the "
-     "accuracy of that stored position, not of a navigation fix; navemu has no time mode"),
+     "accuracy of that stored position, not of a navigation fix; the ublox-m8 profile, a "
+     "standard-precision part, has no time mode (the F9P profiles have it)"),
     ("gpsd/ublox-glo.log", "M10 (GLONASS)", "u-blox M10, PROTVER 34.10", "ublox-m8", False,
      "GLONASS-only capture with 3-4 satellites (2D and 3D fixes, pDOP up to 99.99): a degraded, "
      "single-constellation sky that navemu's open-sky GPS constellation does not reproduce "
