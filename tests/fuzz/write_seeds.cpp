@@ -174,6 +174,14 @@ void ubx_seeds(const fs::path& dir) {
   tmode3.svin_min_dur_s = 3;
   tmode3.svin_acc_limit_0p1mm = 50000;
   ubx::append(tmode3, modes);
+  ubx::CfgTmode3 fixed;  // then a fixed position, LLH with HP parts: the time-only fix
+  fixed.flags = 2 | ubx::CfgTmode3::kLla;
+  fixed.ecef_x_or_lat = 323'000'000;
+  fixed.ecef_y_or_lon = -909'000'000;
+  fixed.ecef_z_or_alt_cm = 6'000;
+  fixed.ecef_x_or_lat_hp = -99;
+  fixed.fixed_pos_acc_0p1mm = 1'000;
+  ubx::append(fixed, modes);
   ubx::append(ubx::CfgRate{700, 1, ubx::CfgRate::kTimeRefUtc}, modes);
   for (const ubx::MsgId id : {ubx::kNavSvin, ubx::kCfgTmode3, ubx::kCfgNmea, ubx::kCfgOdo, ubx::kNavPvt})
     ubx::append_poll(id, modes);
@@ -191,6 +199,20 @@ void ubx_seeds(const fs::path& dir) {
   ubx::append(ubx::CfgRst{ubx::CfgRst::kHotStart, ubx::CfgRst::kHardwareReset, 0}, aiding);
   ubx::append_poll(ubx::kUpdSos, aiding);
   ubx::append(ubx::UpdSosCommand{ubx::UpdSosCommand::kClear, {}}, aiding);
+  // Acknowledged assistance: ackAiding by item and by CFG-NAVX5, MGA-INI-TIME_UTC, a DBD entry.
+  ubx::CfgValset ack_aiding;
+  ack_aiding.values = {{0x10110025, 1}};
+  ubx::append(ack_aiding, aiding);
+  ubx::CfgNavx5 navx5;
+  navx5.mask1 = 1u << 10;
+  navx5.ack_aiding = 1;
+  ubx::append(navx5, aiding);
+  std::vector<std::uint8_t> ini_time(24, 0);
+  ini_time[0] = 0x10;
+  ubx::append_frame(ubx::kClassMga, 0x40, ini_time, aiding);
+  ubx::MgaDbd dbd;
+  dbd.data = {1, 7, 0, 0, 0};
+  ubx::append(dbd, aiding);
   write_ubx(dir, "aiding", aiding);
 
   // NMEA commands and noise between frames, and a frame cut short.
