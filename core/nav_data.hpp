@@ -1,8 +1,8 @@
 #pragma once
 // Broadcast navigation data as records per system: what a navigation file or message carries,
-// before any orbit is computed from it (models/orbit.hpp). GPS LNAV records are read and used;
-// the other systems' records have their types here and are parsed past by the readers today
-// (NavData::skipped_records).
+// before any orbit is computed from it (models/orbit.hpp). GPS, QZSS, Galileo and BeiDou
+// Kepler records are read (the receiver model uses GPS's); GLONASS, SBAS and NavIC records
+// are parsed past (NavData::skipped_records).
 //
 // Times are GPS time (GpsTime): readers convert Galileo System Time (aligned to GPS time) and
 // BeiDou Time (GPS time - 14 s) when they read such records.
@@ -119,7 +119,7 @@ struct NavData {
   std::vector<GlonassEphemeris> glonass;
   std::optional<KlobucharCoefficients> klobuchar;
   std::optional<int> leap_seconds;  // GPS - UTC from the header, if given
-  int skipped_records = 0;          // records of other systems (parsed past, not used)
+  int skipped_records = 0;          // records of the systems not read (parsed past)
   std::string source;               // file name
   // Navigation data that never run out: the built-in constellation's satellites get a new data
   // set every 2 h for ever, as the GPS control segment uploads them (models/constellation.hpp).

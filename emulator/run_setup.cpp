@@ -9,6 +9,7 @@
 #include <ostream>
 #include <set>
 #include <stdexcept>
+#include <string_view>
 
 #include "emulator/commands.hpp"
 #include "emulator/control_channel.hpp"
@@ -216,11 +217,25 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
   std::vector<std::unique_ptr<SensorChannel>> channels;
   ControlChannel::Targets targets{nullptr, nullptr, truth};
   if (plan.gnss) {
-    std::set<SatId> sats;
-    for (const GpsEphemeris& e : nav.gps) sats.insert(e.sat);
-    fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {} ({} satellites)\n", cfg.gnss.name,
+    // What the data holds, per system (a mixed file is read whole), and what the receiver uses.
+    std::string held;
+    const auto count = [&](std::string_view system, const auto& records) {
+      std::set<SatId> sats;
+      for (const auto& e : records) sats.insert(e.sat);
+      if (!sats.empty()) held += fmt::format("{}{} {}", held.empty() ? "" : ", ", system, sats.size());
+    };
+    count("GPS", nav.gps);
+    count("Galileo", nav.galileo);
+    count("BeiDou", nav.beidou);
+    count("QZSS", nav.qzss);
+    const bool others = !nav.galileo.empty() || !nav.beidou.empty() || !nav.qzss.empty();
+    fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {}: {} satellites{}{}\n", cfg.gnss.name,
                cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode),
-               cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, sats.size());
+               cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, held.empty() ? "no" : held,
+               others ? " (the receiver model tracks GPS)" : "",
+               nav.skipped_records > 0
+                   ? fmt::format("; {} records of GLONASS, SBAS or NavIC not read", nav.skipped_records)
+                   : "");
     fmt::print(log, "navemu: {}\n", egm96_geoid().description);
     auto gnss = std::make_unique<GnssChannel>(std::make_unique<NavData>(std::move(nav)), plan.gnss->receiver, cfg.gnss,
                                               cfg.gnss_mode, std::move(outputs.gnss),

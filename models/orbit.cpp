@@ -65,7 +65,7 @@ EccentricAnomaly eccentric_anomaly(double mean_anomaly_rad, double e) {
 
 }  // namespace
 
-double gps_sat_clock_poly_s(const GpsEphemeris& eph, GpsTime t) {
+double gps_sat_clock_poly_s(const KeplerEphemeris& eph, GpsTime t) {
   const double dt = seconds_between(t, eph.toc);
   return eph.af0_s + eph.af1_sps * dt + eph.af2_sps2 * dt * dt;
 }
@@ -95,11 +95,20 @@ GpsEphemeris reuploaded(const GpsEphemeris& eph, GpsTime toe) {
   return e;
 }
 
-// IS-GPS-200 Table 20-IV (user algorithm for ephemeris determination) with the
-// velocity equations of its later revisions.
-SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
+namespace {
+
+// The user algorithm of IS-GPS-200 Table 20-IV with the velocity equations of its later
+// revisions, for a system's constants. The node's longitude is node_at_toe + node_rate tk
+// (with the Earth's rotation in node_rate for an ECEF result; without it for a BeiDou GEO,
+// rotated afterwards).
+struct NodeModel {
+  double at_toe_rad = 0.0;
+  double rate_radps = 0.0;
+};
+SatState kepler_state(const KeplerEphemeris& eph, GpsTime t, const KeplerConstants& k,
+                      const NodeModel& node_model) {
   const double a = eph.sqrt_a_sqrtm * eph.sqrt_a_sqrtm;
-  const double n0 = std::sqrt(kGpsMu_m3ps2 / (a * a * a));
+  const double n0 = std::sqrt(k.mu_m3ps2 / (a * a * a));
   const double tk = seconds_between(t, eph.toe);
   const double n = n0 + eph.delta_n_radps;
   const double mk = eph.m0_rad + n * tk;
@@ -133,8 +142,8 @@ SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
   const double cos_u = cos_phi * sc_du.cos - sin_phi * sc_du.sin;
   const double xp = r * cos_u;
   const double yp = r * sin_u;
-  const double omega_dot_k = eph.omega_dot_radps - kOmegaEarth_radps;
-  const double node = eph.omega0_rad + omega_dot_k * tk - kOmegaEarth_radps * to_week_tow(eph.toe).tow_s;
+  const double omega_dot_k = node_model.rate_radps;
+  const double node = node_model.at_toe_rad + omega_dot_k * tk;
   const double cn = std::cos(node), sn = std::sin(node);
   const double ci = std::cos(inc), si = std::sin(inc);
 
@@ -157,11 +166,63 @@ SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
       yp_dot * si + yp * ci * inc_dot);
 
   // Satellite clock (IS-GPS-200 20.3.3.3.3.1): polynomial plus relativistic term.
-  s.relativistic_s = kRelativisticF * e * eph.sqrt_a_sqrtm * sin_e;
+  s.relativistic_s = k.relativistic_f * e * eph.sqrt_a_sqrtm * sin_e;
   const double dtc = seconds_between(t, eph.toc);
   s.clock_bias_s = gps_sat_clock_poly_s(eph, t) + s.relativistic_s;
   s.clock_drift_sps = eph.af1_sps + 2.0 * eph.af2_sps2 * dtc +
-                      kRelativisticF * e * eph.sqrt_a_sqrtm * cos_e * ek_dot;
+                      k.relativistic_f * e * eph.sqrt_a_sqrtm * cos_e * ek_dot;
+  return s;
+}
+
+constexpr KeplerConstants kGpsConstants{kGpsMu_m3ps2, kOmegaEarth_radps, kRelativisticF};
+
+}  // namespace
+
+KeplerConstants kepler_constants(GnssSystem system) {
+  switch (system) {
+    // Galileo OS SIS ICD issue 2.0 5.1.1 (Table 59: mu, Omega_e) and 5.1.4 (F).
+    case GnssSystem::kGalileo: return {3.986004418e14, 7.2921151467e-5, -4.442807309e-10};
+    // BDS-SIS-ICD-B1I 3.0 5.2.4.12 (Table 5-11: CGCS2000's mu and Omega_e; F alike).
+    case GnssSystem::kBeidou: return {3.986004418e14, 7.2921150e-5, -4.442807309e-10};
+    // GPS, and QZSS, whose LNAV is GPS's (IS-QZSS-PNT 5.5.x refers to IS-GPS-200).
+    default: return kGpsConstants;
+  }
+}
+
+bool is_beidou_geo(SatId sat) {
+  return sat.system() == GnssSystem::kBeidou && (sat.number() <= 5 || sat.number() >= 59);
+}
+
+SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t) {
+  const double toe_tow_s = to_week_tow(eph.toe).tow_s;
+  return kepler_state(eph, t, kGpsConstants,
+                      {eph.omega0_rad - kOmegaEarth_radps * toe_tow_s, eph.omega_dot_radps - kOmegaEarth_radps});
+}
+
+SatState broadcast_sat_state(const KeplerEphemeris& eph, GpsTime t) {
+  const GnssSystem system = eph.sat.system();
+  const KeplerConstants k = kepler_constants(system);
+  // toe in the system's own seconds of week: BDT runs 14 s behind GPS time
+  // (BDS-SIS-ICD-B1I 3.0 3.3), GST and QZSST with it.
+  const double toe_tow_s =
+      to_week_tow(system == GnssSystem::kBeidou ? eph.toe.plus_s(-kGpsMinusBdt_s) : eph.toe).tow_s;
+  if (!is_beidou_geo(eph.sat))
+    return kepler_state(eph, t, k,
+                        {eph.omega0_rad - k.omega_earth_radps * toe_tow_s, eph.omega_dot_radps - k.omega_earth_radps});
+  // BeiDou GEO (BDS-SIS-ICD-B1I 3.0 Table 5-11): the orbit in the inertial frame of toe
+  // (node Omega0 + Omega_dot tk - Omega_e toe), tilted by Rx(-5 deg), then turned by the Earth's
+  // rotation since toe, Rz(Omega_e tk): p = Rz Rx p_GK, v = Rz Rx v_GK + dRz/dt Rx p_GK.
+  SatState s = kepler_state(eph, t, k, {eph.omega0_rad - k.omega_earth_radps * toe_tow_s, eph.omega_dot_radps});
+  const double tk = seconds_between(t, eph.toe);
+  const double tilt = -5.0 * kPi / 180.0, spin = k.omega_earth_radps * tk;
+  const double ct = std::cos(tilt), st = std::sin(tilt), cs = std::cos(spin), ss = std::sin(spin);
+  Mat3 rx, rz, drz;
+  rx << 1.0, 0.0, 0.0, 0.0, ct, st, 0.0, -st, ct;
+  rz << cs, ss, 0.0, -ss, cs, 0.0, 0.0, 0.0, 1.0;
+  drz << -ss, cs, 0.0, -cs, -ss, 0.0, 0.0, 0.0, 0.0;
+  const Vec3 p_gk = s.p_ecef_m, v_gk = s.v_ecef_mps;
+  s.p_ecef_m = rz * (rx * p_gk);
+  s.v_ecef_mps = rz * (rx * v_gk) + k.omega_earth_radps * (drz * (rx * p_gk));
   return s;
 }
 

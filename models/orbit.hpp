@@ -19,9 +19,26 @@ struct SatState {
 // State at GPS system time t (the satellite's transmit time).
 SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t);
 
+// The constants of a system's broadcast orbit and clock: the gravitational constant, the
+// Earth's rotation rate and the relativistic clock constant F = -2 sqrt(mu) / c^2.
+struct KeplerConstants {
+  double mu_m3ps2 = 0.0;
+  double omega_earth_radps = 0.0;
+  double relativistic_f = 0.0;  // s / sqrt(m)
+};
+KeplerConstants kepler_constants(GnssSystem system);
+// BeiDou's geostationary satellites, whose broadcast orbit is computed in an inertial frame
+// tilted by 5 degrees (BDS-SIS-ICD-B1I 3.0 5.2.4.12): C01-C05 and, from BDS-3, C59-C63.
+bool is_beidou_geo(SatId sat);
+// The state of any system's Keplerian broadcast ephemeris (GPS, QZSS, Galileo, BeiDou MEO/
+// IGSO/GEO) at GPS time t, with the system's constants and time of week; for GPS the same as
+// gps_sat_state. Galileo: OS SIS ICD 2.0 5.1.1; BeiDou: BDS-SIS-ICD-B1I 3.0 5.2.4.12
+// (Table 5-11); QZSS: IS-QZSS-PNT, GPS's algorithm.
+SatState broadcast_sat_state(const KeplerEphemeris& eph, GpsTime t);
+
 // Satellite clock polynomial only (no relativistic term), used to turn the satellite's own
 // time into GPS system time (IS-GPS-200 20.3.3.3.3.1).
-double gps_sat_clock_poly_s(const GpsEphemeris& eph, GpsTime t);
+double gps_sat_clock_poly_s(const KeplerEphemeris& eph, GpsTime t);
 
 // The data set a satellite would get in a new upload with reference time `toe`, when its orbit
 // and clock go on as `eph` describes them: the same Keplerian orbit and clock polynomial

@@ -1,13 +1,13 @@
-// RINEX navigation message files: GPS broadcast ephemerides.
+// RINEX navigation message files: GPS, QZSS, Galileo and BeiDou broadcast ephemerides.
 //
 //   RINEX 2.10/2.11 GPS navigation files (type 'N'): RINEX 2.11 Tables A3 (header) and A4
 //     (data record); two-digit years per section 6.5.
 //   RINEX 3.0x navigation files (GPS or mixed): RINEX 3.05 appendix, navigation message file
-//     header and GPS data record descriptions; records of the other systems (GLONASS, Galileo,
-//     SBAS, QZSS, BDS, NavIC/IRNSS data record descriptions) are parsed past.
+//     header and the GPS, QZSS, Galileo and BDS data record descriptions; records of the other
+//     systems (GLONASS, SBAS, NavIC/IRNSS data record descriptions) are parsed past.
 //   RINEX 4.0x navigation files: RINEX 4.00 navigation data records; every record starts with a
-//     "> TYPE SV MESSAGE" line; only "> EPH Gnn LNAV" records are read, whose lines have the
-//     RINEX 3 layout.
+//     "> TYPE SV MESSAGE" line; the "> EPH" records of GPS and QZSS LNAV, Galileo INAV/FNAV and
+//     BDS D1/D2 are read, whose lines have the RINEX 3 layout.
 
 #include <array>
 #include <cmath>
@@ -35,9 +35,13 @@ using rinex::Where;
 
 enum class NavFormat { v2, v3, v4 };
 
-// Field names of the seven BROADCAST ORBIT lines of a GPS record (RINEX 2.11 Table A4,
-// RINEX 3.05 GPS navigation data record), used in error messages.
-constexpr std::array<std::array<const char*, 4>, 7> kOrbitFields{{
+// Field names of the seven BROADCAST ORBIT lines of a Kepler record by system, used in error
+// messages: GPS (RINEX 2.11 Table A4, RINEX 3.05 GPS navigation data record) and QZSS (its
+// QZSS record: the same layout, a fit interval flag), Galileo and BDS (RINEX 3.05 Galileo and
+// BDS navigation data records; RINEX 4.00 INAV/FNAV and D1/D2 keep those lines). "spare"
+// fields and the fit interval may be blank.
+using OrbitFieldNames = std::array<std::array<const char*, 4>, 7>;
+constexpr OrbitFieldNames kGpsOrbitFields{{
     {"IODE", "Crs", "Delta n", "M0"},
     {"Cuc", "e", "Cus", "sqrtA"},
     {"Toe", "Cic", "OMEGA0", "Cis"},
@@ -46,9 +50,39 @@ constexpr std::array<std::array<const char*, 4>, 7> kOrbitFields{{
     {"SV accuracy", "SV health", "TGD", "IODC"},
     {"transmission time", "fit interval", "spare", "spare"},
 }};
+constexpr OrbitFieldNames kGalileoOrbitFields{{
+    {"IODnav", "Crs", "Delta n", "M0"},
+    {"Cuc", "e", "Cus", "sqrtA"},
+    {"Toe", "Cic", "OMEGA0", "Cis"},
+    {"i0", "Crc", "omega", "OMEGA DOT"},
+    {"IDOT", "data sources", "GAL week", "spare"},
+    {"SISA", "SV health", "BGD E5a/E1", "BGD E5b/E1"},
+    {"transmission time", "spare", "spare", "spare"},
+}};
+constexpr OrbitFieldNames kBeidouOrbitFields{{
+    {"AODE", "Crs", "Delta n", "M0"},
+    {"Cuc", "e", "Cus", "sqrtA"},
+    {"Toe", "Cic", "OMEGA0", "Cis"},
+    {"i0", "Crc", "omega", "OMEGA DOT"},
+    {"IDOT", "spare", "BDT week", "spare"},
+    {"SV accuracy", "SatH1", "TGD1", "TGD2"},
+    {"transmission time", "AODC", "spare", "spare"},
+}};
+
+const OrbitFieldNames& orbit_fields(GnssSystem system) {
+  switch (system) {
+    case GnssSystem::kGalileo: return kGalileoOrbitFields;
+    case GnssSystem::kBeidou: return kBeidouOrbitFields;
+    default: return kGpsOrbitFields;
+  }
+}
+
+bool may_be_blank(std::string_view field) { return field == "spare" || field == "fit interval"; }
 
 constexpr int kOrbitLines = 7;
 constexpr double kHalfWeek_s = 302400.0;
+// BDT's week 0 began at GPS week 1356 (2006-01-01 00:00:00 UTC; BDS-SIS-ICD-B1I 3.0 3.3).
+constexpr int kBdtWeek0InGpsWeeks = 1356;
 
 // A continuation (BROADCAST ORBIT) line: the first `indent` columns are blank and something
 // follows (3X in RINEX 2, 4X in RINEX 3 and 4).
@@ -56,13 +90,26 @@ bool is_continuation(std::string_view line, std::size_t indent) {
   return line.size() > indent && is_blank(column(line, 0, indent)) && !is_blank(line);
 }
 
-// One GPS record: the "PRN / EPOCH / SV CLK" line at `n` and seven BROADCAST ORBIT lines.
-// `first_line` is where the record starts (the "> EPH" line in RINEX 4), for `source`.
-GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int first_line) {
+// A Kepler record as read: the common orbit and clock (times in GPS time, full weeks
+// resolved), and the seven lines' values for the system's own fields (NaN where blank).
+struct KeplerRecord {
+  KeplerEphemeris k;
+  std::array<std::array<double, 4>, kOrbitLines> v{};
+};
+
+// One Kepler record of `system` (GPS, QZSS, Galileo, BDS): the "PRN / EPOCH / SV CLK" line at
+// `n` and seven BROADCAST ORBIT lines. `first_line` is where the record starts (the "> EPH"
+// line in RINEX 4), for `source`. Epochs and weeks are the system's own: GPS time (QZSST and
+// GST are aligned with it to whole seconds and share its week numbering in RINEX: RINEX 3.05
+// "GAL week ... continuous, same as GPS week"), BDT 14 s behind it with weeks from 2006.
+KeplerRecord parse_kepler_record(const Lines& lines, int n, NavFormat format, int first_line, GnssSystem system) {
   const std::string& src = lines.source();
   const std::string_view first = lines.line(n);
   const Where w{src, n};
-  GpsEphemeris eph;
+  const GnssSystemInfo& info = system_info(system);
+  const OrbitFieldNames& names_of = orbit_fields(system);
+  KeplerRecord rec;
+  KeplerEphemeris& eph = rec.k;
   int prn = 0;
   CalendarTime c;
   std::size_t clock_col = 0;
@@ -79,8 +126,9 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
     clock_col = 22;
     orbit_col = 3;
   } else {
-    // A1,I2.2,1X,I4,5(1X,I2.2),3D19.12 (RINEX 3.05 GPS navigation data record)
-    if (column(first, 0, 1) != "G") fail(src, n, "PRN", "expected a GPS satellite number Gnn");
+    // A1,I2.2,1X,I4,5(1X,I2.2),3D19.12 (RINEX 3.05 navigation data records)
+    if (column(first, 0, 1) != std::string_view(&info.rinex_letter, 1))
+      fail(src, n, "PRN", fmt::format("expected a {} satellite number {}nn", info.name, info.rinex_letter));
     prn = req_int(w, first, 1, 2, "PRN");
     c.year = req_int(w, first, 4, 4, "epoch");
     c.month = req_int(w, first, 9, 2, "epoch");
@@ -91,50 +139,43 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
     clock_col = 23;
     orbit_col = 4;
   }
-  eph.sat = gps_sat(prn);
+  eph.sat = SatId(system, prn);
   if (prn < 1 || !eph.sat.defined())
     fail(src, n, "PRN",
-         fmt::format("GPS PRN {} out of range {}-{}", prn, eph.sat.info().first_number,
-                     eph.sat.info().last_number));
-  // toc: the epoch is GPS time (RINEX 2.11 Table A4, RINEX 3.05 GPS navigation data record).
-  eph.toc = rinex::epoch_to_gps(w, c, "epoch");
+         fmt::format("{} PRN {} out of range {}-{}", info.name, prn, info.first_number, info.last_number));
+  const std::string sat = fmt::format("{}{:02d}", info.rinex_letter, prn);
+  // toc: the epoch in the system's time (RINEX 3.05 navigation data records); BDT + 14 s.
+  const int bdt_s = system == GnssSystem::kBeidou ? kGpsMinusBdt_s : 0;
+  eph.toc = rinex::epoch_to_gps(w, c, "epoch").plus_s(bdt_s);
   eph.af0_s = rinex::req_full_double(w, first, clock_col, 19, "af0");
   eph.af1_sps = rinex::req_full_double(w, first, clock_col + 19, 19, "af1");
   eph.af2_sps2 = rinex::req_full_double(w, first, clock_col + 38, 19, "af2");
 
   // BROADCAST ORBIT 1..7, four D19.12 fields each.
-  std::array<std::array<double, 4>, kOrbitLines> v{};
-  std::optional<double> fit_interval;
+  auto& v = rec.v;
   for (int j = 0; j < kOrbitLines; ++j) {
     const int ln = n + 1 + j;
-    const auto& names = kOrbitFields[static_cast<std::size_t>(j)];
+    const auto& names = names_of[static_cast<std::size_t>(j)];
     if (ln > lines.size())
       fail(src, ln, names[0],
-           fmt::format("record truncated: end of file where BROADCAST ORBIT - {} of G{:02d} "
+           fmt::format("record truncated: end of file where BROADCAST ORBIT - {} of {} "
                        "(record at line {}) was expected",
-                       j + 1, prn, n));
+                       j + 1, sat, n));
     const std::string_view line = lines.line(ln);
     if (!is_blank(column(line, 0, orbit_col)))
       fail(src, ln, names[0],
-           fmt::format("record truncated: BROADCAST ORBIT - {} of G{:02d} (record at line {}) "
+           fmt::format("record truncated: BROADCAST ORBIT - {} of {} (record at line {}) "
                        "expected, found the start of another record",
-                       j + 1, prn, n));
+                       j + 1, sat, n));
     const Where wl{src, ln};
-    auto& row = v[static_cast<std::size_t>(j)];
-    if (j == kOrbitLines - 1) {
-      // BROADCAST ORBIT - 7: transmission time, then fit interval and spares that may be blank.
-      row[0] = rinex::req_full_double(wl, line, orbit_col, 19, names[0]);
-      fit_interval = rinex::opt_full_double(wl, line, orbit_col + 19, 19, names[1]);
-      for (std::size_t k = 2; k < 4; ++k)
-        (void)rinex::opt_full_double(wl, line, orbit_col + 19 * k, 19, names[k]);
-    } else {
-      for (std::size_t k = 0; k < 4; ++k)
-        row[k] = rinex::req_full_double(wl, line, orbit_col + 19 * k, 19, names[k]);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::size_t col = orbit_col + 19 * k;
+      v[static_cast<std::size_t>(j)][k] =
+          may_be_blank(names[k]) ? rinex::opt_full_double(wl, line, col, 19, names[k]).value_or(std::nan(""))
+                                 : rinex::req_full_double(wl, line, col, 19, names[k]);
     }
   }
 
-  const Where w1{src, n + 1}, w5{src, n + 5}, w6{src, n + 6};
-  eph.iode = rinex::integral(w1, v[0][0], "IODE");
   eph.crs_m = v[0][1];
   eph.delta_n_radps = v[0][2];
   eph.m0_rad = v[0][3];
@@ -151,17 +192,8 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
   eph.omega_rad = v[3][2];
   eph.omega_dot_radps = v[3][3];
   eph.idot_radps = v[4][0];
-  eph.codes_on_l2 = rinex::integral(w5, v[4][1], "codes on L2");
-  const int week = rinex::integral(w5, v[4][2], "GPS week");
-  eph.l2p_data_flag = rinex::integral(w5, v[4][3], "L2 P data flag");
-  eph.ura_m = v[5][0];
-  eph.health = rinex::integral(w6, v[5][1], "SV health");
-  eph.tgd_s = v[5][2];
-  eph.iodc = rinex::integral(w6, v[5][3], "IODC");
-  eph.transmission_tow_s = v[6][0];
-  // Fit interval in hours (RINEX 2.11 section 6.6); blank or 0 means "not known", i.e. the
-  // 4-hour curve fit of IS-GPS-200 20.3.3.4.3.1 (fit interval flag 0).
-  eph.fit_interval_h = fit_interval.has_value() && *fit_interval > 0.0 ? *fit_interval : 4.0;
+  const char* week_name = names_of[4][2];
+  const int week = rinex::integral(Where{src, n + 5}, v[4][2], week_name);
 
   if (!(eph.sqrt_a_sqrtm > 0.0))
     fail(src, n + 2, "sqrtA", fmt::format("must be positive, got {}", eph.sqrt_a_sqrtm));
@@ -170,20 +202,95 @@ GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int f
   if (!(toe_s >= 0.0 && toe_s < static_cast<double>(kSecondsPerWeek)))
     fail(src, n + 3, "Toe", fmt::format("must be in [0, 604800) s of week, got {}", toe_s));
   // Week 10000 is in the year 2171; beyond about 15000 the time no longer fits in int64 ns.
-  if (week < 0 || week > 10'000)
-    fail(src, n + 5, "GPS week", fmt::format("must be in 0..10000, got {}", week));
+  if (week < 0 || week > 10'000) fail(src, n + 5, week_name, fmt::format("must be in 0..10000, got {}", week));
 
-  // toe = continuous GPS week (RINEX 2.10+: "no roll-over") + Toe seconds. A week that puts
-  // toe more than half a week from toc (a modulo-1024 week, or the week of transmission
-  // rather than of toe) is corrected by whole weeks towards toc.
-  eph.toe = from_week_tow(week, toe_s);
+  // toe = continuous week (RINEX 2.10+: "no roll-over") + Toe seconds. A week that puts toe
+  // more than half a week from toc (a modulo-1024 week, or the week of transmission rather
+  // than of toe) is corrected by whole weeks towards toc.
+  eph.toe = system == GnssSystem::kBeidou ? from_week_tow(week + kBdtWeek0InGpsWeeks, toe_s).plus_s(bdt_s)
+                                          : from_week_tow(week, toe_s);
   const double d_s = seconds_between(eph.toe, eph.toc);
   if (std::fabs(d_s) > kHalfWeek_s) {
     const std::int64_t k = std::llround(d_s / static_cast<double>(kSecondsPerWeek));
     eph.toe = GpsTime{eph.toe.ns - k * kSecondsPerWeek * kNsPerS};
   }
   eph.source = fmt::format("{}:{}", src, first_line);
+  return rec;
+}
+
+// A GPS or QZSS LNAV record (IS-GPS-200 Table 20-III fields; IS-QZSS-PNT).
+GpsEphemeris parse_gps_record(const Lines& lines, int n, NavFormat format, int first_line,
+                              GnssSystem system = GnssSystem::kGps) {
+  const KeplerRecord r = parse_kepler_record(lines, n, format, first_line, system);
+  const auto& v = r.v;
+  const std::string& src = lines.source();
+  const Where w1{src, n + 1}, w5{src, n + 5}, w6{src, n + 6};
+  GpsEphemeris eph;
+  static_cast<KeplerEphemeris&>(eph) = r.k;
+  eph.iode = rinex::integral(w1, v[0][0], "IODE");
+  eph.codes_on_l2 = rinex::integral(w5, v[4][1], "codes on L2");
+  eph.l2p_data_flag = rinex::integral(w5, v[4][3], "L2 P data flag");
+  eph.ura_m = v[5][0];
+  eph.health = rinex::integral(w6, v[5][1], "SV health");
+  eph.tgd_s = v[5][2];
+  eph.iodc = rinex::integral(w6, v[5][3], "IODC");
+  eph.transmission_tow_s = v[6][0];
+  const double fit = v[6][1];
+  if (system == GnssSystem::kQzss) {
+    // QZSS: a flag (IS-QZSS-PNT: 0 a 2 h curve fit, 1 longer), taken as 2 h and 4 h.
+    eph.fit_interval_h = fit == 1.0 ? 4.0 : 2.0;
+  } else {
+    // Fit interval in hours (RINEX 2.11 section 6.6); blank or 0 means "not known", i.e. the
+    // 4-hour curve fit of IS-GPS-200 20.3.3.4.3.1 (fit interval flag 0).
+    eph.fit_interval_h = fit > 0.0 ? fit : 4.0;
+  }
   return eph;
+}
+
+// A Galileo I/NAV or F/NAV record (Galileo OS SIS ICD 2.0 5.1; RINEX 3.05 Galileo record).
+GalileoEphemeris parse_galileo_record(const Lines& lines, int n, NavFormat format, int first_line) {
+  const KeplerRecord r = parse_kepler_record(lines, n, format, first_line, GnssSystem::kGalileo);
+  const auto& v = r.v;
+  const std::string& src = lines.source();
+  GalileoEphemeris eph;
+  static_cast<KeplerEphemeris&>(eph) = r.k;
+  eph.iod_nav = rinex::integral(Where{src, n + 1}, v[0][0], "IODnav");
+  eph.data_sources = rinex::integral(Where{src, n + 5}, v[4][1], "data sources");
+  eph.sisa_m = v[5][0];
+  eph.health = rinex::integral(Where{src, n + 6}, v[5][1], "SV health");
+  eph.bgd_e1e5a_s = v[5][2];
+  eph.bgd_e1e5b_s = v[5][3];
+  eph.transmission_tow_s = v[6][0];
+  return eph;
+}
+
+// A BDS D1 or D2 record (BDS-SIS-ICD-B1I 3.0 5.2.4; RINEX 3.05 BDS record).
+BeidouEphemeris parse_beidou_record(const Lines& lines, int n, NavFormat format, int first_line) {
+  const KeplerRecord r = parse_kepler_record(lines, n, format, first_line, GnssSystem::kBeidou);
+  const auto& v = r.v;
+  const std::string& src = lines.source();
+  BeidouEphemeris eph;
+  static_cast<KeplerEphemeris&>(eph) = r.k;
+  eph.aode = rinex::integral(Where{src, n + 1}, v[0][0], "AODE");
+  eph.ura_m = v[5][0];
+  eph.health = rinex::integral(Where{src, n + 6}, v[5][1], "SatH1");
+  eph.tgd1_s = v[5][2];
+  eph.tgd2_s = v[5][3];
+  eph.transmission_tow_s = v[6][0];
+  eph.aodc = rinex::integral(Where{src, n + 7}, v[6][1], "AODC");
+  return eph;
+}
+
+// Reads the Kepler record of a system letter at line `n` into `nav`; false for the other
+// systems' records (GLONASS, SBAS, NavIC: parsed past).
+bool read_kepler_record(const Lines& lines, int n, NavFormat format, int first_line, char letter, NavData& nav) {
+  switch (letter) {
+    case 'G': nav.gps.push_back(parse_gps_record(lines, n, format, first_line)); return true;
+    case 'J': nav.qzss.push_back(parse_gps_record(lines, n, format, first_line, GnssSystem::kQzss)); return true;
+    case 'E': nav.galileo.push_back(parse_galileo_record(lines, n, format, first_line)); return true;
+    case 'C': nav.beidou.push_back(parse_beidou_record(lines, n, format, first_line)); return true;
+    default: return false;
+  }
 }
 
 // Continuation lines per record of the systems that are parsed past in RINEX 3 files
@@ -343,8 +450,7 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           fail(source, n, "PRN",
                "expected the first line of a record (SV / EPOCH / SV CLK), found a "
                "continuation line: the previous record has too many lines");
-        if (line[0] == 'G') {
-          nav.gps.push_back(parse_gps_record(lines, n, NavFormat::v3, n));
+        if (read_kepler_record(lines, n, NavFormat::v3, n, line[0], nav)) {
           n += 1 + kOrbitLines;
         } else {
           n = skip_other_record(lines, n, vl.version);
@@ -368,8 +474,18 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           rest = sp == std::string_view::npos ? std::string_view{} : rest.substr(sp);
         }
         if (count < 2) fail(source, n, "record type", "incomplete '>' record line");
-        if (tok[0] == "EPH" && count == 3 && tok[1].size() == 3 && tok[1][0] == 'G' &&
-            tok[2] == "LNAV") {
+        // The messages whose records have the RINEX 3 Kepler layout (RINEX 4.00 navigation
+        // data records): GPS and QZSS LNAV, Galileo INAV and FNAV, BDS D1 and D2.
+        const auto kepler_message = [](char letter, std::string_view message) {
+          switch (letter) {
+            case 'G':
+            case 'J': return message == "LNAV";
+            case 'E': return message == "INAV" || message == "FNAV";
+            case 'C': return message == "D1" || message == "D2";
+            default: return false;
+          }
+        };
+        if (tok[0] == "EPH" && count == 3 && tok[1].size() == 3 && kepler_message(tok[1][0], tok[2])) {
           const int rec = n + 1;
           if (rec > lines.size())
             fail(source, rec, "PRN", "record truncated: end of file after '> EPH' line");
@@ -377,7 +493,7 @@ NavData parse_nav_text(std::string text, const std::string& source) {
             fail(source, rec, "PRN",
                  fmt::format("record of '{}' expected after line {}, found '{}'", tok[1], n,
                              column(lines.line(rec), 0, 3)));
-          nav.gps.push_back(parse_gps_record(lines, rec, NavFormat::v4, n));
+          read_kepler_record(lines, rec, NavFormat::v4, n, tok[1][0], nav);
           n = rec + 1 + kOrbitLines;
         } else {
           // The first GPS LNAV ionosphere record supplies the Klobuchar coefficients (RINEX 4
@@ -385,7 +501,8 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           if (tok[0] == "ION" && count == 3 && tok[1].size() == 3 && tok[1][0] == 'G' &&
               tok[2] == "LNAV" && !nav.klobuchar)
             nav.klobuchar = read_ion_klobuchar(lines, n);
-          // Other systems, other GPS messages (CNAV, CNV2), STO, EOP and other ION records.
+          // GLONASS, SBAS, NavIC, the CNAV messages (GPS and QZSS CNAV/CNV2, BDS CNV1-3), STO,
+          // EOP and other ION records.
           ++nav.skipped_records;
           ++n;
           while (n <= lines.size() && column(lines.line(n), 0, 1) != ">") ++n;

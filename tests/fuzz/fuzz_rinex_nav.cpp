@@ -1,7 +1,8 @@
 // The RINEX navigation reader (protocols/rinex.hpp, RINEX 2.11 / 3.0x): the file is parsed or
 // refused with an InputError naming file, line and field; then each GPS record it accepts is
 // selected and evaluated at its toe and two hours on (IS-GPS-200 20.3.3.4.3), as the emulator
-// would use it, which must not crash or hang whatever the orbit's numbers.
+// would use it, and each QZSS, Galileo and BeiDou record alike, which must not crash or hang
+// whatever the orbit's numbers.
 
 #include <cstdint>
 #include <sstream>
@@ -28,5 +29,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       (void)navemu::gps_sat_clock_poly_s(eph, t);
     }
   }
+  // The other systems' Kepler records, each at its toe and two hours on (BeiDou GEOs too).
+  const auto evaluate = [](const auto& records) {
+    for (const auto& eph : records)
+      for (const double dt_s : {0.0, 7200.0}) (void)navemu::broadcast_sat_state(eph, eph.toe.plus_s(dt_s));
+  };
+  evaluate(nav.qzss);
+  evaluate(nav.galileo);
+  evaluate(nav.beidou);
   return 0;
 }

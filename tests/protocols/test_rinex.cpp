@@ -133,8 +133,11 @@ TEST(RinexNav, EsbcMixedRinex305) {
   const NavData nav = test::rinex_nav_file(file);
   EXPECT_DOUBLE_EQ(nav.rinex_version, 3.05);
   ASSERT_EQ(nav.gps.size(), 257u);
-  // Galileo 1602, GLONASS 510, BeiDou 357, QZSS 15, SBAS 2130.
-  EXPECT_EQ(nav.skipped_records, 1602 + 510 + 357 + 15 + 2130);
+  ASSERT_EQ(nav.galileo.size(), 1602u);
+  ASSERT_EQ(nav.beidou.size(), 357u);
+  ASSERT_EQ(nav.qzss.size(), 15u);
+  // GLONASS 510, SBAS 2130.
+  EXPECT_EQ(nav.skipped_records, 510 + 2130);
   EXPECT_EQ(nav.leap_seconds, 18);
   ASSERT_TRUE(nav.klobuchar.has_value());
   EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[0], 4.6566e-09);
@@ -160,6 +163,39 @@ TEST(RinexNav, EsbcMixedRinex305) {
   std::set<int> prns;
   for (const auto& g : nav.gps) prns.insert(g.sat.number());
   EXPECT_GE(prns.size(), 30u);
+
+  // The file's first Galileo record (line 3064), in GST, which RINEX gives on GPS's weeks:
+  // "E01 2020 06 24 23 30 00-8.846927667037e-04-7.972289495228e-12 0.000000000000e+00".
+  const GalileoEphemeris& gal = nav.galileo.front();
+  EXPECT_TRUE(gal.sat == SatId(GnssSystem::kGalileo, 1));
+  EXPECT_EQ(gal.toc, gps(2020, 6, 24, 23, 30, 0.0));
+  EXPECT_DOUBLE_EQ(gal.af0_s, -8.846927667037e-04);
+  EXPECT_EQ(gal.iod_nav, 61);
+  EXPECT_EQ(gal.toe, from_week_tow(2111, 343800.0));
+  EXPECT_EQ(gal.data_sources, 258);  // F/NAV E5a-I, E5a clock
+  EXPECT_DOUBLE_EQ(gal.sisa_m, 3.12);
+  EXPECT_DOUBLE_EQ(gal.bgd_e1e5a_s, -1.862645149231e-09);
+  EXPECT_DOUBLE_EQ(gal.transmission_tow_s, 344540.0);
+  EXPECT_EQ(gal.source, file.string() + ":3064");
+  // The first BeiDou record (line 208), a GEO: epoch and toe in BDT (GPS time - 14 s) on BDT's
+  // weeks (week 0 = GPS week 1356): "C05 2020 06 24 22 00 00", toe 338400 s of BDT week 755.
+  const BeidouEphemeris& bds = nav.beidou.front();
+  EXPECT_TRUE(bds.sat == SatId(GnssSystem::kBeidou, 5));
+  EXPECT_EQ(bds.toc, gps(2020, 6, 24, 22, 0, 14.0));
+  EXPECT_EQ(bds.toe, from_week_tow(2111, 338414.0));
+  EXPECT_EQ(bds.aode, 1);
+  EXPECT_EQ(bds.aodc, 0);
+  EXPECT_DOUBLE_EQ(bds.ura_m, 2.0);
+  EXPECT_DOUBLE_EQ(bds.tgd1_s, 1.0e-10);
+  EXPECT_DOUBLE_EQ(bds.tgd2_s, -9.3e-09);
+  // The first QZSS record (line 17936): "J01 2020 06 25 11 00 00", IODC 969, fit flag 0 (2 h).
+  const GpsEphemeris& qzs = nav.qzss.front();
+  EXPECT_TRUE(qzs.sat == SatId(GnssSystem::kQzss, 1));
+  EXPECT_EQ(qzs.toc, gps(2020, 6, 25, 11, 0, 0.0));
+  EXPECT_EQ(qzs.toe, from_week_tow(2111, 385200.0));
+  EXPECT_EQ(qzs.iodc, 969);
+  EXPECT_EQ(qzs.codes_on_l2, 2);
+  EXPECT_DOUBLE_EQ(qzs.fit_interval_h, 2.0);
 }
 
 TEST(RinexNav, SpirentRinex304) {
@@ -327,7 +363,11 @@ TEST(RinexNav, Rinex4SnippetParses) {
   EXPECT_DOUBLE_EQ(nav.gps[0].sqrt_a_sqrtm, 5.153651281357E+03);
   EXPECT_EQ(nav.gps[0].toe, from_week_tow(2244, 36000.0));
   EXPECT_EQ(nav.gps[1].sat.number(), 2);
-  EXPECT_EQ(nav.skipped_records, 4);  // E11 INAV, STO, ION, G03 CNAV
+  ASSERT_EQ(nav.galileo.size(), 1u);  // E11 INAV, in the RINEX 3 layout
+  EXPECT_EQ(nav.galileo[0].source, "v4.rnx:13");  // its "> EPH E11 INAV" line
+  EXPECT_EQ(nav.galileo[0].iod_nav, 12);
+  EXPECT_EQ(nav.galileo[0].data_sources, 517);
+  EXPECT_EQ(nav.skipped_records, 3);  // STO, ION, G03 CNAV
   // The GPS LNAV ION record carries the Klobuchar coefficients.
   ASSERT_TRUE(nav.klobuchar.has_value());
   EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[0], 2.421438694000E-08);
@@ -462,6 +502,29 @@ TEST(RinexNavErrors, Rinex3OtherSystemTruncated) {
                            "     3.594460000000e+04 0.000000000000e+00 0.000000000000e+00 6.300000000000e+01\n" +
                            kNavV3G01;
   expect_input_error([&] { (void)nav_from(text); }, 5, "BROADCAST ORBIT");
+}
+
+// A Galileo record with a satellite number Galileo does not have, and a BeiDou record cut
+// short: file, line and field, as for GPS.
+TEST(RinexNavErrors, GalileoAndBeidouRecords) {
+  const std::string head = hdr("     3.05           N: GNSS NAV DATA    M: MIXED", "RINEX VERSION / TYPE") +
+                           hdr("", "END OF HEADER");
+  const std::string e11 =
+      "E11 2023 01 08 10 00 00-6.069173011929E-04-7.915925436828E-12 0.000000000000E+00\n"
+      "     1.200000000000E+01 1.046875000000E+01 3.039055206883E-09 6.651563429348E-01\n"
+      "     4.600733518600E-07 1.537999557331E-04 3.682449460030E-06 5.440617427826E+03\n"
+      "     3.600000000000E+04 1.862645149231E-08-1.455893218330E+00-2.235174179077E-08\n"
+      "     9.795183446102E-01 2.758125000000E+02-4.209044012085E-01-5.754166531633E-09\n"
+      "    -1.414344916519E-10 5.170000000000E+02 2.244000000000E+03\n"
+      "     3.120000000000E+00 0.000000000000E+00-1.396983861923E-09-1.629814505577E-09\n"
+      "     3.670400000000E+04\n";
+  EXPECT_EQ(nav_from(head + e11).galileo.size(), 1u);
+  const std::string why = expect_input_error([&] { (void)nav_from(head + replace(e11, "E11 2023", "E37 2023")); }, 3, "PRN");
+  EXPECT_NE(why.find("Galileo PRN 37 out of range 1-36"), std::string::npos) << why;
+  // A BDS record whose SatH1 line is missing: the next record starts where it was expected.
+  std::string c06 = replace(e11, "E11 2023", "C06 2023");
+  c06 = c06.substr(0, c06.find("     3.120000000000E+00"));
+  expect_input_error([&] { (void)nav_from(head + c06 + e11); }, 9, "SV accuracy");
 }
 
 TEST(RinexNavErrors, Rinex4Problems) {
