@@ -228,13 +228,14 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
     count("Galileo", nav.galileo);
     count("BeiDou", nav.beidou);
     count("QZSS", nav.qzss);
-    const bool others = !nav.galileo.empty() || !nav.beidou.empty() || !nav.qzss.empty();
+    count("GLONASS", nav.glonass);
+    const bool others = held.find(',') != std::string::npos || nav.gps.empty();
     fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {}: {} satellites{}{}\n", cfg.gnss.name,
                cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode),
                cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, held.empty() ? "no" : held,
                others ? " (the receiver model tracks GPS)" : "",
                nav.skipped_records > 0
-                   ? fmt::format("; {} records of GLONASS, SBAS or NavIC not read", nav.skipped_records)
+                   ? fmt::format("; {} records of SBAS or NavIC not read", nav.skipped_records)
                    : "");
     fmt::print(log, "navemu: {}\n", egm96_geoid().description);
     auto gnss = std::make_unique<GnssChannel>(std::make_unique<NavData>(std::move(nav)), plan.gnss->receiver, cfg.gnss,

@@ -1,6 +1,7 @@
 #include "models/orbit.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -224,6 +225,62 @@ SatState broadcast_sat_state(const KeplerEphemeris& eph, GpsTime t) {
   s.p_ecef_m = rz * (rx * p_gk);
   s.v_ecef_mps = rz * (rx * v_gk) + k.omega_earth_radps * (drz * (rx * p_gk));
   return s;
+}
+
+namespace {
+
+// GLONASS ICD edition 5.1 A.3.1.2 (PZ-90.11 constants as the ICD gives them): the equations of
+// motion in the rotating PZ-90 frame, with the Earth's central field, its J2 term and the
+// lunisolar accelerations of the message taken as constant over the interval.
+constexpr double kGloMu_m3ps2 = 3.9860044e14;
+constexpr double kGloAe_m = 6378136.0;
+constexpr double kGloJ2 = 1.0826257e-3;
+constexpr double kGloOmega_radps = 7.292115e-5;
+
+struct GloState {
+  Vec3 p = Vec3::Zero(), v = Vec3::Zero();
+};
+
+GloState glonass_derivative(const GloState& s, const Vec3& a_ls) {
+  const double r2 = s.p.squaredNorm(), r = std::sqrt(r2), r3 = r2 * r;
+  const double mu_r3 = kGloMu_m3ps2 / r3;
+  const double j2 = 1.5 * kGloJ2 * kGloMu_m3ps2 * kGloAe_m * kGloAe_m / (r3 * r2);
+  const double z2_r2 = s.p.z() * s.p.z() / r2;
+  const double w2 = kGloOmega_radps * kGloOmega_radps;
+  GloState d;
+  d.p = s.v;
+  d.v.x() = -mu_r3 * s.p.x() - j2 * s.p.x() * (1.0 - 5.0 * z2_r2) + w2 * s.p.x() + 2.0 * kGloOmega_radps * s.v.y() + a_ls.x();
+  d.v.y() = -mu_r3 * s.p.y() - j2 * s.p.y() * (1.0 - 5.0 * z2_r2) + w2 * s.p.y() - 2.0 * kGloOmega_radps * s.v.x() + a_ls.y();
+  d.v.z() = -mu_r3 * s.p.z() - j2 * s.p.z() * (3.0 - 5.0 * z2_r2) + a_ls.z();
+  return d;
+}
+
+}  // namespace
+
+SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t) {
+  // Fourth-order Runge-Kutta from tb to t (A.3.1.2) in steps of at most 60 s.
+  constexpr double kMaxStep_s = 60.0;
+  const double span_s = seconds_between(t, eph.tb);
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(span_s) / kMaxStep_s)));
+  const double h = span_s / steps;
+  GloState s{eph.p_pz90_m, eph.v_pz90_mps};
+  const auto add = [](const GloState& a, const GloState& d, double k) { return GloState{a.p + k * d.p, a.v + k * d.v}; };
+  for (int i = 0; i < steps; ++i) {
+    const GloState k1 = glonass_derivative(s, eph.a_pz90_mps2);
+    const GloState k2 = glonass_derivative(add(s, k1, h / 2.0), eph.a_pz90_mps2);
+    const GloState k3 = glonass_derivative(add(s, k2, h / 2.0), eph.a_pz90_mps2);
+    const GloState k4 = glonass_derivative(add(s, k3, h), eph.a_pz90_mps2);
+    s.p += h / 6.0 * (k1.p + 2.0 * k2.p + 2.0 * k3.p + k4.p);
+    s.v += h / 6.0 * (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v);
+  }
+  SatState out;
+  out.p_ecef_m = s.p;
+  out.v_ecef_mps = s.v;
+  // Satellite clock (ICD 3.3.3.x, "tau_n(tb) - gamma_n (t - tb)" is GLONASS time minus the
+  // satellite's): the offset of the satellite's time from GLONASS time, relativity included.
+  out.clock_bias_s = -eph.tau_n_s + eph.gamma_n * span_s;
+  out.clock_drift_sps = eph.gamma_n;
+  return out;
 }
 
 Vec3 rotate_earth(const Vec3& v_ecef, double dt_s) {

@@ -36,6 +36,14 @@ bool is_beidou_geo(SatId sat);
 // (Table 5-11); QZSS: IS-QZSS-PNT, GPS's algorithm.
 SatState broadcast_sat_state(const KeplerEphemeris& eph, GpsTime t);
 
+// The state of a GLONASS satellite at GPS time t from its immediate data: the state vector at
+// tb integrated to t (GLONASS ICD edition 5.1 A.3.1.2, fourth-order Runge-Kutta in steps of at
+// most 60 s, the lunisolar accelerations held), in PZ-90.11, which agrees with the ITRF and
+// WGS 84 to centimetres. Clock: the satellite's offset from GLONASS time, -tau_n + gamma_n
+// (t - tb) (ICD 3.3.3; relativity included by the ground segment); GLONASS time's own offset
+// from GPS time is the receiver's to estimate.
+SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t);
+
 // Satellite clock polynomial only (no relativistic term), used to turn the satellite's own
 // time into GPS system time (IS-GPS-200 20.3.3.3.3.1).
 double gps_sat_clock_poly_s(const KeplerEphemeris& eph, GpsTime t);

@@ -1,13 +1,13 @@
-// RINEX navigation message files: GPS, QZSS, Galileo and BeiDou broadcast ephemerides.
+// RINEX navigation message files: GPS, QZSS, Galileo, BeiDou and GLONASS broadcast ephemerides.
 //
 //   RINEX 2.10/2.11 GPS navigation files (type 'N'): RINEX 2.11 Tables A3 (header) and A4
 //     (data record); two-digit years per section 6.5.
 //   RINEX 3.0x navigation files (GPS or mixed): RINEX 3.05 appendix, navigation message file
-//     header and the GPS, QZSS, Galileo and BDS data record descriptions; records of the other
-//     systems (GLONASS, SBAS, NavIC/IRNSS data record descriptions) are parsed past.
+//     header and the GPS, QZSS, Galileo, BDS and GLONASS data record descriptions; SBAS and
+//     NavIC/IRNSS records are parsed past.
 //   RINEX 4.0x navigation files: RINEX 4.00 navigation data records; every record starts with a
-//     "> TYPE SV MESSAGE" line; the "> EPH" records of GPS and QZSS LNAV, Galileo INAV/FNAV and
-//     BDS D1/D2 are read, whose lines have the RINEX 3 layout.
+//     "> TYPE SV MESSAGE" line; the "> EPH" records of GPS and QZSS LNAV, Galileo INAV/FNAV,
+//     BDS D1/D2 and GLONASS FDMA are read, whose lines have the RINEX 3 layout.
 
 #include <array>
 #include <cmath>
@@ -282,7 +282,7 @@ BeidouEphemeris parse_beidou_record(const Lines& lines, int n, NavFormat format,
 }
 
 // Reads the Kepler record of a system letter at line `n` into `nav`; false for the other
-// systems' records (GLONASS, SBAS, NavIC: parsed past).
+// systems' records (GLONASS has its own, SBAS and NavIC are parsed past).
 bool read_kepler_record(const Lines& lines, int n, NavFormat format, int first_line, char letter, NavData& nav) {
   switch (letter) {
     case 'G': nav.gps.push_back(parse_gps_record(lines, n, format, first_line)); return true;
@@ -337,6 +337,69 @@ int skip_other_record(const Lines& lines, int n, double version) {
   int next = n + count + 1;
   // Writers of earlier versions may already add the later GLONASS line; take any further
   // continuation lines as part of this record.
+  while (next <= lines.size() && is_continuation(lines.line(next), 4)) ++next;
+  return next;
+}
+
+// One GLONASS record (RINEX 3.05 GLONASS navigation data record; RINEX 4.00 "> EPH Rnn FDMA"):
+// the "SV / EPOCH / SV CLK" line at `n` (epoch tb in UTC, -TauN, +GammaN, message frame time)
+// and three BROADCAST ORBIT lines of X, Y, Z (km), their rates (km/s) and lunisolar
+// accelerations (km/s^2) with health, frequency number and age; the fourth line of 3.05 and
+// 4.00 (status flags, group delay, URAI, health flags) is parsed past. Returns the next line.
+int parse_glonass_record(const Lines& lines, int n, int first_line, double version, NavData& nav) {
+  const std::string& src = lines.source();
+  const std::string_view first = lines.line(n);
+  const Where w{src, n};
+  GlonassEphemeris eph;
+  const int slot = req_int(w, first, 1, 2, "PRN");
+  eph.sat = SatId(GnssSystem::kGlonass, slot);
+  if (slot < 1 || !eph.sat.defined())
+    fail(src, n, "PRN", fmt::format("GLONASS slot {} out of range {}-{}", slot, eph.sat.info().first_number, eph.sat.info().last_number));
+  CalendarTime c;
+  c.year = req_int(w, first, 4, 4, "epoch");
+  c.month = req_int(w, first, 9, 2, "epoch");
+  c.day = req_int(w, first, 12, 2, "epoch");
+  c.hour = req_int(w, first, 15, 2, "epoch");
+  c.minute = req_int(w, first, 18, 2, "epoch");
+  c.second = req_double(w, first, 21, 2, "epoch");
+  (void)rinex::epoch_to_gps(w, c, "epoch");  // checks the date
+  eph.tb = gps_from_utc(c, nav.leap_seconds);
+  eph.tau_n_s = -rinex::req_full_double(w, first, 23, 19, "-TauN");
+  eph.gamma_n = rinex::req_full_double(w, first, 42, 19, "GammaN");
+  eph.frame_time_s = rinex::req_full_double(w, first, 61, 19, "message frame time");
+  static constexpr const char* kNames[3][4] = {{"X", "X velocity", "X acceleration", "health"},
+                                               {"Y", "Y velocity", "Y acceleration", "frequency number"},
+                                               {"Z", "Z velocity", "Z acceleration", "age of information"}};
+  std::array<double, 3> last{};
+  for (int j = 0; j < 3; ++j) {
+    const int ln = n + 1 + j;
+    if (ln > lines.size() || !is_continuation(lines.line(ln), 4))
+      fail(src, std::min(ln, lines.size()), kNames[j][0],
+           fmt::format("record truncated: BROADCAST ORBIT - {} of R{:02d} (record at line {}) expected", j + 1, slot, n));
+    const Where wl{src, ln};
+    const std::string_view line = lines.line(ln);
+    const auto field = [&](int k) { return rinex::req_full_double(wl, line, 4 + 19 * static_cast<std::size_t>(k), 19, kNames[j][k]); };
+    eph.p_pz90_m[j] = field(0) * 1e3;
+    eph.v_pz90_mps[j] = field(1) * 1e3;
+    eph.a_pz90_mps2[j] = field(2) * 1e3;
+    last[static_cast<std::size_t>(j)] = field(3);
+  }
+  eph.health = rinex::integral(Where{src, n + 1}, last[0], "health");
+  eph.frequency_channel = rinex::integral(Where{src, n + 2}, last[1], "frequency number");
+  eph.age_days = last[2];
+  // RINEX 3.05: -7..+13 (+7..+13 only before 2005); the part's range today is -7..+6.
+  if (eph.frequency_channel < -7 || eph.frequency_channel > 13)
+    fail(src, n + 2, "frequency number", fmt::format("must be in -7..13, got {}", eph.frequency_channel));
+  if (!(eph.p_pz90_m.norm() > 1.0e6))
+    fail(src, n + 1, "X", "the satellite's position must lie outside the Earth");
+  eph.source = fmt::format("{}:{}", src, first_line);
+  nav.glonass.push_back(eph);
+  int next = n + 4;
+  const int expected = continuation_lines('R', version);
+  for (; next <= n + expected; ++next)
+    if (next > lines.size() || !is_continuation(lines.line(next), 4))
+      fail(src, std::min(next, lines.size()), "BROADCAST ORBIT",
+           fmt::format("record truncated: {} continuation lines expected for R{:02d} (record at line {})", expected, slot, n));
   while (next <= lines.size() && is_continuation(lines.line(next), 4)) ++next;
   return next;
 }
@@ -452,6 +515,8 @@ NavData parse_nav_text(std::string text, const std::string& source) {
                "continuation line: the previous record has too many lines");
         if (read_kepler_record(lines, n, NavFormat::v3, n, line[0], nav)) {
           n += 1 + kOrbitLines;
+        } else if (line[0] == 'R') {
+          n = parse_glonass_record(lines, n, n, vl.version, nav);
         } else {
           n = skip_other_record(lines, n, vl.version);
           ++nav.skipped_records;
@@ -485,7 +550,12 @@ NavData parse_nav_text(std::string text, const std::string& source) {
             default: return false;
           }
         };
-        if (tok[0] == "EPH" && count == 3 && tok[1].size() == 3 && kepler_message(tok[1][0], tok[2])) {
+        if (tok[0] == "EPH" && count == 3 && tok[1].size() == 3 && tok[1][0] == 'R' && tok[2] == "FDMA") {
+          const int rec = n + 1;
+          if (rec > lines.size() || column(lines.line(rec), 0, 3) != tok[1])
+            fail(source, std::min(rec, lines.size()), "PRN", fmt::format("record of '{}' expected after line {}", tok[1], n));
+          n = parse_glonass_record(lines, rec, n, vl.version, nav);
+        } else if (tok[0] == "EPH" && count == 3 && tok[1].size() == 3 && kepler_message(tok[1][0], tok[2])) {
           const int rec = n + 1;
           if (rec > lines.size())
             fail(source, rec, "PRN", "record truncated: end of file after '> EPH' line");
@@ -501,7 +571,7 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           if (tok[0] == "ION" && count == 3 && tok[1].size() == 3 && tok[1][0] == 'G' &&
               tok[2] == "LNAV" && !nav.klobuchar)
             nav.klobuchar = read_ion_klobuchar(lines, n);
-          // GLONASS, SBAS, NavIC, the CNAV messages (GPS and QZSS CNAV/CNV2, BDS CNV1-3), STO,
+          // SBAS, NavIC, the CNAV messages (GPS and QZSS CNAV/CNV2, BDS CNV1-3), STO,
           // EOP and other ION records.
           ++nav.skipped_records;
           ++n;

@@ -1,8 +1,8 @@
 // The RINEX navigation reader (protocols/rinex.hpp, RINEX 2.11 / 3.0x): the file is parsed or
 // refused with an InputError naming file, line and field; then each GPS record it accepts is
 // selected and evaluated at its toe and two hours on (IS-GPS-200 20.3.3.4.3), as the emulator
-// would use it, and each QZSS, Galileo and BeiDou record alike, which must not crash or hang
-// whatever the orbit's numbers.
+// would use it, each QZSS, Galileo and BeiDou record alike and each GLONASS state vector
+// integrated over 15 min, which must not crash or hang whatever the orbit's numbers.
 
 #include <cstdint>
 #include <sstream>
@@ -37,5 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   evaluate(nav.qzss);
   evaluate(nav.galileo);
   evaluate(nav.beidou);
+  for (const navemu::GlonassEphemeris& eph : nav.glonass)
+    for (const double dt_s : {0.0, 900.0}) (void)navemu::glonass_sat_state(eph, eph.tb.plus_s(dt_s));
   return 0;
 }

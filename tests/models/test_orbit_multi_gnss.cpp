@@ -3,7 +3,7 @@
 //  - Galileo against the precise orbits of the CNES/CLS analysis centre (GRG0MGXFIN SP3, the
 //    satellites' centres of mass);
 //  - BeiDou's geostationary C05 at its published orbital slot, 58.75 deg E;
-//  - Galileo and BeiDou against the pseudoranges the station ESBC00DNK measured at its
+//  - Galileo, BeiDou and GLONASS against the pseudoranges the station ESBC00DNK measured at its
 //    surveyed place, which hold the orbits, the clocks, the group delays and the time systems
 //    together;
 //  - consecutive data sets of one satellite, which the operators fit independently, where
@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -130,6 +131,51 @@ TEST(OrbitGalileo, BroadcastAgreesWithThePreciseOrbitsOfTheDay) {
   EXPECT_LT(max_3d, 2.5);
 }
 
+// The GLONASS record nearest to t (every 30 min, tb at 15 and 45 min past the hour), within
+// 15 min: the interval over which its state vector is integrated.
+const GlonassEphemeris* nearest_glonass(const NavData& nav, SatId sat, GpsTime t) {
+  const GlonassEphemeris* best = nullptr;
+  for (const GlonassEphemeris& e : nav.glonass)
+    if (e.sat == sat && e.health == 0 && std::abs(seconds_between(t, e.tb)) <= 900.0 &&
+        (best == nullptr || std::abs(seconds_between(t, e.tb)) < std::abs(seconds_between(t, best->tb))))
+      best = &e;
+  return best;
+}
+
+// GLONASS's broadcast state vectors, integrated (GLONASS ICD A.3.1.2), against the precise
+// orbits. The broadcast position is the antenna phase centre's, some 2.3 m nearer the Earth
+// than the centre of mass on GLONASS-M (IGS ANTEX z offsets), and good to a few metres
+// (Montenbruck et al., "Broadcast versus precise ephemerides: a multi-GNSS perspective", GPS
+// Solutions 2015: GLONASS orbit errors of 2-4 m 3D RMS).
+TEST(OrbitGlonass, IntegratedStateVectorsAgreeWithThePreciseOrbitsOfTheDay) {
+  NAVEMU_REQUIRE_SHARED();
+  const NavData& nav = esbc_nav();
+  const std::vector<Sp3Position> sp3 = read_sp3(test::shared_data(std::string(kDay) + "GRG0MGXFIN_20201770000_01D_15M_ORB.SP3"));
+  std::vector<double> errors;
+  double sum_r = 0.0;
+  for (const Sp3Position& ref : sp3) {
+    if (ref.sat.system() != GnssSystem::kGlonass) continue;
+    const GlonassEphemeris* e = nearest_glonass(nav, ref.sat, ref.t);
+    if (e == nullptr) continue;
+    const Vec3 d = glonass_sat_state(*e, ref.t).p_ecef_m - ref.p_ecef_m;
+    sum_r += d.dot(ref.p_ecef_m.normalized());
+    errors.push_back(d.norm());
+  }
+  ASSERT_GT(errors.size(), 700u) << "the satellites in view of the station, whose records it logged";
+  double sum2 = 0.0;
+  for (double x : errors) sum2 += x * x;
+  std::sort(errors.begin(), errors.end());
+  const double rms = std::sqrt(sum2 / static_cast<double>(errors.size()));
+  fmt::print("GLONASS broadcast - precise over {} positions: 3D RMS {:.2f} m, median {:.2f} m, 95 % {:.2f} m, radial "
+             "mean {:+.2f} m\n",
+             errors.size(), rms, errors[errors.size() / 2], errors[errors.size() * 95 / 100],
+             sum_r / static_cast<double>(errors.size()));
+  EXPECT_LT(rms, 5.0);
+  EXPECT_LT(errors[errors.size() * 95 / 100], 8.0);
+  EXPECT_LT(sum_r / static_cast<double>(errors.size()), -1.0) << "the antenna lies towards the Earth";
+  EXPECT_GT(sum_r / static_cast<double>(errors.size()), -3.0);
+}
+
 // C05 is BeiDou's geostationary satellite at 58.75 deg E (China Satellite Navigation Office,
 // BDS constellation status, GEO slots 58.75, 80, 110.5, 140, 160 deg E). Its broadcast orbit
 // is fitted in a frame tilted by 5 degrees (BDS-SIS-ICD-B1I 3.0 5.2.4.12): computed as a
@@ -185,12 +231,29 @@ TEST(OrbitMultiGnss, ConsecutiveDataSetsMeet) {
   check(nav.beidou, "BeiDou", 2.0);
   check(nav.qzss, "QZSS", 3.0);
   check(nav.gps, "GPS", 3.0);
+  // GLONASS: each state vector integrated to the midpoint with the next (30 min apart).
+  std::vector<double> gaps;
+  for (std::size_t i = 0; i < nav.glonass.size(); ++i)
+    for (std::size_t j = i + 1; j < nav.glonass.size(); ++j) {
+      const GlonassEphemeris &a = nav.glonass[i], &b = nav.glonass[j];
+      const double dt = seconds_between(b.tb, a.tb);
+      if (!(a.sat == b.sat) || dt != 1800.0) continue;
+      const GpsTime mid = a.tb.plus_s(dt / 2.0);
+      gaps.push_back((glonass_sat_state(a, mid).p_ecef_m - glonass_sat_state(b, mid).p_ecef_m).norm());
+      break;
+    }
+  ASSERT_GT(gaps.size(), 100u);
+  std::sort(gaps.begin(), gaps.end());
+  fmt::print("GLONASS: {} consecutive state vectors meet within {:.2f} m (median), {:.2f} m (95 %), {:.2f} m (max)\n",
+             gaps.size(), gaps[gaps.size() / 2], gaps[gaps.size() * 95 / 100], gaps.back());
+  EXPECT_LT(gaps[gaps.size() * 95 / 100], 5.0);
 }
 
 // The station's own pseudoranges (ESBC00DNK, first hour of the day, 30 s) against the
 // geometric range from its surveyed place to each satellite at transmission, the satellite
 // clock with its single-frequency group delay (Galileo E1: BGD E1/E5b, OS SIS ICD 5.1.5; BeiDou
-// B1I: TGD1, BDS-SIS-ICD-B1I 5.2.4.10) and a standard troposphere.
+// B1I: TGD1, BDS-SIS-ICD-B1I 5.2.4.10; GLONASS L1OF: none, its clock is L1's) and a standard
+// troposphere. GLONASS's receiver biases differ by frequency channel by up to metres.
 // What is left per epoch and system is the receiver clock (with its inter-system bias), taken
 // out as the median, and the ionosphere, a few metres at night: a wrong clock, group delay or
 // time system leaves tens of metres to kilometres.
@@ -206,7 +269,7 @@ TEST(OrbitMultiGnss, StationPseudorangesCloseAtItsSurveyedPlace) {
     const char* name;
   };
   // (QZSS, over the western Pacific, is not in view from Denmark.)
-  for (const System sys : {System{'E', "C1C", "Galileo"}, System{'C', "C2I", "BeiDou"}}) {
+  for (const System sys : {System{'E', "C1C", "Galileo"}, System{'C', "C2I", "BeiDou"}, System{'R', "C1C", "GLONASS"}}) {
     const int k = obs.header.index_of(sys.letter, sys.code);
     ASSERT_GE(k, 0) << sys.name;
     std::vector<double> residuals;
@@ -219,22 +282,26 @@ TEST(OrbitMultiGnss, StationPseudorangesCloseAtItsSurveyedPlace) {
         if (!sat || so.system != sys.letter) continue;
         const double p = so.values[static_cast<std::size_t>(k)];
         if (std::isnan(p)) continue;
-        const KeplerEphemeris* e = nullptr;
+        std::function<SatState(GpsTime)> state;
         double group_delay_s = 0.0;
         if (sys.letter == 'E') {
-          const GalileoEphemeris* g = latest(nav.galileo, *sat, ep.time);
-          if (g != nullptr) group_delay_s = g->bgd_e1e5b_s;
-          e = g;
-        } else {
-          const BeidouEphemeris* b = latest(nav.beidou, *sat, ep.time);
-          if (b != nullptr) group_delay_s = b->tgd1_s;
-          e = b;
+          if (const GalileoEphemeris* g = latest(nav.galileo, *sat, ep.time)) {
+            group_delay_s = g->bgd_e1e5b_s;
+            state = [g](GpsTime t) { return broadcast_sat_state(*g, t); };
+          }
+        } else if (sys.letter == 'C') {
+          if (const BeidouEphemeris* b = latest(nav.beidou, *sat, ep.time)) {
+            group_delay_s = b->tgd1_s;
+            state = [b](GpsTime t) { return broadcast_sat_state(*b, t); };
+          }
+        } else if (const GlonassEphemeris* g = nearest_glonass(nav, *sat, ep.time)) {
+          state = [g](GpsTime t) { return glonass_sat_state(*g, t); };
         }
-        if (e == nullptr) continue;
+        if (!state) continue;
         // Transmission in system time: t_rx - P/c - dt_sat (IS-GPS-200 20.3.3.3.3.1).
-        const double dt_sat = broadcast_sat_state(*e, ep.time.plus_s(-p / kSpeedOfLight_mps)).clock_bias_s;
+        const double dt_sat = state(ep.time.plus_s(-p / kSpeedOfLight_mps)).clock_bias_s;
         const double tau = p / kSpeedOfLight_mps + dt_sat;
-        const SatState s = broadcast_sat_state(*e, ep.time.plus_s(-tau));
+        const SatState s = state(ep.time.plus_s(-tau));
         const Vec3 p_sat = rotate_earth(s.p_ecef_m, tau);
         const AzEl dir = azimuth_elevation(rx.R_enu_from_ecef, rx.p_ecef_m, p_sat);
         if (dir.el_rad < 15.0 * kPi / 180.0) continue;

@@ -136,8 +136,8 @@ TEST(RinexNav, EsbcMixedRinex305) {
   ASSERT_EQ(nav.galileo.size(), 1602u);
   ASSERT_EQ(nav.beidou.size(), 357u);
   ASSERT_EQ(nav.qzss.size(), 15u);
-  // GLONASS 510, SBAS 2130.
-  EXPECT_EQ(nav.skipped_records, 510 + 2130);
+  ASSERT_EQ(nav.glonass.size(), 510u);
+  EXPECT_EQ(nav.skipped_records, 2130);  // SBAS
   EXPECT_EQ(nav.leap_seconds, 18);
   ASSERT_TRUE(nav.klobuchar.has_value());
   EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[0], 4.6566e-09);
@@ -196,6 +196,19 @@ TEST(RinexNav, EsbcMixedRinex305) {
   EXPECT_EQ(qzs.iodc, 969);
   EXPECT_EQ(qzs.codes_on_l2, 2);
   EXPECT_DOUBLE_EQ(qzs.fit_interval_h, 2.0);
+  // The first GLONASS record (line 18056), tb in UTC (GPS time - 18 s), km and km/s:
+  // "R01 2020 06 24 23 15 00 6.355904042721e-05 0.000000000000e+00 3.420000000000e+05".
+  const GlonassEphemeris& glo = nav.glonass.front();
+  EXPECT_TRUE(glo.sat == SatId(GnssSystem::kGlonass, 1));
+  EXPECT_EQ(glo.tb, gps(2020, 6, 24, 23, 15, 18.0));
+  EXPECT_DOUBLE_EQ(glo.tau_n_s, -6.355904042721e-05);
+  EXPECT_DOUBLE_EQ(glo.frame_time_s, 342000.0);
+  EXPECT_DOUBLE_EQ(glo.p_pz90_m.x(), 1.090894238281e+07);
+  EXPECT_DOUBLE_EQ(glo.v_pz90_mps.y(), 2.795855522156e+03);
+  EXPECT_DOUBLE_EQ(glo.a_pz90_mps2.z(), -2.793967723846e-06);
+  EXPECT_EQ(glo.health, 0);
+  EXPECT_EQ(glo.frequency_channel, 1);
+  EXPECT_EQ(glo.source, file.string() + ":18056");
 }
 
 TEST(RinexNav, SpirentRinex304) {
