@@ -90,6 +90,19 @@ bool is_continuation(std::string_view line, std::size_t indent) {
   return line.size() > indent && is_blank(column(line, 0, indent)) && !is_blank(line);
 }
 
+// The epoch of a RINEX 3/4 record's first line: A1,I2.2,1X,I4,5(1X,I2.2) (RINEX 3.05
+// navigation data records), in the system's own time scale.
+CalendarTime read_v3_epoch(const Where& w, std::string_view first) {
+  CalendarTime c;
+  c.year = req_int(w, first, 4, 4, "epoch");
+  c.month = req_int(w, first, 9, 2, "epoch");
+  c.day = req_int(w, first, 12, 2, "epoch");
+  c.hour = req_int(w, first, 15, 2, "epoch");
+  c.minute = req_int(w, first, 18, 2, "epoch");
+  c.second = req_double(w, first, 21, 2, "epoch");
+  return c;
+}
+
 // A Kepler record as read: the common orbit and clock (times in GPS time, full weeks
 // resolved), and the seven lines' values for the system's own fields (NaN where blank).
 struct KeplerRecord {
@@ -126,16 +139,10 @@ KeplerRecord parse_kepler_record(const Lines& lines, int n, NavFormat format, in
     clock_col = 22;
     orbit_col = 3;
   } else {
-    // A1,I2.2,1X,I4,5(1X,I2.2),3D19.12 (RINEX 3.05 navigation data records)
     if (column(first, 0, 1) != std::string_view(&info.rinex_letter, 1))
       fail(src, n, "PRN", fmt::format("expected a {} satellite number {}nn", info.name, info.rinex_letter));
     prn = req_int(w, first, 1, 2, "PRN");
-    c.year = req_int(w, first, 4, 4, "epoch");
-    c.month = req_int(w, first, 9, 2, "epoch");
-    c.day = req_int(w, first, 12, 2, "epoch");
-    c.hour = req_int(w, first, 15, 2, "epoch");
-    c.minute = req_int(w, first, 18, 2, "epoch");
-    c.second = req_double(w, first, 21, 2, "epoch");
+    c = read_v3_epoch(w, first);
     clock_col = 23;
     orbit_col = 4;
   }
@@ -355,13 +362,7 @@ int parse_glonass_record(const Lines& lines, int n, int first_line, double versi
   eph.sat = SatId(GnssSystem::kGlonass, slot);
   if (slot < 1 || !eph.sat.defined())
     fail(src, n, "PRN", fmt::format("GLONASS slot {} out of range {}-{}", slot, eph.sat.info().first_number, eph.sat.info().last_number));
-  CalendarTime c;
-  c.year = req_int(w, first, 4, 4, "epoch");
-  c.month = req_int(w, first, 9, 2, "epoch");
-  c.day = req_int(w, first, 12, 2, "epoch");
-  c.hour = req_int(w, first, 15, 2, "epoch");
-  c.minute = req_int(w, first, 18, 2, "epoch");
-  c.second = req_double(w, first, 21, 2, "epoch");
+  const CalendarTime c = read_v3_epoch(w, first);
   (void)rinex::epoch_to_gps(w, c, "epoch");  // checks the date
   eph.tb = gps_from_utc(c, nav.leap_seconds);
   eph.tau_n_s = -rinex::req_full_double(w, first, 23, 19, "-TauN");
