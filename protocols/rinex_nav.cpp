@@ -1,7 +1,8 @@
 // RINEX navigation message files: GPS, QZSS, Galileo, BeiDou and GLONASS broadcast ephemerides.
 //
 //   RINEX 2.10/2.11 GPS navigation files (type 'N'): RINEX 2.11 Tables A3 (header) and A4
-//     (data record); two-digit years per section 6.5.
+//     (data record); GLONASS navigation files (type 'G'): Tables A10 and A11; two-digit years
+//     per section 6.5.
 //   RINEX 3.0x navigation files (GPS or mixed): RINEX 3.05 appendix, navigation message file
 //     header and the GPS, QZSS, Galileo, BDS and GLONASS data record descriptions; SBAS and
 //     NavIC/IRNSS records are parsed past.
@@ -348,38 +349,58 @@ int skip_other_record(const Lines& lines, int n, double version) {
   return next;
 }
 
-// One GLONASS record (RINEX 3.05 GLONASS navigation data record; RINEX 4.00 "> EPH Rnn FDMA"):
+// One GLONASS record (RINEX 2.11 Table A11; RINEX 3.05 GLONASS navigation data record; RINEX
+// 4.00 "> EPH Rnn FDMA"):
 // the "SV / EPOCH / SV CLK" line at `n` (epoch tb in UTC, -TauN, +GammaN, message frame time)
 // and three BROADCAST ORBIT lines of X, Y, Z (km), their rates (km/s) and lunisolar
 // accelerations (km/s^2) with health, frequency number and age; the fourth line of 3.05 and
 // 4.00 (status flags, group delay, URAI, health flags) is parsed past. Returns the next line.
-int parse_glonass_record(const Lines& lines, int n, int first_line, double version, NavData& nav) {
+// RINEX 2 has no system letter (3X indents) and three lines.
+int parse_glonass_record(const Lines& lines, int n, int first_line, NavFormat format, double version, NavData& nav) {
   const std::string& src = lines.source();
   const std::string_view first = lines.line(n);
   const Where w{src, n};
   GlonassEphemeris eph;
-  const int slot = req_int(w, first, 1, 2, "PRN");
+  int slot = 0;
+  CalendarTime c;
+  std::size_t clock_col = 23, orbit_col = 4;
+  if (format == NavFormat::v2) {
+    // I2,1X,I2.2,1X,I2,1X,I2,1X,I2,1X,I2,F5.1,3D19.12 and 3X,4D19.12 (RINEX 2.11 Table A11).
+    slot = req_int(w, first, 0, 2, "PRN");
+    c.year = rinex::full_year(req_int(w, first, 3, 2, "epoch"));
+    c.month = req_int(w, first, 6, 2, "epoch");
+    c.day = req_int(w, first, 9, 2, "epoch");
+    c.hour = req_int(w, first, 12, 2, "epoch");
+    c.minute = req_int(w, first, 15, 2, "epoch");
+    c.second = req_double(w, first, 17, 5, "epoch");
+    clock_col = 22;
+    orbit_col = 3;
+  } else {
+    slot = req_int(w, first, 1, 2, "PRN");
+    c = read_v3_epoch(w, first);
+  }
   eph.sat = SatId(GnssSystem::kGlonass, slot);
   if (slot < 1 || !eph.sat.defined())
     fail(src, n, "PRN", fmt::format("GLONASS slot {} out of range {}-{}", slot, eph.sat.info().first_number, eph.sat.info().last_number));
-  const CalendarTime c = read_v3_epoch(w, first);
   (void)rinex::epoch_to_gps(w, c, "epoch");  // checks the date
   eph.tb = gps_from_utc(c, nav.leap_seconds);
-  eph.tau_n_s = -rinex::req_full_double(w, first, 23, 19, "-TauN");
-  eph.gamma_n = rinex::req_full_double(w, first, 42, 19, "GammaN");
-  eph.frame_time_s = rinex::req_full_double(w, first, 61, 19, "message frame time");
+  eph.tau_n_s = -rinex::req_full_double(w, first, clock_col, 19, "-TauN");
+  eph.gamma_n = rinex::req_full_double(w, first, clock_col + 19, 19, "GammaN");
+  eph.frame_time_s = rinex::req_full_double(w, first, clock_col + 38, 19, "message frame time");
   static constexpr const char* kNames[3][4] = {{"X", "X velocity", "X acceleration", "health"},
                                                {"Y", "Y velocity", "Y acceleration", "frequency number"},
                                                {"Z", "Z velocity", "Z acceleration", "age of information"}};
   std::array<double, 3> last{};
   for (int j = 0; j < 3; ++j) {
     const int ln = n + 1 + j;
-    if (ln > lines.size() || !is_continuation(lines.line(ln), 4))
+    if (ln > lines.size() || !is_continuation(lines.line(ln), orbit_col))
       fail(src, std::min(ln, lines.size()), kNames[j][0],
            fmt::format("record truncated: BROADCAST ORBIT - {} of R{:02d} (record at line {}) expected", j + 1, slot, n));
     const Where wl{src, ln};
     const std::string_view line = lines.line(ln);
-    const auto field = [&](int k) { return rinex::req_full_double(wl, line, 4 + 19 * static_cast<std::size_t>(k), 19, kNames[j][k]); };
+    const auto field = [&](int k) {
+      return rinex::req_full_double(wl, line, orbit_col + 19 * static_cast<std::size_t>(k), 19, kNames[j][k]);
+    };
     eph.p_pz90_m[j] = field(0) * 1e3;
     eph.v_pz90_mps[j] = field(1) * 1e3;
     eph.a_pz90_mps2[j] = field(2) * 1e3;
@@ -396,12 +417,12 @@ int parse_glonass_record(const Lines& lines, int n, int first_line, double versi
   eph.source = fmt::format("{}:{}", src, first_line);
   nav.glonass.push_back(eph);
   int next = n + 4;
-  const int expected = continuation_lines('R', version);
+  const int expected = format == NavFormat::v2 ? 3 : continuation_lines('R', version);
   for (; next <= n + expected; ++next)
     if (next > lines.size() || !is_continuation(lines.line(next), 4))
       fail(src, std::min(next, lines.size()), "BROADCAST ORBIT",
            fmt::format("record truncated: {} continuation lines expected for R{:02d} (record at line {})", expected, slot, n));
-  while (next <= lines.size() && is_continuation(lines.line(next), 4)) ++next;
+  while (format != NavFormat::v2 && next <= lines.size() && is_continuation(lines.line(next), 4)) ++next;
   return next;
 }
 
@@ -445,10 +466,9 @@ NavData parse_nav_text(std::string text, const std::string& source) {
   NavFormat format = NavFormat::v2;
   if (vl.version >= 2.0 && vl.version < 3.0) {
     format = NavFormat::v2;
-    if (vl.type == 'G' || vl.type == 'H')
+    if (vl.type == 'H')
       fail(source, 1, "file type",
-           fmt::format("RINEX 2 '{}' navigation files ({}) are not supported: only GPS ('N')",
-                       vl.type, vl.type == 'G' ? "GLONASS" : "GEO/SBAS"));
+           "RINEX 2 'H' navigation files (GEO/SBAS) are not supported: GPS ('N') and GLONASS ('G') are");
   } else if (vl.version >= 3.0 && vl.version < 4.0) {
     format = NavFormat::v3;
   } else if (vl.version >= 4.0 && vl.version < 5.0) {
@@ -458,9 +478,11 @@ NavData parse_nav_text(std::string text, const std::string& source) {
          fmt::format("unsupported RINEX version {} (navigation files 2.x, 3.x and 4.x are read)",
                      vl.version));
   }
-  if (vl.type != 'N')
+  // RINEX 2 GLONASS navigation files are type 'G' (RINEX 2.11 Table A10).
+  const bool glonass_v2 = format == NavFormat::v2 && vl.type == 'G';
+  if (vl.type != 'N' && !glonass_v2)
     fail(source, 1, "file type",
-         fmt::format("'{}' is not a navigation file type (expected 'N')", vl.type));
+         fmt::format("'{}' is not a navigation file type (expected 'N', or 'G' in RINEX 2)", vl.type));
 
   // Header (RINEX 2.11 Table A3; RINEX 3.05 and 4.00 navigation header descriptions).
   std::optional<std::array<double, 4>> alpha;
@@ -506,8 +528,12 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           fail(source, n, "PRN",
                "expected the first line of a record (PRN / EPOCH / SV CLK), found a "
                "continuation line: the previous record has too many lines");
-        nav.gps.push_back(parse_gps_record(lines, n, NavFormat::v2, n));
-        n += 1 + kOrbitLines;
+        if (glonass_v2) {
+          n = parse_glonass_record(lines, n, n, NavFormat::v2, vl.version, nav);
+        } else {
+          nav.gps.push_back(parse_gps_record(lines, n, NavFormat::v2, n));
+          n += 1 + kOrbitLines;
+        }
         break;
       case NavFormat::v3:
         if (line[0] == ' ')
@@ -517,7 +543,7 @@ NavData parse_nav_text(std::string text, const std::string& source) {
         if (read_kepler_record(lines, n, NavFormat::v3, n, line[0], nav)) {
           n += 1 + kOrbitLines;
         } else if (line[0] == 'R') {
-          n = parse_glonass_record(lines, n, n, vl.version, nav);
+          n = parse_glonass_record(lines, n, n, NavFormat::v3, vl.version, nav);
         } else {
           n = skip_other_record(lines, n, vl.version);
           ++nav.skipped_records;
@@ -555,7 +581,7 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           const int rec = n + 1;
           if (rec > lines.size() || column(lines.line(rec), 0, 3) != tok[1])
             fail(source, std::min(rec, lines.size()), "PRN", fmt::format("record of '{}' expected after line {}", tok[1], n));
-          n = parse_glonass_record(lines, rec, n, vl.version, nav);
+          n = parse_glonass_record(lines, rec, n, NavFormat::v4, vl.version, nav);
         } else if (tok[0] == "EPH" && count == 3 && tok[1].size() == 3 && kepler_message(tok[1][0], tok[2])) {
           const int rec = n + 1;
           if (rec > lines.size())

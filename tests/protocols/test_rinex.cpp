@@ -391,6 +391,39 @@ TEST(RinexNav, Rinex4SnippetParses) {
   EXPECT_DOUBLE_EQ(nav.klobuchar->beta[3], 2.621440000000E+05);
 }
 
+// A RINEX 2.11 GLONASS navigation file (Tables A10, A11): the ESBC file's first R01 record in
+// the RINEX 2 layout reads as the RINEX 3 record does (tb in UTC with the header's leap
+// seconds, km to m, -TauN, frequency number).
+TEST(RinexNav, Rinex211GlonassFile) {
+  const std::string v2 = hdr("     2.11           G: GLONASS NAV DATA", "RINEX VERSION / TYPE") +
+                         hdr("    18", "LEAP SECONDS") + hdr("", "END OF HEADER") +
+                         " 1 20  6 24 23 15  0.0 6.355904042721D-05 0.000000000000D+00 3.420000000000D+05\n"
+                         "    1.090894238281D+04 1.407806396484D+00-1.862645149231D-09 0.000000000000D+00\n"
+                         "   -2.885726074219D+03 2.795855522156D+00-0.000000000000D+00 1.000000000000D+00\n"
+                         "    2.288353955078D+04-3.169984817505D-01-2.793967723846D-09 0.000000000000D+00\n";
+  const std::string v3 = hdr("     3.05           N: GNSS NAV DATA    R: GLONASS", "RINEX VERSION / TYPE") +
+                         hdr("    18", "LEAP SECONDS") + hdr("", "END OF HEADER") +
+                         "R01 2020 06 24 23 15 00 6.355904042721e-05 0.000000000000e+00 3.420000000000e+05\n"
+                         "     1.090894238281e+04 1.407806396484e+00-1.862645149231e-09 0.000000000000e+00\n"
+                         "    -2.885726074219e+03 2.795855522156e+00-0.000000000000e+00 1.000000000000e+00\n"
+                         "     2.288353955078e+04-3.169984817505e-01-2.793967723846e-09 0.000000000000e+00\n"
+                         "                         .999999999999e+09 1.500000000000e+01\n";
+  const NavData a = nav_from(v2, "esbc.20g"), b = nav_from(v3, "esbc.rnx");
+  ASSERT_EQ(a.glonass.size(), 1u);
+  ASSERT_EQ(b.glonass.size(), 1u);
+  const GlonassEphemeris &x = a.glonass[0], &y = b.glonass[0];
+  EXPECT_TRUE(x.sat == y.sat);
+  EXPECT_EQ(x.tb, gps(2020, 6, 24, 23, 15, 18.0));
+  EXPECT_EQ(x.tb, y.tb);
+  EXPECT_DOUBLE_EQ(x.tau_n_s, y.tau_n_s);
+  EXPECT_DOUBLE_EQ(x.frame_time_s, y.frame_time_s);
+  EXPECT_EQ(x.p_pz90_m, y.p_pz90_m);
+  EXPECT_EQ(x.v_pz90_mps, y.v_pz90_mps);
+  EXPECT_EQ(x.a_pz90_mps2, y.a_pz90_mps2);
+  EXPECT_EQ(x.frequency_channel, 1);
+  EXPECT_EQ(x.source, "esbc.20g:4");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Navigation files: bad input
 
@@ -407,7 +440,7 @@ TEST(RinexNavErrors, UnsupportedVersionOrType) {
   expect_input_error([] { (void)nav_from(hdr("     x.10           N", "RINEX VERSION / TYPE")); }, 1,
                      "version");
   expect_input_error(
-      [] { (void)nav_from(hdr("     2.10           G: GLONASS NAV DATA", "RINEX VERSION / TYPE")); }, 1,
+      [] { (void)nav_from(hdr("     2.10           H: GEO NAV MSG DATA", "RINEX VERSION / TYPE")); }, 1,
       "file type");
   expect_input_error(
       [] { (void)nav_from(hdr("     3.05           OBSERVATION DATA    M", "RINEX VERSION / TYPE")); },
