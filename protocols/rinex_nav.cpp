@@ -91,6 +91,19 @@ bool is_continuation(std::string_view line, std::size_t indent) {
   return line.size() > indent && is_blank(column(line, 0, indent)) && !is_blank(line);
 }
 
+// The epoch of a RINEX 2 record's first line: I2,1X,I2.2,1X,I2,1X,I2,1X,I2,1X,I2,F5.1 after
+// the PRN (RINEX 2.11 Tables A4 and A11; two-digit years per section 6.5).
+CalendarTime read_v2_epoch(const Where& w, std::string_view first) {
+  CalendarTime c;
+  c.year = rinex::full_year(req_int(w, first, 3, 2, "epoch"));
+  c.month = req_int(w, first, 6, 2, "epoch");
+  c.day = req_int(w, first, 9, 2, "epoch");
+  c.hour = req_int(w, first, 12, 2, "epoch");
+  c.minute = req_int(w, first, 15, 2, "epoch");
+  c.second = req_double(w, first, 17, 5, "epoch");
+  return c;
+}
+
 // The epoch of a RINEX 3/4 record's first line: A1,I2.2,1X,I4,5(1X,I2.2) (RINEX 3.05
 // navigation data records), in the system's own time scale.
 CalendarTime read_v3_epoch(const Where& w, std::string_view first) {
@@ -129,14 +142,8 @@ KeplerRecord parse_kepler_record(const Lines& lines, int n, NavFormat format, in
   std::size_t clock_col = 0;
   std::size_t orbit_col = 0;
   if (format == NavFormat::v2) {
-    // I2,1X,I2.2,1X,I2,1X,I2,1X,I2,1X,I2,F5.1,3D19.12 (RINEX 2.11 Table A4)
     prn = req_int(w, first, 0, 2, "PRN");
-    c.year = rinex::full_year(req_int(w, first, 3, 2, "epoch"));
-    c.month = req_int(w, first, 6, 2, "epoch");
-    c.day = req_int(w, first, 9, 2, "epoch");
-    c.hour = req_int(w, first, 12, 2, "epoch");
-    c.minute = req_int(w, first, 15, 2, "epoch");
-    c.second = req_double(w, first, 17, 5, "epoch");
+    c = read_v2_epoch(w, first);
     clock_col = 22;
     orbit_col = 3;
   } else {
@@ -365,14 +372,8 @@ int parse_glonass_record(const Lines& lines, int n, int first_line, NavFormat fo
   CalendarTime c;
   std::size_t clock_col = 23, orbit_col = 4;
   if (format == NavFormat::v2) {
-    // I2,1X,I2.2,1X,I2,1X,I2,1X,I2,1X,I2,F5.1,3D19.12 and 3X,4D19.12 (RINEX 2.11 Table A11).
-    slot = req_int(w, first, 0, 2, "PRN");
-    c.year = rinex::full_year(req_int(w, first, 3, 2, "epoch"));
-    c.month = req_int(w, first, 6, 2, "epoch");
-    c.day = req_int(w, first, 9, 2, "epoch");
-    c.hour = req_int(w, first, 12, 2, "epoch");
-    c.minute = req_int(w, first, 15, 2, "epoch");
-    c.second = req_double(w, first, 17, 5, "epoch");
+    slot = req_int(w, first, 0, 2, "PRN");  // then 3X,4D19.12 lines (RINEX 2.11 Table A11)
+    c = read_v2_epoch(w, first);
     clock_col = 22;
     orbit_col = 3;
   } else {
