@@ -1,7 +1,9 @@
-// Galileo, BeiDou and QZSS broadcast orbits and clocks (models/orbit.hpp broadcast_sat_state)
-// against independent references of one day, 2020-06-25, in ../shared/data/gnss/esbc_20200625:
-//  - Galileo against the precise orbits of the CNES/CLS analysis centre (GRG0MGXFIN SP3, the
-//    satellites' centres of mass);
+// Galileo, BeiDou, QZSS and GLONASS broadcast orbits and clocks (models/orbit.hpp
+// broadcast_sat_state, glonass_sat_state) against independent references of one day,
+// 2020-06-25, in ../shared/data/gnss/esbc_20200625 (RTKLIB's own positions from the same file:
+// tests/integration/test_orbit_rtklib.cpp):
+//  - Galileo and GLONASS against the precise orbits of the CNES/CLS analysis centre
+//    (GRG0MGXFIN SP3, the satellites' centres of mass);
 //  - BeiDou's geostationary C05 at its published orbital slot, 58.75 deg E;
 //  - Galileo, BeiDou and GLONASS against the pseudoranges the station ESBC00DNK measured at its
 //    surveyed place, which hold the orbits, the clocks, the group delays and the time systems
@@ -43,7 +45,7 @@ const NavData& esbc_nav() {
 // The data set a receiver has for `sat` at t: the one with the latest toe at most 10 minutes
 // ahead of t (Galileo and BeiDou upload a set shortly before its toe), no older than 3 h; for
 // Galileo the I/NAV one (data sources bit 0), as an E1 receiver decodes it. Galileo's sets are
-// fitted forwards from their toe, so one is not used before it.
+// fitted forwards from their toe: used hours before it they are metres off.
 template <class Eph>
 const Eph* latest(const std::vector<Eph>& records, SatId sat, GpsTime t) {
   const Eph* best = nullptr;
