@@ -156,8 +156,7 @@ bool ImuChannel::run_event(EventContext& ctx) {
       cs.truth_lost = !valid;
       cs.gyro_saturated = sample_.gyro_saturated;
       cs.accel_saturated = sample_.accel_saturated;
-      // Live frames are stamped when they leave; offline ones at their scheduled time.
-      for (int c = 0; c < copies; ++c) can_->send(cs, offline_ ? unix_ns_from_gps(sample_.t) : realtime_ns());
+      for (int c = 0; c < copies; ++c) can_->send(cs, can_stamp_ns(t_meas));
     }
     const SampleRecord record{sample_, seconds_between(sample_.t, start_), valid, t_meas, sequence};
     for (int c = 0; c < copies; ++c)
@@ -190,7 +189,7 @@ bool ImuChannel::can_bus_faults(GpsTime t) {
     if (f.kind == ImuFaultKind::kErrorFrames) rate_hz += f.value * level;
   }
   if (can_) {
-    const std::int64_t stamp = offline_ ? unix_ns_from_gps(GpsTime{t.ns + latency_ns_}) : realtime_ns();
+    const std::int64_t stamp = can_stamp_ns(t);
     if (off != bus_off_) can_->send_error(off ? kCanErrBusOff : kCanErrRestarted, {}, stamp);
     error_frames_due_ += rate_hz * static_cast<double>(pipe_.output_period_ns()) * 1e-9;
     for (; error_frames_due_ >= 1.0; error_frames_due_ -= 1.0, ++error_frames_)
@@ -198,6 +197,12 @@ bool ImuChannel::can_bus_faults(GpsTime t) {
   }
   bus_off_ = off;
   return off;
+}
+
+// Live frames are stamped when they leave; offline ones at their scheduled time, the sample's
+// measurement time + the profile's latency.
+std::int64_t ImuChannel::can_stamp_ns(GpsTime t_meas) const {
+  return offline_ ? unix_ns_from_gps(GpsTime{t_meas.ns + latency_ns_}) : realtime_ns();
 }
 
 void ImuChannel::service() {

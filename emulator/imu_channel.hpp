@@ -92,6 +92,7 @@ class ImuChannel final : public SensorChannel {
   static constexpr std::int64_t kImuCatchUp_ns = 500'000'000;  // later samples are skipped
   bool fault_hits(ImuFaultKind kind, GpsTime t, RandomStream& rng) const;
   bool can_bus_faults(GpsTime t);
+  std::int64_t can_stamp_ns(GpsTime t_meas) const;  // a CAN frame's stamp (candump logs)
 
   ImuPipeline pipe_;
   std::vector<ImuFault> faults_;
