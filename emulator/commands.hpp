@@ -84,6 +84,7 @@ struct SppOptions {
   std::string obs_file;
   std::string nav_file;
   double mask_deg = 15.0;
+  std::vector<std::string> systems{"G", "R", "E", "C", "J"};  // RINEX letters
   std::string iono = "klobuchar";
   std::string tropo = "saastamoinen";
   std::string residuals_file;  // empty: none

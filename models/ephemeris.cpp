@@ -59,7 +59,53 @@ const GpsEphemeris* select_among(const Records& records, SatId sat, GpsTime t) {
 }  // namespace
 
 const GpsEphemeris* select_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
-  return select_among(nav.gps, sat, t);
+  return select_among(sat.system() == GnssSystem::kQzss ? nav.qzss : nav.gps, sat, t);
+}
+
+namespace {
+GpsTime reference_time(const KeplerEphemeris& e) { return e.toe; }
+GpsTime reference_time(const GlonassEphemeris& e) { return e.tb; }
+
+// The record of `sat` among `records` with the smallest |t - reference time| within max_age_s
+// that `usable` accepts; ties go to the later one in the file.
+template <class Record, class Usable>
+const Record* nearest_record(const std::vector<Record>& records, SatId sat, GpsTime t,
+                             double max_age_s, Usable usable) {
+  const Record* best = nullptr;
+  double best_age_s = max_age_s;
+  for (const Record& e : records) {
+    if (e.sat != sat || !usable(e)) continue;
+    const double age_s = std::abs(seconds_between(t, reference_time(e)));
+    if (age_s <= best_age_s) {
+      best = &e;
+      best_age_s = age_s;
+    }
+  }
+  return best;
+}
+}  // namespace
+
+const GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+  constexpr int kInavClock = 1 << 9, kE1bHealth = 0x7;
+  const auto usable = [t](bool inav) {
+    return [t, inav](const GalileoEphemeris& e) {
+      return ((e.data_sources & kInavClock) != 0) == inav && (e.health & kE1bHealth) == 0 &&
+             e.toe <= t;
+    };
+  };
+  const GalileoEphemeris* inav =
+      nearest_record(nav.galileo, sat, t, kMaxEphemerisAge_s, usable(true));
+  return inav ? inav : nearest_record(nav.galileo, sat, t, kMaxEphemerisAge_s, usable(false));
+}
+
+const BeidouEphemeris* select_beidou_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+  return nearest_record(nav.beidou, sat, t, kMaxEphemerisAge_s,
+                        [](const BeidouEphemeris& e) { return e.health == 0; });
+}
+
+const GlonassEphemeris* select_glonass_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+  return nearest_record(nav.glonass, sat, t, kMaxGlonassAge_s,
+                        [](const GlonassEphemeris& e) { return e.health == 0; });
 }
 
 const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records, GpsTime t) {

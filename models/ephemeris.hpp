@@ -23,12 +23,29 @@ inline constexpr double kMaxEphemerisAge_s = 4.0 * 3600.0;
 // The ephemeris to use for satellite `sat` at time `t`: among healthy records, the one whose toe
 // is nearest to t (IS-GPS-200 20.3.4.5 curve fit interval centred on toe); when t precedes
 // every toe, the first one. Ties go to the later transmitted record. nullptr when the file has
-// none.
+// none. GPS records from NavData::gps, QZSS's from NavData::qzss.
 const GpsEphemeris* select_ephemeris(const NavData& nav, SatId sat, GpsTime t);
 // The same among one satellite's records, indexed once (nav.gps scanned per satellite and epoch
 // would cost as much as the orbit).
 const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records_of_one_sat,
                                      GpsTime t);
+
+// The records of the other systems a single-frequency user takes at time t, nullptr when there
+// is none (each rule as RTKLIB 2.4.3's seleph applies it, so that `navemu spp` and rnx2rtkp use
+// the same data):
+// - Galileo: a record whose toe is not after t (Galileo OS SIS ICD 2.0 5.1.9: data are valid
+//   from toe on), the nearest such, at most kMaxEphemerisAge_s old; I/NAV (data sources bit 9,
+//   the clock for E1/E5b, what an E1 user decodes) preferred to F/NAV; the E1-B signal health
+//   and data validity (health bits 0-2, OS SIS ICD 2.0 5.1.9.3) must be zero.
+// - BeiDou: the healthy record (SatH1 = 0, BDS-SIS-ICD-B1I 3.0 5.2.4.6) nearest in toe, within
+//   kMaxEphemerisAge_s.
+// - GLONASS: the healthy record (Bn = 0, GLONASS ICD 5.1 4.4) nearest in tb, within 15 min: the
+//   immediate data are updated every 30 min (ICD 4.4, tb).
+// - QZSS: as GPS, from NavData::qzss (select_ephemeris).
+const GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, SatId sat, GpsTime t);
+const BeidouEphemeris* select_beidou_ephemeris(const NavData& nav, SatId sat, GpsTime t);
+const GlonassEphemeris* select_glonass_ephemeris(const NavData& nav, SatId sat, GpsTime t);
+inline constexpr double kMaxGlonassAge_s = 15.0 * 60.0;
 
 // The record select_ephemeris gives at a time, with the open span of times around it over which
 // it gives the same record: the choice changes only where t passes midway between the toe of

@@ -18,6 +18,11 @@ using Mat4 = Eigen::Matrix4d;
 constexpr int kMaxRows = static_cast<int>(kMaxSolverSatellites) + 1;  // + the height constraint
 using MatN4 = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, kMaxRows, 4>;
 using VecN = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxRows, 1>;
+// The position and a clock per clock group in the solution (kClockGroups).
+constexpr int kMaxUnknowns = 3 + static_cast<int>(kClockGroups);
+using MatX = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxUnknowns,
+                           kMaxUnknowns>;
+using VecX = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxUnknowns, 1>;
 
 // An ECEF position is taken as known once it is away from the Earth's centre.
 bool position_known(const Vec3& p) { return p.norm() > 1e3; }
@@ -34,7 +39,17 @@ struct Row {
   double residual_m = 0.0;
   double variance_m2 = 1.0;
   std::size_t index = 0;
+  std::size_t group = 0;  // clock_group of the satellite's system
 };
+
+// Code noise scale of a system relative to GPS's (SolverOptions::sigma_a_m).
+double code_sigma_factor(GnssSystem s) {
+  switch (s) {
+    case GnssSystem::kGlonass: return 1.5;
+    case GnssSystem::kSbas: return 3.0;
+    default: return 1.0;
+  }
+}
 
 // Upper bound of the URA bin a broadcast accuracy falls in (IS-GPS-200 20.3.3.3.1.3: URA
 // index N covers (bound[N-1], bound[N]] metres); 6144 m and beyond: index 15, no accuracy.
@@ -73,22 +88,68 @@ Dops dops_from_directions(std::span<const AzEl> all) {
   return d;
 }
 
-RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive,
-                                        double pseudorange_m, std::optional<double> doppler_l1_hz) {
-  // Transmit time by the satellite's clock, then corrected to GPS system time.
+namespace {
+// The measurement from any Kepler record: `group_delay_s` is the signal's TGD/BGD.
+RangeMeasurement kepler_measurement(const KeplerEphemeris& eph, GpsTime t_receive,
+                                    double pseudorange_m, double group_delay_s,
+                                    double variance_m2, double carrier_hz,
+                                    std::optional<double> doppler_hz) {
   GpsTime t_tx = t_receive.plus_s(-pseudorange_m / kSpeedOfLight_mps);
   t_tx = t_tx.plus_s(-gps_sat_clock_poly_s(eph, t_tx));
-  const SatState s = gps_sat_state(eph, t_tx);
+  const SatState s = broadcast_sat_state(eph, t_tx);
   RangeMeasurement m;
   m.sat = eph.sat;
   m.sat_p_ecef_m = s.p_ecef_m;
   m.sat_v_ecef_mps = s.v_ecef_mps;
-  m.sat_clock_m = kSpeedOfLight_mps * (s.clock_bias_s - eph.tgd_s);
+  m.sat_clock_m = kSpeedOfLight_mps * (s.clock_bias_s - group_delay_s);
   m.sat_clock_drift_mps = kSpeedOfLight_mps * s.clock_drift_sps;
   m.pseudorange_m = pseudorange_m;
+  m.sat_variance_m2 = variance_m2;
+  m.carrier_hz = carrier_hz;
+  if (doppler_hz) m.range_rate_mps = -*doppler_hz * kSpeedOfLight_mps / carrier_hz;
+  return m;
+}
+}  // namespace
+
+RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m, std::optional<double> doppler_l1_hz) {
   const double ura = ura_upper_bound_m(eph.ura_m);
-  m.sat_variance_m2 = ura * ura;
-  if (doppler_l1_hz) m.range_rate_mps = -*doppler_l1_hz * kSpeedOfLight_mps / kGpsL1_Hz;
+  return kepler_measurement(eph, t_receive, pseudorange_m, eph.tgd_s, ura * ura, kGpsL1_Hz,
+                            doppler_l1_hz);
+}
+
+RangeMeasurement make_range_measurement(const GalileoEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m, std::optional<double> doppler_e1_hz) {
+  constexpr int kInavClock = 1 << 9;  // RINEX 3.05 Galileo data sources, bit 9: E5b/E1 clock
+  const double bgd_s = (eph.data_sources & kInavClock) ? eph.bgd_e1e5b_s : eph.bgd_e1e5a_s;
+  const double sisa_m = eph.sisa_m > 0.0 ? eph.sisa_m : 500.0;
+  return kepler_measurement(eph, t_receive, pseudorange_m, bgd_s, sisa_m * sisa_m,
+                            carrier_frequency_hz(kGalileoE1C), doppler_e1_hz);
+}
+
+RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m, std::optional<double> doppler_b1i_hz) {
+  const double ura = ura_upper_bound_m(eph.ura_m);
+  return kepler_measurement(eph, t_receive, pseudorange_m, eph.tgd1_s, ura * ura,
+                            carrier_frequency_hz(kBeidouB1I), doppler_b1i_hz);
+}
+
+RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m, std::optional<double> doppler_l1_hz) {
+  constexpr double kGlonassEphemerisSigma_m = 5.0;  // RTKLIB's ERREPH_GLO
+  GpsTime t_tx = t_receive.plus_s(-pseudorange_m / kSpeedOfLight_mps);
+  t_tx = t_tx.plus_s(-(eph.gamma_n * seconds_between(t_tx, eph.tb) - eph.tau_n_s));
+  const SatState s = glonass_sat_state(eph, t_tx);
+  RangeMeasurement m;
+  m.sat = eph.sat;
+  m.sat_p_ecef_m = s.p_ecef_m;
+  m.sat_v_ecef_mps = s.v_ecef_mps;
+  m.sat_clock_m = kSpeedOfLight_mps * s.clock_bias_s;
+  m.sat_clock_drift_mps = kSpeedOfLight_mps * s.clock_drift_sps;
+  m.pseudorange_m = pseudorange_m;
+  m.sat_variance_m2 = kGlonassEphemerisSigma_m * kGlonassEphemerisSigma_m;
+  m.carrier_hz = carrier_frequency_hz(kGlonassL1OF, eph.frequency_channel);
+  if (doppler_l1_hz) m.range_rate_mps = -*doppler_l1_hz * kSpeedOfLight_mps / m.carrier_hz;
   return m;
 }
 
@@ -104,7 +165,7 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
       all.first(std::min(all.size(), kMaxSolverSatellites));
   reset_keeping_storage(sol, &Solution::sats).sats.resize(meas.size());
   Vec3 p = opt.initial_p_ecef_m;
-  double clk = 0.0;
+  std::array<double, kClockGroups> clk{};  // per clock group
   const bool prior_known = position_known(p);
   // Geodetic coordinates of the estimate, kept for the position they were computed at (the
   // prior's serve the held height and the first iteration's corrections).
@@ -132,7 +193,9 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
   std::array<double, kMaxSolverSatellites> sin_el;
   std::size_t n_sat_rows = 0;
   bool converged = false;
-  Eigen::FullPivLU<Mat4> lu;  // of the last iteration's normal equations
+  Eigen::FullPivLU<MatX> lu;  // of the last iteration's normal equations
+  // Column of each clock group's clock in the last iteration (0: not in the solution).
+  std::array<Eigen::Index, kClockGroups> clock_column{};
   bool hold_height = false;
   // The elevation mask applies once the estimate is within 10 km (elevations then good to
   // ~0.1 deg): from the first iteration with a prior, otherwise after the first large steps
@@ -177,8 +240,12 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
         if (known) dir = azimuth_elevation(r_enu, p, p_sat);
         out.az_deg = dir.az_rad * kRadToDeg;
         out.el_deg = dir.el_rad * kRadToDeg;
-        if (known && opt.klobuchar)
-          out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, tow_s);
+        // The L1 delay scaled to the signal's frequency, 1/f^2 (IS-GPS-200 20.3.3.3.3.3).
+        if (known && opt.klobuchar) {
+          const double l1_over_f = kGpsL1_Hz / m.carrier_hz;
+          out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, tow_s) *
+                       l1_over_f * l1_over_f;
+        }
         if (known && opt.saastamoinen)
           out.tropo_m = saastamoinen_delay(tropo_zenith, dir.el_rad).total_m();
         sin_el[i] = std::sin(out.el_deg * kDegToRad);
@@ -187,48 +254,63 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
       out.used = false;
       const double el_rad = out.el_deg * kDegToRad;
       if (settled && el_rad < mask_rad) continue;
-      out.residual_m = m.pseudorange_m - (range + clk - m.sat_clock_m + out.iono_m + out.tropo_m);
+      const std::size_t group = clock_group(m.sat.system());
+      out.residual_m =
+          m.pseudorange_m - (range + clk[group] - m.sat_clock_m + out.iono_m + out.tropo_m);
       out.used = true;
-      double var = sa2 + sb2 / sin_el[i] + m.sat_variance_m2;
+      const double f = code_sigma_factor(m.sat.system());
+      double var = f * f * (sa2 + sb2 / sin_el[i]) + m.sat_variance_m2;
       if (known && opt.klobuchar) var += 0.25 * out.iono_m * out.iono_m;
       if (known && opt.saastamoinen) var += tropo_variance_m2(sin_el[i]);
-      row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i};
+      row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i, group};
     }
+    // Unknowns: the position, then the clock of each group with a satellite in use.
+    clock_column.fill(0);
+    for (std::size_t k = 0; k < n_sat_rows; ++k) clock_column[row_store[k].group] = 1;
+    Eigen::Index nx = 3;
+    for (Eigen::Index& c : clock_column)
+      if (c != 0) c = nx++;
 
     switch (opt.fix_mode) {
-      case SolverFixMode::kAuto: hold_height = n_sat_rows == 3 && prior_known; break;
+      case SolverFixMode::kAuto:
+        hold_height = n_sat_rows == static_cast<std::size_t>(nx - 1) && prior_known;
+        break;
       case SolverFixMode::k3DOnly: hold_height = false; break;
       case SolverFixMode::k2DOnly: hold_height = settled; break;
     }
     const std::size_t n_rows = n_sat_rows + (hold_height ? 1 : 0);
-    if (n_sat_rows < 3 || n_rows < 4) break;
+    if (n_sat_rows < static_cast<std::size_t>(nx - 1) || n_rows < static_cast<std::size_t>(nx))
+      break;
 
-    // Normal equations N = H^T W H and H^T W v, accumulated row by row: row (-u^T, 1) of a
-    // satellite with weight 1 / variance.
-    Mat4 n = Mat4::Zero();
-    Eigen::Vector4d hwv = Eigen::Vector4d::Zero();
-    auto add_row = [&](const Eigen::Vector4d& h_row, double v_m, double w) {
-      const Eigen::Vector4d wh = w * h_row;
-      n.noalias() += wh * h_row.transpose();
-      hwv += wh * v_m;
-    };
+    // Normal equations N = H^T W H and H^T W v, accumulated row by row: row (-u^T, 1 in the
+    // column of the satellite's clock) with weight 1 / variance.
+    MatX n = MatX::Zero(nx, nx);
+    VecX hwv = VecX::Zero(nx);
     for (std::size_t k = 0; k < n_sat_rows; ++k) {
-      Eigen::Vector4d h_row;
-      h_row << -row_store[k].u, 1.0;
-      add_row(h_row, row_store[k].residual_m, 1.0 / row_store[k].variance_m2);
+      const Row& r = row_store[k];
+      const double w = 1.0 / r.variance_m2;
+      const Eigen::Index c = clock_column[r.group];
+      const Vec3 wu = w * r.u;
+      n.topLeftCorner<3, 3>().noalias() += wu * r.u.transpose();
+      n.block<3, 1>(0, c) -= wu;
+      n(c, c) += w;
+      hwv.head<3>() -= wu * r.residual_m;
+      hwv(c) += w * r.residual_m;
     }
+    n.bottomLeftCorner(nx - 3, 3) = n.topRightCorner(3, nx - 3).transpose();
     if (hold_height) {
       // Pseudo-observation: the height stays at the prior height (1 cm sigma).
       const Geodetic g = geodetic_of(p);
-      Eigen::Vector4d h_row;
-      h_row << R_enu_from_ecef(g).row(2).transpose(), 0.0;
-      add_row(h_row, h_hold_m - g.h_m, 1e4);
+      const Vec3 up = R_enu_from_ecef(g).row(2).transpose();
+      n.topLeftCorner<3, 3>().noalias() += 1e4 * up * up.transpose();
+      hwv.head<3>() += 1e4 * up * (h_hold_m - g.h_m);
     }
     lu.compute(n);
     if (!lu.isInvertible()) break;
-    const Eigen::Vector4d dx = lu.solve(hwv);
+    const VecX dx = lu.solve(hwv);
     p += dx.head<3>();
-    clk += dx(3);
+    for (std::size_t g = 0; g < kClockGroups; ++g)
+      if (clock_column[g] != 0) clk[g] += dx(clock_column[g]);
     settled = settled || dx.head<3>().norm() < 1e4;
     sol.iterations = iter + 1;
     // A 2D-only fix converges only with the height held.
@@ -243,7 +325,13 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
   // Residuals against the final estimate were computed in the last pass before the update;
   // the update is below the convergence threshold, so they stand.
   sol.p_ecef_m = p;
-  sol.clock_m = clk;
+  bool reference_set = false;
+  for (std::size_t g = 0; g < kClockGroups; ++g) {
+    if (clock_column[g] == 0) continue;
+    sol.group_clock_m[g] = clk[g];
+    if (!reference_set) sol.clock_m = clk[g];
+    reference_set = true;
+  }
   sol.cov_ecef_m2 = lu.inverse().topLeftCorner<3, 3>();
   sol.num_used = static_cast<int>(n_sat_rows);
   sol.fix = hold_height ? FixType::k2D : FixType::k3D;

@@ -3,6 +3,7 @@
 // (and Doppler), with elevation mask, elevation-dependent weights and dilution of precision.
 // This same solver is the emulator's receiver: DOP enters the output through it.
 
+#include <array>
 #include <optional>
 #include <span>
 #include <vector>
@@ -27,7 +28,24 @@ struct RangeMeasurement {
   double pseudorange_m = 0.0;
   double sat_variance_m2 = 0.0;          // orbit and clock error variance (URA bound^2)
   std::optional<double> range_rate_mps;  // -lambda * Doppler, when Doppler is measured
+  double carrier_hz = kGpsL1_Hz;  // of the ranging signal: scales the L1 ionospheric delay
 };
+
+// The receiver clocks the solver estimates: one per time scale of the systems in the solution
+// (as RTKLIB's pntpos): GPS, QZSS (whose time is steered to GPS time, IS-QZSS-PNT 3.2.1.2) and
+// SBAS share the first; GLONASS, Galileo, BeiDou and NavIC each have their own, the receiver's
+// clock in that system's time, i.e. GPS's plus an inter-system bias that holds the systems'
+// time offset (GGTO etc.) and the receiver's inter-system hardware delays.
+inline constexpr std::size_t kClockGroups = 5;
+constexpr std::size_t clock_group(GnssSystem s) {
+  switch (s) {
+    case GnssSystem::kGlonass: return 1;
+    case GnssSystem::kGalileo: return 2;
+    case GnssSystem::kBeidou: return 3;
+    case GnssSystem::kNavic: return 4;
+    default: return 0;
+  }
+}
 
 enum class FixType { kNone = 0, kDeadReckoning = 1, k2D = 2, k3D = 3 };
 enum class SolverFixMode { k2DOnly, k3DOnly, kAuto };
@@ -48,6 +66,8 @@ struct SolverOptions {
   // ionospheric (half the correction) and tropospheric (0.3 m / (sin(el) + 0.1)) corrections.
   double sigma_a_m = 0.3;
   double sigma_b_m = 0.3;
+  // GLONASS's code noise variance is scaled by 1.5^2 (its C/A code chips at half GPS's rate;
+  // RTKLIB's EFACT_GLO), SBAS's by 3^2 (EFACT_SBS).
   Vec3 initial_p_ecef_m = Vec3::Zero();  // zero: start at the Earth's centre
   // Fix mode (u-blox CFG-NAVSPG-FIXMODE; F9P integration manual, "Navigation input filters"):
   // kAuto solves a 2D fix with exactly three usable satellites and a known initial position,
@@ -68,7 +88,11 @@ struct SatResidual {
 struct Solution {
   FixType fix = FixType::kNone;
   Vec3 p_ecef_m = Vec3::Zero();
-  double clock_m = 0.0;  // receiver clock bias * c
+  // Receiver clock bias * c: GPS time's when GPS, QZSS or SBAS satellites are used, otherwise
+  // the first used system's of GLONASS, Galileo, BeiDou, NavIC.
+  double clock_m = 0.0;
+  // Each clock group's (kClockGroups) that has a satellite in the solution.
+  std::array<std::optional<double>, kClockGroups> group_clock_m{};
   std::optional<Vec3> v_ecef_mps;
   double clock_drift_mps = 0.0;
   Dops dops;
@@ -83,8 +107,25 @@ struct Solution {
 // A measurement from a pseudorange observed at receiver time t_receive: the satellite state
 // at transmit time t_receive - P/c - dt_sat (IS-GPS-200 20.3.3.3.3.1), the L1 C/A clock
 // correction (dt_sat - TGD), URA^2 as orbit/clock variance, and the range rate from an L1
-// Doppler in Hz when given.
+// Doppler in Hz when given. GPS and QZSS (IS-QZSS-PNT: GPS's LNAV algorithms) records.
 RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m,
+                                        std::optional<double> doppler_l1_hz = {});
+// The same for the single-frequency signal of each other system, with its group delay and
+// accuracy:
+// - Galileo E1: dt_sat - BGD(E1,E5b) for an I/NAV record, - BGD(E1,E5a) for F/NAV (OS SIS ICD
+//   2.0 5.1.5); variance SISA^2 (5.1.11), (500 m)^2 for "no accuracy prediction" (NAPA, a SISA
+//   that is not positive).
+// - BeiDou B1I: dt_sat - TGD1 (BDS-SIS-ICD-B1I 3.0 5.2.4.10); variance the URA bound^2.
+// - GLONASS L1OF on the satellite's frequency channel: the clock as glonass_sat_state; the
+//   broadcast data have no accuracy in RINEX 3, so (5 m)^2 (RTKLIB's ERREPH_GLO).
+RangeMeasurement make_range_measurement(const GalileoEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m,
+                                        std::optional<double> doppler_e1_hz = {});
+RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_receive,
+                                        double pseudorange_m,
+                                        std::optional<double> doppler_b1i_hz = {});
+RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
                                         std::optional<double> doppler_l1_hz = {});
 

@@ -1,8 +1,12 @@
-// navemu spp: single-point positioning on a real RINEX observation file (GPS L1 C/A code).
+// navemu spp: single-point positioning on a real RINEX observation file (single-frequency
+// code of GPS, GLONASS, Galileo, BeiDou and QZSS).
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <ostream>
@@ -14,22 +18,94 @@
 
 namespace navemu {
 
+namespace {
+
+// The systems `navemu spp` solves with, as RINEX letters (RINEX 3.05 section 3.5).
+constexpr std::array<GnssSystem, 5> kSppSystems{GnssSystem::kGps, GnssSystem::kGlonass,
+                                                GnssSystem::kGalileo, GnssSystem::kBeidou,
+                                                GnssSystem::kQzss};
+
+// The single-frequency code observation used per system, in order of preference (RINEX 3.05
+// Tables 4-8): GPS and QZSS L1 C/A; GLONASS L1 C/A then P; Galileo E1 C then B+C; BeiDou B1I
+// (band 2 since RINEX 3.02, band 1 in 3.00/3.01). RINEX 2 files name only the band (C1).
+std::vector<std::string> code_preference(GnssSystem system, double version) {
+  if (version < 3.0) return {"C1"};
+  switch (system) {
+    case GnssSystem::kGlonass: return {"C1C", "C1P"};
+    case GnssSystem::kGalileo: return {"C1C", "C1X"};
+    case GnssSystem::kBeidou:
+      return version < 3.02 ? std::vector<std::string>{"C1I"}
+                            : std::vector<std::string>{"C2I", "C2X"};
+    default: return {"C1C"};
+  }
+}
+
+// Where a system's pseudorange and Doppler are in its observation list.
+struct SystemColumns {
+  std::string code;       // the observation code used ("C1C")
+  int code_index = -1;    // -1: the system is not solved with
+  int doppler_index = -1;
+};
+
+// A measurement from the record spp takes for the satellite at `t`, if there is one (models/
+// ephemeris.hpp) and it is within its system's age limit.
+std::optional<RangeMeasurement> measurement(const NavData& nav, SatId sat, GpsTime t, double pr_m,
+                                            std::optional<double> doppler_hz) {
+  switch (sat.system()) {
+    case GnssSystem::kGps:
+    case GnssSystem::kQzss:
+      if (const GpsEphemeris* e = select_ephemeris(nav, sat, t);
+          e && std::abs(seconds_between(t, e->toe)) <= kMaxEphemerisAge_s)
+        return make_range_measurement(*e, t, pr_m, doppler_hz);
+      return std::nullopt;
+    case GnssSystem::kGalileo:
+      if (const GalileoEphemeris* e = select_galileo_ephemeris(nav, sat, t))
+        return make_range_measurement(*e, t, pr_m, doppler_hz);
+      return std::nullopt;
+    case GnssSystem::kBeidou:
+      if (const BeidouEphemeris* e = select_beidou_ephemeris(nav, sat, t))
+        return make_range_measurement(*e, t, pr_m, doppler_hz);
+      return std::nullopt;
+    case GnssSystem::kGlonass:
+      if (const GlonassEphemeris* e = select_glonass_ephemeris(nav, sat, t))
+        return make_range_measurement(*e, t, pr_m, doppler_hz);
+      return std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace
+
 void add_spp_command(CLI::App& app, SppOptions& opt) {
   CLI::App* spp = app.add_subcommand(
-      "spp", "Single-point positions from a real RINEX observation file (GPS L1 C/A)");
+      "spp", "Single-point positions from a real RINEX observation file (GPS, GLONASS, Galileo, "
+             "BeiDou, QZSS)");
   spp->footer(
-      "Solves every epoch of OBS by weighted least squares on the GPS L1 C/A pseudoranges\n"
-      "(RINEX 2 C1, RINEX 3 C1C) with the broadcast ephemeris of NAV.\n"
+      "Solves every epoch of OBS by weighted least squares on single-frequency pseudoranges\n"
+      "with the broadcast ephemerides of NAV: GPS and QZSS L1 C/A (RINEX 3 C1C, RINEX 2 C1),\n"
+      "GLONASS L1 (C1C, C1P), Galileo E1 (C1C, C1X), BeiDou B1I (C2I, C2X; C1I before RINEX\n"
+      "3.02). One receiver clock for GPS and QZSS plus an inter-system bias for each of\n"
+      "GLONASS, Galileo and BeiDou in use; the broadcast Klobuchar delay scaled to each\n"
+      "signal's frequency.\n"
       "CSV columns: time (UTC), lat_deg, lon_deg, h_m (ellipsoidal), x_m, y_m, z_m (ECEF),\n"
-      "clock_m (receiver clock bias * c), nsat (satellites used), pdop, gps_week, gps_tow_s.\n"
+      "clock_m (receiver clock bias * c in GPS time, or in the first solved system's time\n"
+      "without GPS/QZSS), nsat (satellites used), pdop, gps_week, gps_tow_s.\n"
       "Epochs without a fix and a closing count go to stderr.\n"
-      "Example:\n"
-      "  navemu spp 07590920.05o 07590920.05n --mask 15 > 0759.csv");
+      "Examples:\n"
+      "  navemu spp 07590920.05o 07590920.05n --mask 15 > 0759.csv\n"
+      "  navemu spp ESBC00DNK_R_20201770000_01H_30S_MO.rnx ESBC00DNK_R_20201770000_01D_MN.rnx \\\n"
+      "      --systems G,E > esbc.csv");
   spp->add_option("OBS", opt.obs_file, "RINEX observation file")->required();
   spp->add_option("NAV", opt.nav_file, "RINEX navigation file")->required();
   spp->add_option("--mask", opt.mask_deg, "Elevation mask in degrees")
       ->capture_default_str()
       ->check(number_between(0.0, 90.0));
+  spp->add_option("--systems", opt.systems,
+                  "Systems to solve with, RINEX letters separated by commas: G GPS, R GLONASS, "
+                  "E Galileo, C BeiDou, J QZSS")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::IsMember({"G", "R", "E", "C", "J"}));
   spp->add_option("--iono", opt.iono, "Ionospheric correction: klobuchar (broadcast) or off")
       ->capture_default_str()
       ->check(CLI::IsMember({"klobuchar", "off"}));
@@ -39,7 +115,8 @@ void add_spp_command(CLI::App& app, SppOptions& opt) {
       ->check(CLI::IsMember({"saastamoinen", "off"}));
   spp->add_option("--residuals", opt.residuals_file,
                   "Also write per-satellite residuals of every solved epoch to this CSV file "
-                  "(gps_week, gps_tow_s, prn, az_deg, el_deg, residual_m, iono_m, tropo_m, used)");
+                  "(gps_week, gps_tow_s, sat (RINEX name), az_deg, el_deg, residual_m, iono_m, "
+                  "tropo_m, used)");
 }
 
 int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
@@ -47,14 +124,37 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
   const NavData nav = read_rinex_nav(opt.nav_file);
   for (const std::string& w : obs.warnings) fmt::print(err, "navemu spp: warning: {}\n", w);
 
+  // Each requested system's observation columns; the start-up line says what is used.
   const bool rinex3 = obs.header.version >= 3.0;
-  const std::string code = rinex3 ? "C1C" : "C1";
-  const std::string doppler = rinex3 ? "D1C" : "D1";
-  const int code_index = obs.header.index_of('G', code);
-  const int doppler_index = obs.header.index_of('G', doppler);
-  if (code_index < 0)
+  std::array<SystemColumns, kGnssSystemCount> columns;
+  std::vector<std::string> used, unused;
+  for (const GnssSystem system : kSppSystems) {
+    const GnssSystemInfo& info = system_info(system);
+    if (std::find(opt.systems.begin(), opt.systems.end(), std::string(1, info.rinex_letter)) ==
+        opt.systems.end())
+      continue;
+    SystemColumns& c = columns[static_cast<std::size_t>(system)];
+    for (const std::string& code : code_preference(system, obs.header.version)) {
+      c.code_index = obs.header.index_of(info.rinex_letter, code);
+      if (c.code_index < 0) continue;
+      c.code = code;
+      c.doppler_index = obs.header.index_of(info.rinex_letter, "D" + code.substr(1));
+      break;
+    }
+    if (c.code_index >= 0)
+      used.push_back(fmt::format("{} {}", info.name, c.code));
+    else
+      unused.push_back(info.name);
+  }
+  if (used.empty())
     throw InputError(opt.obs_file, 0, "OBS TYPES",
-                     fmt::format("no GPS L1 C/A pseudorange ({}) in the header", code));
+                     fmt::format("no single-frequency pseudorange ({}) of the systems asked for "
+                                 "(--systems {}) in the header",
+                                 rinex3 ? "C1C, C2I, ..." : "C1", fmt::join(opt.systems, ",")));
+  fmt::print(err, "navemu spp: solving with {}{}\n", fmt::join(used, ", "),
+             unused.empty() ? std::string()
+                            : fmt::format("; no pseudorange of {} in {}", fmt::join(unused, ", "),
+                                          opt.obs_file));
 
   SolverOptions so;
   so.elevation_mask_deg = opt.mask_deg;
@@ -74,33 +174,34 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
     residuals.open(opt.residuals_file);
     if (!residuals)
       throw InputError(opt.residuals_file, 0, "--residuals", "cannot open for writing");
-    fmt::print(residuals, "gps_week,gps_tow_s,prn,az_deg,el_deg,residual_m,iono_m,tropo_m,used\n");
+    fmt::print(residuals, "gps_week,gps_tow_s,sat,az_deg,el_deg,residual_m,iono_m,tropo_m,used\n");
   }
 
   fmt::print(out, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s\n");
   int solved = 0;
   int unsolved = 0;
+  std::vector<RangeMeasurement> meas;
   for (const ObsEpoch& epoch : obs.epochs) {
-    std::vector<RangeMeasurement> meas;
+    meas.clear();
     for (const SatObs& s : epoch.sats) {
       const std::optional<SatId> sat = s.sat();
-      if (!sat || sat->system() != GnssSystem::kGps) continue;
-      const double pr = s.values[static_cast<std::size_t>(code_index)];
+      if (!sat) continue;
+      const SystemColumns& c = columns[static_cast<std::size_t>(sat->system())];
+      if (c.code_index < 0) continue;
+      const double pr = s.values[static_cast<std::size_t>(c.code_index)];
       if (!std::isfinite(pr) || pr <= 0.0) continue;
-      const GpsEphemeris* eph = select_ephemeris(nav, *sat, epoch.time);
-      if (eph == nullptr || std::abs(seconds_between(epoch.time, eph->toe)) > kMaxEphemerisAge_s)
-        continue;
       std::optional<double> d;
-      if (doppler_index >= 0) {
-        const double v = s.values[static_cast<std::size_t>(doppler_index)];
+      if (c.doppler_index >= 0) {
+        const double v = s.values[static_cast<std::size_t>(c.doppler_index)];
         if (std::isfinite(v)) d = v;
       }
-      meas.push_back(make_range_measurement(*eph, epoch.time, pr, d));
+      if (std::optional<RangeMeasurement> m = measurement(nav, *sat, epoch.time, pr, d))
+        meas.push_back(*m);
     }
     const Solution sol = solve(meas, epoch.time, so);
     if (sol.fix != FixType::k3D) {
       ++unsolved;
-      fmt::print(err, "navemu spp: {} (GPS {}): no 3D fix ({} GPS pseudoranges with ephemeris)\n",
+      fmt::print(err, "navemu spp: {} (GPS {}): no 3D fix ({} pseudoranges with ephemeris)\n",
                  format_iso_utc(epoch.time, leap), format_week_tow(epoch.time), meas.size());
       continue;
     }
@@ -117,7 +218,7 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
     if (residuals.is_open())
       for (const SatResidual& r : sol.sats)
         fmt::print(residuals, "{},{:.3f},{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{}\n", wt.week,
-                   wt.tow_s, r.sat.number(), r.az_deg, r.el_deg, r.residual_m, r.iono_m, r.tropo_m,
+                   wt.tow_s, r.sat.rinex(), r.az_deg, r.el_deg, r.residual_m, r.iono_m, r.tropo_m,
                    r.used ? 1 : 0);
   }
   fmt::print(err, "navemu spp: {} epochs, {} with a 3D fix, {} without\n", obs.epochs.size(),

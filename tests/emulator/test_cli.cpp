@@ -78,6 +78,7 @@ TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(navemu({"help", "fly"}).code, 2);
   EXPECT_EQ(navemu({"sky", "--mask", "95"}).code, 2);
   EXPECT_EQ(navemu({"spp", "--iono", "nequick", "a", "b"}).code, 2);
+  EXPECT_EQ(navemu({"spp", "--systems", "G,X", "a", "b"}).code, 2);
 }
 
 // `navemu` alone and `navemu help` print the command list (not "A subcommand is required");

@@ -86,6 +86,54 @@ TEST(SolverExact, RecoversPositionClockAndVelocity) {
   EXPECT_NEAR(sol.dops.pdop, dops_from_directions(dirs).pdop, 1e-9);
 }
 
+// Several systems: each clock group gets its own clock (GPS's plus an inter-system bias), and
+// the position is the one of the single-system solution.
+TEST(SolverExact, OneClockPerSystemTimeScale) {
+  const Scenario s;
+  auto meas = exact_measurements(s, 5.0);
+  ASSERT_GE(meas.size(), 8u);
+  // Relabel: the first three as Galileo satellites seen 15 m (50 ns) later, the next as the one
+  // GLONASS satellite 7 m earlier, one as QZSS, which shares GPS time.
+  constexpr double kGalileoBias_m = 15.0, kGlonassBias_m = -7.0;
+  for (int i = 0; i < 3; ++i) {
+    meas[static_cast<std::size_t>(i)].sat = SatId(GnssSystem::kGalileo, 11 + i);
+    meas[static_cast<std::size_t>(i)].pseudorange_m += kGalileoBias_m;
+  }
+  meas[3].sat = SatId(GnssSystem::kGlonass, 5);
+  meas[3].pseudorange_m += kGlonassBias_m;
+  meas[4].sat = SatId(GnssSystem::kQzss, 2);
+  SolverOptions opt;
+  opt.elevation_mask_deg = 5.0;
+  const Solution sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k3D);
+  EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 1e-3);
+  EXPECT_NEAR(sol.clock_m, s.clock_m, 1e-3);
+  ASSERT_TRUE(sol.group_clock_m[clock_group(GnssSystem::kGps)]);
+  ASSERT_TRUE(sol.group_clock_m[clock_group(GnssSystem::kGalileo)]);
+  ASSERT_TRUE(sol.group_clock_m[clock_group(GnssSystem::kGlonass)]);
+  EXPECT_FALSE(sol.group_clock_m[clock_group(GnssSystem::kBeidou)]);
+  EXPECT_NEAR(*sol.group_clock_m[clock_group(GnssSystem::kGalileo)], s.clock_m + kGalileoBias_m, 1e-3);
+  EXPECT_NEAR(*sol.group_clock_m[clock_group(GnssSystem::kGlonass)], s.clock_m + kGlonassBias_m, 1e-3);
+  for (const SatResidual& r : sol.sats) EXPECT_LT(std::abs(r.residual_m), 1e-3) << r.sat.rinex();
+
+  // Without GPS and QZSS the reported clock is the first remaining system's (GLONASS before
+  // Galileo in the group order); Galileo's three and GLONASS's one satellite with two clocks
+  // leave two equations for three coordinates: no fix.
+  const std::vector<RangeMeasurement> others(meas.begin(), meas.begin() + 4);
+  EXPECT_EQ(solve(others, s.t_tag, opt).fix, FixType::kNone);
+  std::vector<RangeMeasurement> galileo_only(meas.begin(), meas.begin() + 3);
+  for (std::size_t i = 5; i < meas.size(); ++i) {
+    RangeMeasurement m = meas[i];
+    m.sat = SatId(GnssSystem::kGalileo, 20 + static_cast<int>(i));
+    m.pseudorange_m += kGalileoBias_m;
+    galileo_only.push_back(m);
+  }
+  const Solution gal = solve(galileo_only, s.t_tag, opt);
+  ASSERT_EQ(gal.fix, FixType::k3D);
+  EXPECT_NEAR(gal.clock_m, s.clock_m + kGalileoBias_m, 1e-3);
+  EXPECT_LT((gal.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 1e-3);
+}
+
 TEST(SolverExact, ElevationMaskExcludesLowSatellites) {
   const Scenario s;
   const auto meas = exact_measurements(s, 0.0);
