@@ -17,6 +17,7 @@
 #include <iostream>
 #include <iterator>
 #include <map>
+#include <set>
 #include <random>
 #include <string>
 #include <utility>
@@ -764,11 +765,16 @@ bool reencodes(const Frame& f, T& m) {
 // Round trip of every frame whose message has a struct; counts per message name.
 struct RoundTrip {
   std::map<std::string, int> ok, failed;
+  std::set<std::pair<int, int>> handled;  // class and id of the messages with a struct
 };
 
 RoundTrip round_trip_all(const std::vector<Frame>& frames) {
   RoundTrip rt;
-  const auto check = [&](const char* name, bool good) { ++(good ? rt.ok : rt.failed)[name]; };
+  const Frame* current = nullptr;
+  const auto check = [&](const char* name, bool good) {
+    ++(good ? rt.ok : rt.failed)[name];
+    rt.handled.insert({current->msg.cls, current->msg.id});
+  };
   NavPvt pvt;
   NavPosllh posllh;
   NavPosecef posecef;
@@ -790,7 +796,18 @@ RoundTrip round_trip_all(const std::vector<Frame>& frames) {
   MonVer ver;
   MonHw hw;
   CfgPrt prt;
+  NavSig sig;
+  NavSbas sbas;
+  NavTimels timels;
+  NavTimegal timegal;
+  NavTimeglo timeglo;
+  NavTimebds timebds;
+  MonRf rf;
+  MonRxbuf rxbuf;
+  MonTxbuf txbuf;
+  SecUniqid uniqid;
   for (const Frame& f : frames) {
+    current = &f;
     const MsgId m = f.msg;
     if (m == kNavPvt) check("NAV-PVT", reencodes(f, pvt));
     else if (m == kNavPosllh) check("NAV-POSLLH", reencodes(f, posllh));
@@ -814,6 +831,16 @@ RoundTrip round_trip_all(const std::vector<Frame>& frames) {
     else if (m == kMonHw) check("MON-HW", reencodes(f, hw));
     else if (m == kCfgPrt && f.payload.size() == CfgPrt::kPayloadSize)
       check("CFG-PRT", reencodes(f, prt));
+    else if (m == kNavSig) check("NAV-SIG", reencodes(f, sig));
+    else if (m == kNavSbas) check("NAV-SBAS", reencodes(f, sbas));
+    else if (m == kNavTimels) check("NAV-TIMELS", reencodes(f, timels));
+    else if (m == kNavTimegal) check("NAV-TIMEGAL", reencodes(f, timegal));
+    else if (m == kNavTimeglo) check("NAV-TIMEGLO", reencodes(f, timeglo));
+    else if (m == kNavTimebds) check("NAV-TIMEBDS", reencodes(f, timebds));
+    else if (m == kMonRf) check("MON-RF", reencodes(f, rf));
+    else if (m == kMonRxbuf) check("MON-RXBUF", reencodes(f, rxbuf));
+    else if (m == kMonTxbuf) check("MON-TXBUF", reencodes(f, txbuf));
+    else if (m == kSecUniqid) check("SEC-UNIQID", reencodes(f, uniqid));
   }
   return rt;
 }
@@ -848,15 +875,7 @@ TEST(UbxCaptures, EveryFrameParsesAndReencodes) {
     for (const auto& [name, n] : rt.failed) summary += " FAILED:" + name + "=" + std::to_string(n);
     // Messages without a struct here, as class-id:count.
     std::map<std::pair<int, int>, int> other = p.count;
-    for (const Frame& f : p.frames) {
-      const MsgId m = f.msg;
-      if (m == kNavPvt || m == kNavPosllh || m == kNavPosecef || m == kNavVelned ||
-          m == kNavVelecef || m == kNavStatus || m == kNavSol || m == kNavSvinfo ||
-          m == kNavDop || m == kNavSat || m == kNavTimegps || m == kNavTimeutc ||
-          m == kNavClock || m == kNavEoe || m == kRxmRawx || m == kRxmSfrbx || m == kAckAck ||
-          m == kAckNak || m == kMonVer || m == kMonHw || m == kCfgPrt)
-        other.erase({m.cls, m.id});
-    }
+    for (const auto& key : rt.handled) other.erase(key);
     std::string others;
     for (const auto& [key, n] : other) {
       char buf[32];
@@ -872,6 +891,52 @@ TEST(UbxCaptures, EveryFrameParsesAndReencodes) {
     total_frames += static_cast<int>(p.counters.frames);
   }
   EXPECT_GT(total_frames, 0);
+}
+
+// The per-satellite messages of every system the captures hold re-encode byte for byte:
+// blocks (NAV-SAT, NAV-SIG, RXM-RAWX) and subframes (RXM-SFRBX) counted per gnssId
+// (0 GPS, 1 SBAS, 2 Galileo, 3 BeiDou, 5 QZSS, 6 GLONASS) over the frames that re-encode.
+TEST(UbxCaptures, EverySystemsSatelliteMessagesReencode) {
+  const auto files = all_captures();
+  if (files.empty()) GTEST_SKIP() << receiver_logs() << " not found (set NAVEMU_SHARED): skipped";
+  std::map<std::string, std::map<int, int>> blocks;  // message -> gnssId -> blocks re-encoded
+  int failed = 0;
+  for (const auto& path : files) {
+    const Parsed p = parse_all(read_capture(path));
+    for (const Frame& f : p.frames) {
+      const auto count = [&](const char* name, auto& m, auto blocks_of) {
+        if (!reencodes(f, m)) {
+          ++failed;
+          return;
+        }
+        for (const int gnss_id : blocks_of(m)) ++blocks[name][gnss_id];
+      };
+      const auto ids = [](const auto& list) {
+        std::vector<int> out;
+        for (const auto& b : list) out.push_back(b.gnss_id);
+        return out;
+      };
+      NavSat sat;
+      NavSig sig;
+      RxmRawx rawx;
+      RxmSfrbx sfrbx;
+      if (f.msg == kNavSat) count("NAV-SAT", sat, [&](const NavSat& m) { return ids(m.svs); });
+      if (f.msg == kNavSig) count("NAV-SIG", sig, [&](const NavSig& m) { return ids(m.signals); });
+      if (f.msg == kRxmRawx) count("RXM-RAWX", rawx, [&](const RxmRawx& m) { return ids(m.meas); });
+      if (f.msg == kRxmSfrbx)
+        count("RXM-SFRBX", sfrbx, [](const RxmSfrbx& m) { return std::vector<int>{m.gnss_id}; });
+    }
+  }
+  EXPECT_EQ(failed, 0);
+  for (const auto& [name, per_system] : blocks) {
+    std::cout << "[ systems  ] " << name << ":";
+    for (const auto& [gnss_id, n] : per_system) std::cout << " gnssId " << gnss_id << "=" << n;
+    std::cout << "\n";
+  }
+  for (const int gnss_id : {0, 1, 2, 3, 5, 6}) EXPECT_GT(blocks["NAV-SAT"][gnss_id], 0) << gnss_id;
+  for (const int gnss_id : {0, 1, 2, 3, 6}) EXPECT_GT(blocks["NAV-SIG"][gnss_id], 0) << gnss_id;
+  for (const int gnss_id : {0, 1, 2, 3}) EXPECT_GT(blocks["RXM-RAWX"][gnss_id], 0) << gnss_id;
+  for (const int gnss_id : {0, 2, 3, 6}) EXPECT_GT(blocks["RXM-SFRBX"][gnss_id], 0) << gnss_id;
 }
 
 // Expected message counts of each capture (../shared/data/README.md, from a checksum-verified
