@@ -55,6 +55,9 @@ constexpr const GnssSystemInfo& system_info(GnssSystem s) {
   return kGnssSystems[static_cast<std::size_t>(s)];
 }
 
+// Sets of systems (the ones a receiver tracks) as bit masks of GnssSystem values.
+constexpr std::uint32_t system_bit(GnssSystem s) { return 1u << static_cast<unsigned>(s); }
+
 // The NMEA satellite ID numberings u-blox receivers send (appendix A "Satellite numbering"
 // above): NMEA 4.10 "extended", where the ID alone tells the system (GPS 1-32, SBAS 33-64 and
 // 152-158, GLONASS 65-96, QZSS 193-202, Galileo 301-336, BeiDou 401-463), and NMEA 4.11, where

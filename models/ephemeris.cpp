@@ -65,27 +65,32 @@ const GpsEphemeris* select_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
 namespace {
 GpsTime reference_time(const KeplerEphemeris& e) { return e.toe; }
 GpsTime reference_time(const GlonassEphemeris& e) { return e.tb; }
+template <class Record>
+const Record* as_record(const Record& e) { return &e; }
+template <class Record>
+const Record* as_record(const Record* e) { return e; }
 
-// The record of `sat` among `records` with the smallest |t - reference time| within max_age_s
-// that `usable` accepts; ties go to the later one in the file.
-template <class Record, class Usable>
-const Record* nearest_record(const std::vector<Record>& records, SatId sat, GpsTime t,
-                             double max_age_s, Usable usable) {
-  const Record* best = nullptr;
+// The record of `sat` among `records` (records or pointers to them) with the smallest
+// |t - reference time| within max_age_s that `usable` accepts; ties go to the later one.
+template <class Records, class Usable>
+auto nearest_record(const Records& records, SatId sat, GpsTime t, double max_age_s,
+                    Usable usable) {
+  decltype(as_record(*std::begin(records))) best = nullptr;
   double best_age_s = max_age_s;
-  for (const Record& e : records) {
-    if (e.sat != sat || !usable(e)) continue;
-    const double age_s = std::abs(seconds_between(t, reference_time(e)));
+  for (const auto& record : records) {
+    const auto* e = as_record(record);
+    if (e->sat != sat || !usable(*e)) continue;
+    const double age_s = std::abs(seconds_between(t, reference_time(*e)));
     if (age_s <= best_age_s) {
-      best = &e;
+      best = e;
       best_age_s = age_s;
     }
   }
   return best;
 }
-}  // namespace
 
-const GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+template <class Records>
+const GalileoEphemeris* galileo_rule(const Records& records, SatId sat, GpsTime t) {
   constexpr int kInavClock = 1 << 9, kE1bHealth = 0x7;
   const auto usable = [t](bool inav) {
     return [t, inav](const GalileoEphemeris& e) {
@@ -93,19 +98,53 @@ const GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, SatId sat, 
              e.toe <= t;
     };
   };
-  const GalileoEphemeris* inav =
-      nearest_record(nav.galileo, sat, t, kMaxEphemerisAge_s, usable(true));
-  return inav ? inav : nearest_record(nav.galileo, sat, t, kMaxEphemerisAge_s, usable(false));
+  const GalileoEphemeris* inav = nearest_record(records, sat, t, kMaxEphemerisAge_s, usable(true));
+  return inav ? inav : nearest_record(records, sat, t, kMaxEphemerisAge_s, usable(false));
 }
-
-const BeidouEphemeris* select_beidou_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
-  return nearest_record(nav.beidou, sat, t, kMaxEphemerisAge_s,
+template <class Records>
+const BeidouEphemeris* beidou_rule(const Records& records, SatId sat, GpsTime t) {
+  return nearest_record(records, sat, t, kMaxEphemerisAge_s,
                         [](const BeidouEphemeris& e) { return e.health == 0; });
 }
-
-const GlonassEphemeris* select_glonass_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
-  return nearest_record(nav.glonass, sat, t, kMaxGlonassAge_s,
+template <class Records>
+const GlonassEphemeris* glonass_rule(const Records& records, SatId sat, GpsTime t) {
+  return nearest_record(records, sat, t, kMaxGlonassAge_s,
                         [](const GlonassEphemeris& e) { return e.health == 0; });
+}
+}  // namespace
+
+const GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+  return galileo_rule(nav.galileo, sat, t);
+}
+const BeidouEphemeris* select_beidou_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+  return beidou_rule(nav.beidou, sat, t);
+}
+const GlonassEphemeris* select_glonass_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
+  return glonass_rule(nav.glonass, sat, t);
+}
+
+const GalileoEphemeris* select_galileo_ephemeris(std::span<const GalileoEphemeris* const> records,
+                                                 GpsTime t) {
+  return records.empty() ? nullptr : galileo_rule(records, records.front()->sat, t);
+}
+const BeidouEphemeris* select_beidou_ephemeris(std::span<const BeidouEphemeris* const> records,
+                                               GpsTime t) {
+  return records.empty() ? nullptr : beidou_rule(records, records.front()->sat, t);
+}
+const GlonassEphemeris* select_glonass_ephemeris(std::span<const GlonassEphemeris* const> records,
+                                                 GpsTime t) {
+  return records.empty() ? nullptr : glonass_rule(records, records.front()->sat, t);
+}
+
+GpsTime reference_time(const BroadcastRecord& r) {
+  return std::visit(
+      [](const auto& p) -> GpsTime {
+        if constexpr (std::is_same_v<std::decay_t<decltype(p)>, std::monostate>)
+          return GpsTime{};
+        else
+          return reference_time(*p);
+      },
+      r);
 }
 
 const GpsEphemeris* select_ephemeris(std::span<const GpsEphemeris* const> records, GpsTime t) {

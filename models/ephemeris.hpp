@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <variant>
 #include <vector>
 
 #include "core/nav_data.hpp"
@@ -46,6 +47,21 @@ const GalileoEphemeris* select_galileo_ephemeris(const NavData& nav, SatId sat, 
 const BeidouEphemeris* select_beidou_ephemeris(const NavData& nav, SatId sat, GpsTime t);
 const GlonassEphemeris* select_glonass_ephemeris(const NavData& nav, SatId sat, GpsTime t);
 inline constexpr double kMaxGlonassAge_s = 15.0 * 60.0;
+// The same among one satellite's records, indexed once (the receiver model's form: no
+// allocation, no scan of the other satellites' records).
+const GalileoEphemeris* select_galileo_ephemeris(std::span<const GalileoEphemeris* const> records_of_one_sat,
+                                                 GpsTime t);
+const BeidouEphemeris* select_beidou_ephemeris(std::span<const BeidouEphemeris* const> records_of_one_sat,
+                                               GpsTime t);
+const GlonassEphemeris* select_glonass_ephemeris(std::span<const GlonassEphemeris* const> records_of_one_sat,
+                                                 GpsTime t);
+
+// A broadcast record of any system (GPS and QZSS LNAV records are GpsEphemeris); the
+// monostate when there is none.
+using BroadcastRecord = std::variant<std::monostate, const GpsEphemeris*, const GalileoEphemeris*,
+                                     const BeidouEphemeris*, const GlonassEphemeris*>;
+// Its reference time: toe, or tb for GLONASS.
+GpsTime reference_time(const BroadcastRecord& r);
 
 // The record select_ephemeris gives at a time, with the open span of times around it over which
 // it gives the same record: the choice changes only where t passes midway between the toe of

@@ -13,12 +13,32 @@ namespace navemu {
 
 namespace {
 
-constexpr double wavelength_m(Band b) { return kSpeedOfLight_mps / kBandFreq_Hz[static_cast<std::size_t>(b)]; }
-
-// (f_L1 / f)^2: ionospheric delay and TGD scale between bands (IS-GPS-200 20.3.3.3.3.2).
-constexpr double gamma(Band b) {
-  const double r = kGpsL1_Hz / kBandFreq_Hz[static_cast<std::size_t>(b)];
+// (f_L1 / f)^2: ionospheric delay and group delays scale between frequencies
+// (IS-GPS-200 20.3.3.3.3.2, 20.3.3.3.3.3).
+constexpr double gamma(double carrier_hz) {
+  const double r = kGpsL1_Hz / carrier_hz;
   return r * r;
+}
+
+// The group delay of a signal that the broadcast clock correction of the record leaves in the
+// range, s: GPS and QZSS TGD scaled by gamma (IS-GPS-200 20.3.3.3.3.2); Galileo BGD(E1,E5b)
+// or BGD(E1,E5a), the pair of the record's clock, on E1 and each BGD times gamma on E5b and
+// E5a (OS SIS ICD 2.0 5.1.5); BeiDou TGD1 on B1I and TGD2 on B2I (BDS-SIS-ICD-B1I 3.0
+// 5.2.4.10, both relative to B3I's clock); GLONASS none here (RINEX 3 records carry none).
+double group_delay_s(const BroadcastRecord& r, Band band, double carrier_hz) {
+  if (const auto* gps = std::get_if<const GpsEphemeris*>(&r))
+    return gamma(carrier_hz) * (*gps)->tgd_s;
+  if (const auto* gal = std::get_if<const GalileoEphemeris*>(&r)) {
+    constexpr int kInavClock = 1 << 9;
+    switch (band) {
+      case Band::kL1: return ((*gal)->data_sources & kInavClock) ? (*gal)->bgd_e1e5b_s : (*gal)->bgd_e1e5a_s;
+      case Band::kL2: return gamma(carrier_hz) * (*gal)->bgd_e1e5b_s;
+      case Band::kL5: return gamma(carrier_hz) * (*gal)->bgd_e1e5a_s;
+    }
+  }
+  if (const auto* bds = std::get_if<const BeidouEphemeris*>(&r))
+    return band == Band::kL1 ? (*bds)->tgd1_s : band == Band::kL2 ? (*bds)->tgd2_s : 0.0;
+  return 0.0;
 }
 
 // C/N0 of the modernised signals relative to L1 C/A: L2C is broadcast ~1.5 dB weaker (IS-GPS-200
@@ -46,6 +66,28 @@ PiercePoint iono_pierce_point(const Geodetic& rx, const AzEl& dir) {
 }
 
 }  // namespace
+
+std::optional<BandSignal> band_signal(GnssSystem system, Band band) {
+  const std::size_t b = static_cast<std::size_t>(band);
+  switch (system) {
+    case GnssSystem::kGps: return BandSignal{kBandSignals[b], kBandChipRate_Hz[b]};
+    case GnssSystem::kQzss: {
+      constexpr std::array<SignalId, 3> kQzss{kQzssL1CA, kQzssL2CL, kQzssL5Q};
+      return BandSignal{kQzss[b], kBandChipRate_Hz[b]};
+    }
+    case GnssSystem::kGalileo: {
+      constexpr std::array<BandSignal, 3> kGalileo{{{kGalileoE1C, 1.023e6}, {kGalileoE5bQ, 10.23e6}, {kGalileoE5aQ, 10.23e6}}};
+      return kGalileo[b];
+    }
+    case GnssSystem::kBeidou:
+      if (band == Band::kL5) return std::nullopt;
+      return BandSignal{band == Band::kL1 ? kBeidouB1I : kBeidouB2I, 2.046e6};
+    case GnssSystem::kGlonass:
+      if (band == Band::kL5) return std::nullopt;
+      return BandSignal{band == Band::kL1 ? kGlonassL1OF : kGlonassL2OF, 0.511e6};
+    default: return std::nullopt;
+  }
+}
 
 void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc) {
   switch (rc) {
@@ -142,7 +184,11 @@ struct MeasurementGenerator::State {
   std::optional<GpsTime> last;
   std::optional<GpsTime> event_origin;  // the events' times count from here
   std::vector<SatId> sat_ids;  // the satellites with records, in SatId order
-  SatTable<std::vector<const GpsEphemeris*>> records;  // each satellite's broadcast records
+  std::vector<SatId> lnav_sat_ids, other_sat_ids;  // those of GPS and QZSS, of the others
+  SatTable<std::vector<const GpsEphemeris*>> records;  // each GPS and QZSS satellite's records
+  SatTable<std::vector<const GalileoEphemeris*>> galileo_records;
+  SatTable<std::vector<const BeidouEphemeris*>> beidou_records;
+  SatTable<std::vector<const GlonassEphemeris*>> glonass_records;
   // Each satellite's record choice with the span of times it holds for (the records change only
   // when renewed, which clears it).
   SatTable<EphemerisSelection> selection;
@@ -159,19 +205,25 @@ struct MeasurementGenerator::State {
 
   // `records` and `sat_ids` from a set of records (reusing their storage: a renewal of as many
   // records allocates nothing), and when renewing data would run short.
-  void index(const std::vector<GpsEphemeris>& gps, bool renews) {
-    for (SatId sat : sat_ids) records.find(sat)->clear();
+  void index(const std::vector<GpsEphemeris>& gps, bool renews,
+             const std::vector<GpsEphemeris>* qzss = nullptr) {
+    for (SatId sat : lnav_sat_ids) records.find(sat)->clear();
     for (const GpsEphemeris& e : gps) records.try_emplace(e.sat).first.push_back(&e);
-    sat_ids.clear();
+    if (qzss != nullptr)
+      for (const GpsEphemeris& e : *qzss) records.try_emplace(e.sat).first.push_back(&e);
+    lnav_sat_ids.clear();
     records.for_each([this](SatId sat, const std::vector<const GpsEphemeris*>& r) {
-      if (!r.empty()) sat_ids.push_back(sat);
+      if (!r.empty()) lnav_sat_ids.push_back(sat);
     });
+    sat_ids = lnav_sat_ids;
+    sat_ids.insert(sat_ids.end(), other_sat_ids.begin(), other_sat_ids.end());
+    std::sort(sat_ids.begin(), sat_ids.end());
     selection.clear();
     if (!renews) return;
     // An upload before the earliest of the satellites' latest toes: the nearest toe stays
     // within 1 h.
     renew_at = GpsTime{std::numeric_limits<std::int64_t>::max()};
-    for (SatId sat : sat_ids) renew_at = std::min(renew_at, latest(sat).toe.plus_s(-kUploadInterval_s));
+    for (SatId sat : lnav_sat_ids) renew_at = std::min(renew_at, latest(sat).toe.plus_s(-kUploadInterval_s));
   }
 
   const GpsEphemeris& latest(SatId sat) const {
@@ -187,7 +239,7 @@ struct MeasurementGenerator::State {
     std::vector<GpsEphemeris>& next = renewed[1];  // nothing points into it any more
     next.clear();
     const GpsTime from = t.plus_s(kRenewFrom_s), to = t.plus_s(kRenewTo_s);
-    for (SatId sat : sat_ids) {
+    for (SatId sat : lnav_sat_ids) {
       for (const GpsEphemeris* e : *records.find(sat))
         if (e->toe >= from) next.push_back(*e);
       const GpsEphemeris& newest = latest(sat);
@@ -205,7 +257,22 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
   if (cfg_.mode == ReceiverMode::kDualFrequency) cfg_.dual_frequency_signals = true;
   if (cfg_.iono_model == IonoModel::kKlobuchar && !nav_.klobuchar)
     cfg_.iono_model = IonoModel::kPaperVtec;
-  state_->index(nav_.gps, nav_.renews);
+  // The other systems' records, indexed once (only GPS's renew).
+  State& st = *state_;
+  const auto tracked = [&](GnssSystem s) { return (cfg_.systems & system_bit(s)) != 0; };
+  const auto index_other = [&](const auto& list, auto& table) {
+    if (list.empty() || !tracked(list.front().sat.system())) return;
+    for (const auto& e : list) table.try_emplace(e.sat).first.push_back(&e);
+    table.for_each([&](SatId sat, const auto& r) {
+      if (!r.empty()) st.other_sat_ids.push_back(sat);
+    });
+  };
+  index_other(nav_.galileo, st.galileo_records);
+  index_other(nav_.beidou, st.beidou_records);
+  index_other(nav_.glonass, st.glonass_records);
+  static const std::vector<GpsEphemeris> kNone;
+  st.index(tracked(GnssSystem::kGps) ? nav_.gps : kNone, nav_.renews,
+           tracked(GnssSystem::kQzss) ? &nav_.qzss : nullptr);
   if (nav_.renews)  // a steady run renews without allocating
     for (auto& r : state_->renewed) r.reserve(state_->sat_ids.size() * State::kRenewedPerSat);
 }
@@ -322,15 +389,37 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   if (out.t_true >= st.renew_at) st.renew(out.t_true);  // renewing data (the built-in sky)
   for (SatId sat : st.sat_ids) {
     if (const double* until = st.below_horizon_until_s.find(sat); until && t_s < *until) continue;
-    EphemerisSelection& chosen = st.selection.try_emplace(sat).first;
-    if (!chosen.covers(t_signal))
-      chosen = select_ephemeris_span(*st.records.find(sat), t_signal);
-    const GpsEphemeris* eph = chosen.eph;
-    if (eph == nullptr || std::abs(seconds_between(t_signal, eph->toe)) > kMaxEphemerisAge_s)
-      continue;
+    // The record in use: GPS and QZSS by their selection spans, the others by their rules.
+    BroadcastRecord record;
+    const GpsEphemeris* eph = nullptr;
+    switch (sat.system()) {
+      case GnssSystem::kGps:
+      case GnssSystem::kQzss: {
+        EphemerisSelection& chosen = st.selection.try_emplace(sat).first;
+        if (!chosen.covers(t_signal))
+          chosen = select_ephemeris_span(*st.records.find(sat), t_signal);
+        eph = chosen.eph;
+        if (eph != nullptr && std::abs(seconds_between(t_signal, eph->toe)) <= kMaxEphemerisAge_s)
+          record = eph;
+        break;
+      }
+      case GnssSystem::kGalileo:
+        if (const auto* e = select_galileo_ephemeris(*st.galileo_records.find(sat), t_signal)) record = e;
+        break;
+      case GnssSystem::kBeidou:
+        if (const auto* e = select_beidou_ephemeris(*st.beidou_records.find(sat), t_signal)) record = e;
+        break;
+      case GnssSystem::kGlonass:
+        if (const auto* e = select_glonass_ephemeris(*st.glonass_records.find(sat), t_signal)) record = e;
+        break;
+      default: break;
+    }
+    if (std::holds_alternative<std::monostate>(record)) continue;
+    const auto* glonass = std::get_if<const GlonassEphemeris*>(&record);
+    const int glonass_channel = glonass ? (*glonass)->frequency_channel : 0;
     State::FlightTime& flight = st.flight_time.try_emplace(sat, State::FlightTime{t_s, 0.075, 0.0}).first;
     const SatGeometry g =
-        gps_sat_geometry(*eph, t_signal, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
+        sat_geometry(record, t_signal, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
     flight = {t_s, g.flight_time_s, g.range_rate_mps / c};
     if (g.dir.el_rad < kFarBelow_rad) st.below_horizon_until_s.try_emplace(sat).first = t_s + kFarBelowSkip_s;
     // The scene: blocked, reflected, attenuated signals (open sky without one).
@@ -339,7 +428,8 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
       env = cfg_.environment->evaluate(p_rx, (g.sat.p_ecef_m - p_rx).normalized());
     // Without interference, and as tracked (the effective C/N0 under the jammers on L1).
     const double cn0_clear_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db + spoof_gain_db;
-    const double cn0_l1 = effective_cn0_dbhz(cn0_clear_l1, out.interference[0], kBandChipRate_Hz[0]);
+    const BandSignal l1 = *band_signal(sat.system(), Band::kL1);
+    const double cn0_l1 = effective_cn0_dbhz(cn0_clear_l1, out.interference[0], l1.chip_rate_hz);
     // Tracked while above the threshold; a signal that returns (rises, or comes back above the
     // threshold) is re-acquired only after the receiver's re-acquisition time.
     const bool receivable = g.dir.el_rad > 0.0 && env.received && !out.antenna_fault && !masked(g.dir) &&
@@ -360,7 +450,9 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
 
     SatMeasurement m;
     m.sat = sat;
+    m.record = record;
     m.eph = eph;
+    m.glonass_channel = glonass_channel;
     m.dir = g.dir;
     m.range_m = g.range_m;
     m.range_rate_mps = g.range_rate_mps;
@@ -428,7 +520,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
       // a Doppler: no rate across it.
       const double step_m = phase_mp_m - prev.second;
       if (!fresh_phase && t_s > prev.first && !arc.new_arc &&
-          std::abs(step_m) < 0.5 * kL1WavelengthM)
+          std::abs(step_m) < 0.5 * kSpeedOfLight_mps / carrier_frequency_hz(l1.id, glonass_channel))
         doppler_mp_mps = step_m / (t_s - prev.first);
       prev = {t_s, phase_mp_m};
     } else if (on.multipath) {
@@ -436,8 +528,10 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     }
 
     // Satellite clock as the broadcast record gives it (relativistic term included): what a
-    // user corrects with; the L1 C/A correction subtracts TGD (IS-GPS-200 20.3.3.3.3.2).
-    m.sat_clock_m = c * (g.sat.clock_bias_s - eph->tgd_s);
+    // user corrects with; the single-frequency correction subtracts the L1 group delay (TGD,
+    // IS-GPS-200 20.3.3.3.3.2; group_delay_s).
+    const double l1_delay_s = group_delay_s(record, Band::kL1, carrier_frequency_hz(l1.id, glonass_channel));
+    m.sat_clock_m = c * (g.sat.clock_bias_s - l1_delay_s);
     const double rx_clock_m = c * out.rx_clock_bias_s;
     const double common_m = m.range_m + rx_clock_m - c * g.sat.clock_bias_s + m.tropo_hydro_m +
                             m.tropo_wet_m + m.sat_error_m;
@@ -447,25 +541,29 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     double l1_code_noise_m = 0.0;
     for (int b = 0; b < n_bands; ++b) {
       const Band band = static_cast<Band>(b);
-      const double gm = gamma(band);
-      const double lambda = wavelength_m(band);
+      const std::optional<BandSignal> signal = band_signal(sat.system(), band);
+      if (!signal) continue;
       SignalObs so;
+      so.signal = signal->id;
+      so.carrier_hz = carrier_frequency_hz(signal->id, glonass_channel);
+      const double gm = gamma(so.carrier_hz);
+      const double lambda = kSpeedOfLight_mps / so.carrier_hz;
+      const double delay_m = c * group_delay_s(record, band, so.carrier_hz);
       so.cn0_dbhz = effective_cn0_dbhz(cn0_clear_l1 + kCn0OffsetDb[static_cast<std::size_t>(b)],
                                        out.interference[static_cast<std::size_t>(b)],
-                                       kBandChipRate_Hz[static_cast<std::size_t>(b)]);
+                                       signal->chip_rate_hz);
       const TrackingNoise noise =
           on.noise ? tracking_noise(so.cn0_dbhz, cfg_.tracking) : TrackingNoise{};
       const double code_sigma = noise.code_m;
       const double phase_sigma = noise.phase_cycles;
       const double doppler_sigma = noise.doppler_hz;
-      // Code: TGD scaled by gamma; multipath shared by the bands at this level of modelling.
+      // Code: the group delay; multipath shared by the bands at this level of modelling.
       const std::size_t bi = static_cast<std::size_t>(b);
       const double code_noise_m = code_sigma * sp.code_rng[bi].normal();
       if (b == 0) l1_code_noise_m = code_noise_m;
-      so.pseudorange_m =
-          common_m + c * gm * eph->tgd_s + gm * m.iono_l1_m + m.multipath_m + code_noise_m;
+      so.pseudorange_m = common_m + delay_m + gm * m.iono_l1_m + m.multipath_m + code_noise_m;
       // Carrier: advanced by the ionosphere, an integer ambiguity per arc.
-      so.carrier_cycles = (common_m + c * gm * eph->tgd_s - gm * m.iono_l1_m + phase_mp_m) / lambda +
+      so.carrier_cycles = (common_m + delay_m - gm * m.iono_l1_m + phase_mp_m) / lambda +
                           arc.ambiguity_cycles + phase_sigma * sp.phase_rng[bi].normal();
       so.doppler_hz = -(rate_mps + doppler_mp_mps) / lambda + doppler_sigma * sp.doppler_rng[bi].normal();
       so.loss_of_lock = arc.new_arc;
@@ -480,12 +578,16 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
         m.engine_pseudorange_m = m.signals[0]->pseudorange_m;
         break;
       case ReceiverMode::kDualFrequency: {
-        // Iono-free combination (IS-GPS-200 20.3.3.3.3.3): the ionosphere and TGD cancel and
-        // the noise grows ~3x; TGD is added back for the solver's L1 C/A clock correction.
-        const double gm2 = gamma(Band::kL2);
-        m.engine_pseudorange_m =
-            (gm2 * m.signals[0]->pseudorange_m - m.signals[1]->pseudorange_m) / (gm2 - 1.0) +
-            c * eph->tgd_s;
+        // Iono-free combination of L1 and L2 (IS-GPS-200 20.3.3.3.3.3): the ionosphere cancels
+        // and the noise grows ~3x; the combination's own group delay (zero for GPS, whose TGD
+        // is defined so) is replaced by the L1 one the solver's clock correction removes.
+        const SignalObs& s1 = *m.signals[0];
+        const SignalObs& s2 = *m.signals[1];
+        const double g12 = gamma(s2.carrier_hz) / gamma(s1.carrier_hz);  // (f1 / f2)^2
+        const double d1 = group_delay_s(record, Band::kL1, s1.carrier_hz);
+        const double d2 = group_delay_s(record, Band::kL2, s2.carrier_hz);
+        m.engine_pseudorange_m = (g12 * s1.pseudorange_m - s2.pseudorange_m) / (g12 - 1.0) -
+                                 c * (g12 * d1 - d2) / (g12 - 1.0) + c * d1;
         break;
       }
       case ReceiverMode::kDgps: {
@@ -536,8 +638,13 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
                                         std::vector<RangeMeasurement>& out) const {
   out.clear();
   for (const SatMeasurement& m : e.sats)
-    out.push_back(make_range_measurement(*m.eph, e.t_receiver, m.engine_pseudorange_m,
-                                         m.signals[0]->doppler_hz));
+    std::visit(
+        [&](const auto& record) {
+          if constexpr (!std::is_same_v<std::decay_t<decltype(record)>, std::monostate>)
+            out.push_back(make_range_measurement(*record, e.t_receiver, m.engine_pseudorange_m,
+                                                 m.signals[0]->doppler_hz));
+        },
+        m.record);
 }
 
 }  // namespace navemu

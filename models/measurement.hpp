@@ -247,6 +247,9 @@ struct MeasurementConfig {
   double rtk_noise_sigma_m = 0.01;
 
   bool dual_frequency_signals = false;  // also generate L2 (L2C) and L5; on in kDualFrequency
+  // The systems tracked (system_bit) among those the navigation data have records of. The
+  // built-in constellation is GPS only.
+  std::uint32_t systems = system_bit(GnssSystem::kGps);
   double elevation_mask_deg = 5.0;      // the position engine's mask
   // A scene around the receiver (models/signal_environment.hpp): visibility, multipath of
   // code, carrier and Doppler, and the composite C/N0 per satellite; replaces the statistical
@@ -267,7 +270,23 @@ inline constexpr std::array<double, 3> kBandFreq_Hz = {carrier_frequency_hz(kBan
 // time-multiplexed, 1.023 Mchip/s together; IS-GPS-705 3.3.2: L5 10.23 Mchip/s).
 inline constexpr std::array<double, 3> kBandChipRate_Hz = {1.023e6, 1.023e6, 10.23e6};
 
+// The signal each system sends in each Band slot, as a multi-band receiver's front ends take
+// them (the ZED-F9P's L1 and L2 bands, the F9 L1/L5 products' L5 band), with its chip rate:
+//   L1: GPS and QZSS L1 C/A, Galileo E1 C, BeiDou B1I (2.046 Mchip/s, BDS-SIS-ICD-B1I 3.0
+//       4.2.2), GLONASS L1OF (0.511 Mchip/s, GLONASS ICD 5.1 3.3.1.2);
+//   L2: GPS and QZSS L2C, Galileo E5b Q, BeiDou B2I (2.046 Mchip/s), GLONASS L2OF;
+//   L5: GPS and QZSS L5 Q, Galileo E5a Q (10.23 Mchip/s, Galileo OS SIS ICD 2.0 2.3); none for
+//       BeiDou B1I/B2I-class satellites and GLONASS FDMA.
+// Galileo E1's 1.023 Mchip/s: OS SIS ICD 2.0 2.3.
+struct BandSignal {
+  SignalId id;
+  double chip_rate_hz = 0.0;
+};
+std::optional<BandSignal> band_signal(GnssSystem system, Band band);
+
 struct SignalObs {
+  SignalId signal;
+  double carrier_hz = 0.0;  // for GLONASS of the satellite's frequency channel
   double pseudorange_m = 0.0;
   double carrier_cycles = 0.0;  // accumulated carrier phase (advances with the ionosphere)
   double doppler_hz = 0.0;
@@ -278,7 +297,9 @@ struct SignalObs {
 
 struct SatMeasurement {
   SatId sat;
-  const GpsEphemeris* eph = nullptr;  // the broadcast record used
+  BroadcastRecord record;  // the broadcast record used
+  const GpsEphemeris* eph = nullptr;  // the same for GPS and QZSS (LNAV), else null
+  int glonass_channel = 0;  // GLONASS frequency channel k
   AzEl dir;
   double range_m = 0.0;          // true geometric range (light time and Earth rotation)
   double range_rate_mps = 0.0;
@@ -287,11 +308,11 @@ struct SatMeasurement {
   double tropo_hydro_m = 0.0;
   double tropo_wet_m = 0.0;
   double sat_error_m = 0.0;        // broadcast orbit + clock error on the line of sight
-  double sat_clock_m = 0.0;        // c (dt_sv - TGD) from the broadcast record
+  double sat_clock_m = 0.0;        // c (dt_sv - L1 group delay) from the broadcast record
   double multipath_m = 0.0;
   bool nlos = false;               // tracked on reflections only (scene)
   bool unhealthy = false;          // flagged so by its broadcast data (SatelliteFaultEvent)
-  std::array<std::optional<SignalObs>, 3> signals;  // by Band (kBandSignals)
+  std::array<std::optional<SignalObs>, 3> signals;  // by Band (band_signal)
   // The pseudorange the position engine uses in the configured mode (L1 in standalone, the
   // iono-free combination in dual-frequency, the differentially corrected one in DGPS/RTK).
   double engine_pseudorange_m = 0.0;

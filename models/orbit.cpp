@@ -298,8 +298,20 @@ SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const V
   return gps_sat_geometry(eph, t_receive, receiver_place(p_rx_ecef_m, v_rx_ecef_mps));
 }
 
+SatState record_sat_state(const BroadcastRecord& r, GpsTime t) {
+  if (const auto* glo = std::get_if<const GlonassEphemeris*>(&r)) return glonass_sat_state(**glo, t);
+  if (const auto* gal = std::get_if<const GalileoEphemeris*>(&r)) return broadcast_sat_state(**gal, t);
+  if (const auto* bds = std::get_if<const BeidouEphemeris*>(&r)) return broadcast_sat_state(**bds, t);
+  return broadcast_sat_state(*std::get<const GpsEphemeris*>(r), t);
+}
+
 SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const ReceiverPlace& rx,
                              double tau_guess_s) {
+  return sat_geometry(BroadcastRecord(&eph), t_receive, rx, tau_guess_s);
+}
+
+SatGeometry sat_geometry(const BroadcastRecord& r, GpsTime t_receive, const ReceiverPlace& rx,
+                         double tau_guess_s) {
   // Light-time equation, solved by fixed-point iteration on the flight time tau (the error
   // shrinks by |v_sat| / c ~ 1e-5 per step). Once a step changes tau by less than 1e-14 s
   // (the satellite moves 40 nm in that time) the state just evaluated is the answer.
@@ -314,7 +326,7 @@ SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const R
   for (int i = 0; i < 10; ++i) {
     const GpsTime t_tx = t_receive.plus_s(-tau_s);
     if (t_tx != evaluated_at) {
-      s = gps_sat_state(eph, t_tx);
+      s = record_sat_state(r, t_tx);
       evaluated_at = t_tx;
     }
     const double next = (rotate_earth(s.p_ecef_m, tau_s) - rx.p_ecef_m).norm() / kSpeedOfLight_mps;

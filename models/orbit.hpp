@@ -85,6 +85,11 @@ ReceiverPlace receiver_place(const Vec3& p_rx_ecef_m, const Vec3& v_rx_ecef_mps 
 // iteration starts (the flight time of the satellite's previous epoch saves an evaluation).
 SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const ReceiverPlace& rx,
                              double tau_guess_s = 0.075);
+// The same for a record of any system (broadcast_sat_state, glonass_sat_state); `r` must hold
+// a record.
+SatState record_sat_state(const BroadcastRecord& r, GpsTime t);
+SatGeometry sat_geometry(const BroadcastRecord& r, GpsTime t_receive, const ReceiverPlace& rx,
+                         double tau_guess_s = 0.075);
 SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const Vec3& p_rx_ecef_m,
                              const Vec3& v_rx_ecef_mps = Vec3::Zero());
 
