@@ -1,5 +1,7 @@
 #include "emulator/nmea_output.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "models/geodesy.hpp"
@@ -8,6 +10,19 @@
 namespace navemu {
 
 namespace {
+// Systems in the order of their NMEA system IDs (GSA and GSV groups are sent in it).
+constexpr std::array<GnssSystem, 5> kNmeaSystemOrder{GnssSystem::kGps, GnssSystem::kGlonass,
+                                                     GnssSystem::kGalileo, GnssSystem::kBeidou,
+                                                     GnssSystem::kQzss};
+// The GSA a satellite is listed in: SBAS with GPS (NMEA system ID 1).
+GnssSystem gsa_system(GnssSystem s) { return s == GnssSystem::kSbas ? GnssSystem::kGps : s; }
+}  // namespace
+
+// The GSV group a satellite is listed in: SBAS with GPS, QZSS too with the NMEA 4.10 numbering.
+GnssSystem NmeaOutput::gsv_system(GnssSystem s) const {
+  if (s == GnssSystem::kSbas || (s == GnssSystem::kQzss && numbering_ != NmeaNumbering::kV411))
+    return GnssSystem::kGps;
+  return s;
 }
 
 NmeaOutput::NmeaOutput(const GnssProfile& profile, ReceiverMode mode, std::optional<int> nmea_version,
@@ -70,32 +85,49 @@ void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::s
       f.utc = utc;
       f.position = pos;
       f.quality = valid ? quality_ : 0;
-      f.num_sats = fix.num_used;
+      f.num_sats = std::min(fix.num_used, 12);  // "00-12" (NMEA 0183 4.10 GGA; u-blox alike)
       if (valid) f.hdop = fix.dops.hdop;
       f.alt_msl_m = alt_msl_m;
       f.geoid_separation_m = separation_m;
       nmea::encode(f, format_, out);
     } else if (name == "GSA") {
-      nmea::GsaFields& f = reset_keeping_storage(gsa_, &nmea::GsaFields::sat_ids);
-      for (const ReceiverSatellite& s : fix.satellites)
-        if (const std::optional<int> id = s.sat.nmea_id(numbering_); s.used && id)
-          f.sat_ids.push_back(*id);
-      f.talker = talker;
-      f.fix = fix.fix == FixType::k3D ? 3 : fix.fix == FixType::k2D ? 2 : 1;
-      if (valid) {
-        f.pdop = fix.dops.pdop;
-        f.hdop = fix.dops.hdop;
-        f.vdop = fix.dops.vdop;
+      // One GSA per system tracked, each with its used satellites and, from NMEA 4.10 on, its
+      // system ID (NMEA 0183 4.10 GSA; u-blox sends one per enabled GNSS); SBAS counts as GPS.
+      for (const GnssSystem system : kNmeaSystemOrder) {
+        if (!(profile_.systems & system_bit(system))) continue;
+        nmea::GsaFields& f = reset_keeping_storage(gsa_, &nmea::GsaFields::sat_ids);
+        for (const ReceiverSatellite& s : fix.satellites)
+          if (const std::optional<int> id = s.sat.nmea_id(numbering_);
+              s.used && id && gsa_system(s.sat.system()) == system)
+            f.sat_ids.push_back(*id);
+        f.talker = talker;
+        f.system_id = system_info(system).nmea_system_id;
+        f.fix = fix.fix == FixType::k3D ? 3 : fix.fix == FixType::k2D ? 2 : 1;
+        if (valid) {
+          f.pdop = fix.dops.pdop;
+          f.hdop = fix.dops.hdop;
+          f.vdop = fix.dops.vdop;
+        }
+        nmea::encode(f, format_, out);
       }
-      nmea::encode(f, format_, out);
     } else if (name == "GSV") {
-      gsv_.clear();
-      for (const ReceiverSatellite& s : fix.satellites)
-        if (const std::optional<int> id = s.sat.nmea_id(numbering_))
-          gsv_.push_back({*id, static_cast<int>(std::lround(std::max(s.el_deg, 0.0))),
-                          static_cast<int>(std::lround(s.az_deg)) % 360,
-                          static_cast<int>(std::lround(s.cn0_dbhz))});
-      nmea::encode(nmea::GsvFields{talker, gsv_}, format_, out);
+      // One GSV group per system tracked, under the system's talker (u-blox CFG-NMEA
+      // gsvTalkerId 0, its default) and with its L1 signal's ID (NMEA 0183 4.11); with the NMEA 4.10 numbering QZSS goes with GPS, whose IDs
+      // 193-202 it has there.
+      for (const GnssSystem system : kNmeaSystemOrder) {
+        if (!(profile_.systems & system_bit(system)) || gsv_system(system) != system) continue;
+        gsv_.clear();
+        for (const ReceiverSatellite& s : fix.satellites)
+          if (const std::optional<int> id = s.sat.nmea_id(numbering_); id && gsv_system(s.sat.system()) == system)
+            gsv_.push_back({*id, static_cast<int>(std::lround(std::max(s.el_deg, 0.0))),
+                            static_cast<int>(std::lround(s.az_deg)) % 360,
+                            static_cast<int>(std::lround(s.cn0_dbhz))});
+        const std::optional<BandSignal> l1 = band_signal(system, Band::kL1);
+        const SignalInfo* info = l1 ? signal_info(l1->id) : nullptr;
+        nmea::GsvFields f{nmea::system_talker(system), gsv_};
+        f.signal_id = info ? info->nmea_signal_id : 1;
+        nmea::encode(f, format_, out);
+      }
     } else if (name == "VTG") {
       nmea::encode(nmea::VtgFields{talker, course_deg, {}, speed_mps, mode}, format_, out);
     } else if (name == "GLL") {

@@ -30,6 +30,8 @@ class NmeaOutput {
   NmeaNumbering numbering_ = NmeaNumbering::kV411;  // NMEA 4.11 with system IDs, else 4.10
   int quality_ = 1;  // GGA quality of a fix in this mode
   char mode_ = 'A';  // NMEA 2.3 mode indicator of a fix in this mode
+  GnssSystem gsv_system(GnssSystem s) const;
+
   std::vector<nmea::GsvSatellite> gsv_;
   nmea::GsaFields gsa_;  // its satellite list is reused from epoch to epoch
 };

@@ -11,6 +11,7 @@
 #include "emulator/ubx_outputs.hpp"
 #include "emulator/yaml_reader.hpp"
 #include "core/errors.hpp"
+#include "protocols/nmea.hpp"
 
 namespace navemu {
 
@@ -293,7 +294,21 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
   if (p.output_latency_s >= 1.0 / p.rate_hz)
     m.fail("output_latency_s", "must be shorter than one epoch");
   p.baud = static_cast<int>(m.integer("baud", 300, 4'000'000).value_or(p.baud));
-  p.talker = m.text("talker").value_or(p.talker);
+  if (auto names = m.text_list("systems")) {
+    p.systems = 0;
+    for (const std::string& n : *names) {
+      const auto it = std::find_if(kGnssSystems.begin(), kGnssSystems.end(), [&](const GnssSystemInfo& i) {
+        return n == i.name && (i.system == GnssSystem::kGps || i.system == GnssSystem::kGlonass ||
+                               i.system == GnssSystem::kGalileo || i.system == GnssSystem::kBeidou ||
+                               i.system == GnssSystem::kQzss);
+      });
+      if (it == kGnssSystems.end())
+        m.fail("systems", fmt::format("unknown system '{}': GPS, GLONASS, Galileo, BeiDou or QZSS", n));
+      p.systems |= system_bit(it->system);
+    }
+    if (p.systems == 0) m.fail("systems", "at least one system");
+  }
+  p.talker = m.text("talker").value_or(std::string(nmea::main_talker(p.systems)));
   if (p.talker.size() != 2) m.fail("talker", "two letters, e.g. GP or GN");
   p.style = m.text("style").value_or(p.style);
   if (p.style != "ublox" && p.style != "garmin") m.fail("style", "ublox or garmin");

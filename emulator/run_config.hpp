@@ -35,6 +35,10 @@ struct GnssProfile {
   double rate_hz = 1.0;          // navigation epochs per second
   double output_latency_s = 0.0;  // from the measurement epoch to the first byte out
   int baud = 9600;               // of a serial output
+  // The systems tracked (system_bit), YAML `systems: [GPS, GLONASS, Galileo, BeiDou, QZSS]`.
+  std::uint32_t systems = system_bit(GnssSystem::kGps);
+  // Main NMEA talker (GGA, RMC, GSA, ...); unset in the YAML: the systems' own, GN for several
+  // (nmea_main_talker).
   std::string talker = "GP";
   std::string style = "ublox";   // NMEA field widths: ublox or garmin
   std::optional<int> time_decimals;  // decimals of the UTC seconds; unset: the style's

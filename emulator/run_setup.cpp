@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -70,6 +71,7 @@ ReceiverParams receiver_params(const RunConfig& cfg, std::ostream& log) {
   rp.measurement.mode = cfg.gnss_mode;
   apply_receiver_class(rp.measurement, prof.receiver_class);
   rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
+  rp.measurement.systems = prof.systems;
   AntennaPattern antenna = patch_antenna_pattern();
   if (!prof.antenna_gain_db_by_el_deg.empty()) {
     rp.measurement.cn0.gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;
@@ -229,11 +231,12 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
     count("BeiDou", nav.beidou);
     count("QZSS", nav.qzss);
     count("GLONASS", nav.glonass);
-    const bool others = held.find(',') != std::string::npos || nav.gps.empty();
-    fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode), navigation data {}: {} satellites{}{}\n", cfg.gnss.name,
-               cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode),
+    std::vector<std::string_view> tracked;
+    for (const GnssSystemInfo& i : kGnssSystems)
+      if (cfg.gnss.systems & system_bit(i.system)) tracked.emplace_back(i.name);
+    fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode, tracking {}), navigation data {}: {} satellites{}\n",
+               cfg.gnss.name, cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode), fmt::join(tracked, ", "),
                cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, held.empty() ? "no" : held,
-               others ? " (the receiver model tracks GPS)" : "",
                nav.skipped_records > 0
                    ? fmt::format("; {} records of SBAS or NavIC not read", nav.skipped_records)
                    : "");

@@ -372,7 +372,8 @@ void emit_rxm_rawx(const EpochView& e, std::vector<std::uint8_t>& out) {
     r.do_mes_hz = static_cast<float>(o.doppler_hz);
     r.gnss_id = s.sat.ubx_gnss_id();
     r.sv_id = s.sat.ubx_sv_id();
-    r.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, kBandSignals[0]).value_or(0));
+    r.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, o.signal).value_or(0));
+    if (s.sat.system() == GnssSystem::kGlonass) r.freq_id = static_cast<std::uint8_t>(ubx_freq_id(s.glonass_channel));
     r.locktime_ms = static_cast<std::uint16_t>(std::min(o.lock_time_s * 1000.0, kMaxLockTime_ms));
     r.cno_dbhz = clamp_cast<std::uint8_t>(o.cn0_dbhz);
     r.pr_stdev = 5;  // 0.01 * 2^5 = 0.32 m
@@ -401,7 +402,7 @@ void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
     RxmSfrbx& m = reset_keeping_storage(e.lists.sfrbx, &RxmSfrbx::words);
     m.gnss_id = s.sat.ubx_gnss_id();
     m.sv_id = s.sat.ubx_sv_id();
-    m.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, kBandSignals[0]).value_or(0));
+    m.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, s.signals[0]->signal).value_or(0));
     m.chn = chn++;
     const lnav::LnavSubframe w = lnav::lnav_subframe(sf_id, tow_count_next, to_lnav(*s.eph), iono, page);
     m.words.assign(w.begin(), w.end());
@@ -627,7 +628,7 @@ void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
     const double residual_m = sat_used ? it->residual_m : 0.0;
     for (std::size_t b = 0; b < 2 && m.signals.size() < 255; ++b) {
       if (!s.signals[b]) continue;
-      const std::optional<int> sig = ubx_sig_id(s.sat, kBandSignals[b]);
+      const std::optional<int> sig = ubx_sig_id(s.sat, s.signals[b]->signal);
       if (!sig) continue;
       // The single-frequency solution uses L1; the dual-frequency one both bands.
       const bool used = sat_used && (b == 0 || e.mode == ReceiverMode::kDualFrequency);
@@ -635,6 +636,7 @@ void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
       g.gnss_id = s.sat.ubx_gnss_id();
       g.sv_id = s.sat.ubx_sv_id();
       g.sig_id = static_cast<std::uint8_t>(*sig);
+      if (s.sat.system() == GnssSystem::kGlonass) g.freq_id = static_cast<std::uint8_t>(ubx_freq_id(s.glonass_channel));
       g.cno_dbhz = clamp_cast<std::uint8_t>(s.signals[b]->cn0_dbhz);
       g.quality_ind = 7;  // code and carrier locked, as NAV-SAT
       unsigned flags = s.unhealthy ? 2 : 1;  // health: 1 healthy, 2 unhealthy
@@ -902,7 +904,7 @@ void emit_rxm_measx(const EpochView& e, std::vector<std::uint8_t>& out) {
     v.cno_dbhz = clamp_cast<std::uint8_t>(o.cn0_dbhz);
     v.mpath_indic = rrlp_multipath(s.multipath_m);
     v.doppler_200mhz = clamp_cast<std::int32_t>(o.doppler_hz / 0.2);
-    v.doppler_4cmps = clamp_cast<std::int32_t>(o.doppler_hz * kSpeedOfLight_mps / kBandFreq_Hz[0] / 0.04);
+    v.doppler_4cmps = clamp_cast<std::int32_t>(o.doppler_hz * kSpeedOfLight_mps / o.carrier_hz / 0.04);
     v.whole_chips = static_cast<std::uint16_t>(frac_1024chips / 1024);
     v.frac_chips = static_cast<std::uint16_t>(frac_1024chips % 1024);
     v.code_phase_2m21ms = static_cast<std::uint32_t>(std::floor(std::ldexp(frac_ms, 21)));

@@ -315,6 +315,23 @@ void encode(const RmcFields& f, const Format& fmt, std::string& out) {
 // GSA: selection, fix, 12 PRN slots, PDOP, HDOP, VDOP [, systemId].
 // Longest case, all decimals shrunk: 11 ("$GPGSA,A,3,") + 12 x 4 ("999,") + 11 ("100,100,100")
 // + 3 (",15") + 5 = 78.
+std::string_view system_talker(GnssSystem s) {
+  switch (s) {
+    case GnssSystem::kGlonass: return "GL";
+    case GnssSystem::kGalileo: return "GA";
+    case GnssSystem::kBeidou: return "GB";
+    case GnssSystem::kQzss: return "GQ";
+    case GnssSystem::kNavic: return "GI";
+    default: return "GP";
+  }
+}
+
+std::string_view main_talker(std::uint32_t systems) {
+  for (const GnssSystemInfo& i : kGnssSystems)
+    if (systems == system_bit(i.system)) return system_talker(i.system);
+  return "GN";
+}
+
 void encode(const GsaFields& f, const Format& fmt, std::string& out) {
   const Style st = style(fmt);
   const auto pdop = valid(f.pdop, 0.0, 99.99);

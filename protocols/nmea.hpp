@@ -35,6 +35,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/satellite.hpp"
+
 namespace navemu::nmea {
 
 // Wire style of a receiver family: decimals and zero padding of the numeric fields, and which
@@ -118,6 +120,13 @@ struct RmcFields {
   char mode = 'N';
   char nav_status = 'V';                 // NMEA 4.1 (only with Format::nav_status)
 };
+
+// The talker ID of a system's own sentences (GSV), as u-blox receivers send them (u-blox F9
+// interface description UBX-18010854, "NMEA talker ID"): GP GPS (and SBAS), GL GLONASS,
+// GA Galileo, GB BeiDou, GQ QZSS, GI NavIC; and the main talker (GGA, RMC, GSA, ...) of a
+// receiver tracking `systems` (a system_bit mask): the one system's, GN for several.
+std::string_view system_talker(GnssSystem s);
+std::string_view main_talker(std::uint32_t systems);
 
 // GSA, GNSS DOP and active satellites (NMEA 0183 4.10).
 struct GsaFields {

@@ -247,6 +247,82 @@ TEST(Gpsd, StationaryReceiverGives3dFixOnTheEpochGridNearTheTruth) {
   }
 }
 
+// (a') Four systems (a u-blox NMEA profile with `systems`, the real ESBC broadcast file, its
+// place and hour): gpsd takes the fix from the GN sentences and, over one GSV cycle, a sky of
+// every system navemu listed under GP, GL, GA and GB, with gnssid 0, 6, 2 and 3. gpsd 3.22 files
+// BeiDou satellites numbered above 32 under SBAS (gnssid 1), as it does for the real NEO-M9N
+// capture in ../shared/data/receiver_logs/gpsd (gpsdecode of ublox-neo-m9n-nmea.log: C33 as
+// gnssid 1), so BeiDou is counted as gnssid 3 plus 1.
+TEST(Gpsd, FourSystemsGiveAGnFixAndASkyOfEverySystem) {
+  NAVEMU_REQUIRE_GPSD(gpsd);
+  NAVEMU_REQUIRE_SHARED();
+  TempDir dir("gpsd-multi-gnss");
+  const fs::path link = dir / "gnss", log = dir / "gnss.nmea", profile = dir / "four-systems.yaml";
+  {
+    std::ofstream p(profile);
+    p << "description: u-blox-like NMEA receiver of four systems, 5 Hz\n"
+         "rate_hz: 5\nbaud: 115200\nstyle: ublox\nreceiver_class: consumer\n"
+         "elevation_mask_deg: 5\nmax_channels: 40\n"
+         "systems: [GPS, GLONASS, Galileo, BeiDou]\n"
+         "sentences: {RMC: 1, GGA: 1, GSA: 1, GSV: 5}\n";
+  }
+  const Geodetic esbc{55.493562765, 8.456821389, 59.7};
+  NavemuRun nav(dir, "navemu",
+                fmt::format("scenario: {{start: '2020-06-25T00:10:00Z', nav: '{}', status_interval_s: 1}}\n"
+                            "truth: {{source: stationary, position: {{lat_deg: {}, lon_deg: {}, h_m: {}}}}}\n"
+                            "gnss:\n  profile: '{}'\n  outputs:\n    - {{type: pty, link: '{}'}}\n"
+                            "    - {{type: file, path: '{}'}}\nimu: {{enabled: false}}\n",
+                            shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx").string(),
+                            esbc.lat_deg, esbc.lon_deg, esbc.h_m, profile.string(), link.string(), log.string()),
+                60);
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  Gpsd g;
+  ASSERT_TRUE(g.start(gpsd, dir, link, 5.0)) << g.diagnostics() << nav.diagnostics();
+  GpsdClient client;
+  ASSERT_TRUE(client.connect_and_watch(g.port())) << g.diagnostics();
+
+  int fixes = 0;
+  std::map<int, int> best_sky;  // gnssid -> satellites, of the SKY with the most
+  std::size_t best_n = 0;
+  const double end = nav.started_mono() + 8.0;
+  while (const auto n = client.next(end)) {
+    const std::string cls = str(*n, "class");
+    if (cls == "TPV" && num(*n, "mode").value_or(0) == 3) {
+      ++fixes;
+      const Vec3 e = enu_of(*num(*n, "lat"), *num(*n, "lon"), num(*n, "altHAE").value_or(esbc.h_m), esbc);
+      EXPECT_LE(std::hypot(e.x(), e.y()), 15.0);
+    }
+    if (cls != "SKY" || !(*n)["satellites"] || (*n)["satellites"].size() <= best_n) continue;
+    best_n = (*n)["satellites"].size();
+    best_sky.clear();
+    for (const auto& sat : (*n)["satellites"]) ++best_sky[sat["gnssid"] ? sat["gnssid"].as<int>() : -1];
+  }
+  g.child().stop();
+  nav.stop_expecting_exit_0();
+  EXPECT_GE(fixes, 10) << g.diagnostics() << nav.diagnostics();
+
+  // What navemu sent: satellites per GSV talker in one cycle (the first full one).
+  std::map<std::string, int> sent;
+  std::stringstream ss(slurp(log));
+  for (std::string line; std::getline(ss, line);) {
+    const auto f = nmea::parse(line + "\n");
+    if (!f || (*f)[0].substr(2) != "GSV") continue;
+    const std::string talker = (*f)[0].substr(0, 2);
+    if ((*f)[2] == "1" && sent.count(talker)) break;  // the next cycle begins
+    if ((*f)[2] == "1") sent[talker] = std::stoi((*f)[3]);
+  }
+  ASSERT_EQ(sent.size(), 4u) << slurp(log).substr(0, 2000);
+  std::printf("navemu sent GP %d, GL %d, GA %d, GB %d; gpsd's sky: gnssid 0 %d, 6 %d, 2 %d, 3 %d (+%d as 1)\n",
+              sent["GP"], sent["GL"], sent["GA"], sent["GB"], best_sky[0], best_sky[6], best_sky[2],
+              best_sky[3], best_sky[1]);
+  EXPECT_GE(sent["GA"], 4);
+  EXPECT_GE(sent["GB"], 4);
+  EXPECT_EQ(best_sky[0], sent["GP"]);
+  EXPECT_EQ(best_sky[6], sent["GL"]);
+  EXPECT_EQ(best_sky[2], sent["GA"]);
+  EXPECT_EQ(best_sky[3] + best_sky[1], sent["GB"]);
+}
+
 // (b) A moving vehicle driven by tools/truth-sender over UDP: gpsd's speed and track follow the
 // truth; when the sender pauses gpsd loses the fix within 2 s (navemu's truth timeout 1 s, then
 // the next 0.2 s epoch); when it resumes the fix returns.

@@ -117,5 +117,44 @@ TEST(NmeaOutput, DgpsAndRtkModesReportTheirQuality) {
   }
 }
 
+// Several systems (u-blox F9 interface description UBX-18010854, "NMEA protocol"): the main
+// sentences under GN, one GSA per system with its system ID, one GSV group per system under the
+// system's talker with its L1 signal ID (Galileo E1: 7).
+TEST(NmeaOutput, MultiGnssSentencesPerSystem) {
+  GnssProfile p = load_gnss_profile("ublox-f9p");
+  p.systems = system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kGlonass) |
+              system_bit(GnssSystem::kGalileo) | system_bit(GnssSystem::kBeidou);
+  p.talker = std::string(nmea::main_talker(p.systems));
+  p.sentences = {{"GGA", 1}, {"GSA", 1}, {"GSV", 1}};
+  NmeaOutput out(p, ReceiverMode::kStandalone, 41);  // NMEA 4.11
+  ReceiverFix f = a_fix();
+  f.satellites = {{gps_sat(5), 120.0, 45.0, 44.0, true},
+                  {SatId(GnssSystem::kGalileo, 11), 200.0, 60.0, 46.0, true},
+                  {SatId(GnssSystem::kBeidou, 20), 10.0, 20.0, 38.0, false},
+                  {SatId(GnssSystem::kGlonass, 3), 300.0, 30.0, 41.0, true}};
+  std::string text;
+  out.encode(f, 0, text);
+  const auto s = sentences(text);
+  ASSERT_EQ(s.size(), 9u) << text;
+  EXPECT_EQ(s[0][0], "GNGGA");
+  for (int k = 0; k < 4; ++k) {
+    const auto& gsa = s[static_cast<std::size_t>(1 + k)];
+    EXPECT_EQ(gsa[0], "GNGSA");
+    EXPECT_EQ(gsa.back(), std::to_string(k + 1));  // system IDs 1 GPS, 2 GLONASS, 3 Galileo, 4 BeiDou
+  }
+  EXPECT_EQ(s[1][3], "05");
+  EXPECT_EQ(s[2][3], "67");  // GLONASS slot 3: NMEA ID 67
+  EXPECT_EQ(s[3][3], "11");
+  EXPECT_EQ(s[4][3], "");    // the BeiDou satellite is tracked, not used
+  EXPECT_EQ(s[5][0], "GPGSV");
+  EXPECT_EQ(s[6][0], "GLGSV");
+  EXPECT_EQ(s[6][4], "67");
+  EXPECT_EQ(s[7][0], "GAGSV");
+  EXPECT_EQ(s[7][4], "11");
+  EXPECT_EQ(s[7].back(), "7");  // E1
+  EXPECT_EQ(s[8][0], "GBGSV");
+  EXPECT_EQ(s[8].back(), "1");  // B1I
+}
+
 }  // namespace
 }  // namespace navemu

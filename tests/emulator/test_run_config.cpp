@@ -372,6 +372,33 @@ TEST(RunConfig, ProfileAntennaPattern) {
   EXPECT_NE(bad("  gain_db_by_el_deg: [[10, x]]\n").find("'x' is not a number"), std::string::npos);
 }
 
+// `systems`: what the receiver tracks; the main NMEA talker follows unless given.
+TEST(RunConfig, ProfileSystemsAndTheirTalker) {
+  const auto load = [](const std::string& yaml) {
+    return load_gnss_profile(write_temp("sys.yaml", "sentences: {RMC: 1}\n" + yaml).string());
+  };
+  EXPECT_EQ(load("").systems, system_bit(GnssSystem::kGps));
+  EXPECT_EQ(load("").talker, "GP");
+  const GnssProfile four = load("systems: [GPS, GLONASS, Galileo, BeiDou]\n");
+  EXPECT_EQ(four.systems, system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kGlonass) |
+                              system_bit(GnssSystem::kGalileo) | system_bit(GnssSystem::kBeidou));
+  EXPECT_EQ(four.talker, "GN");
+  EXPECT_EQ(load("systems: [Galileo]\n").talker, "GA");
+  EXPECT_EQ(load("systems: [GLONASS, GPS]\ntalker: GP\n").talker, "GP");
+  const auto bad = [&](const std::string& yaml) {
+    try {
+      load(yaml);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(bad("systems: [GPS, Compass]\n").find(":2: systems: unknown system 'Compass'"), std::string::npos)
+      << bad("systems: [GPS, Compass]\n");
+  EXPECT_NE(bad("systems: []\n").find("systems: at least one system"), std::string::npos)
+      << bad("systems: []\n");
+}
+
 TEST(RunConfig, UnknownKeyIsReportedWithItsLine) {
   const std::string e = load_error("scenario:\n  seed: 3\n  sede: 4\n");
   EXPECT_NE(e.find("bad.yaml:3: scenario.sede: unknown key"), std::string::npos) << e;
