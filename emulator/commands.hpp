@@ -94,6 +94,7 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err);
 
 struct ObsOptions {
   std::string nav_file;  // empty: built-in constellation
+  std::vector<std::string> systems{"G"};  // RINEX letters
   bool nominal = false;
   std::string at = "32.3,-90.9,60";
   std::string start;

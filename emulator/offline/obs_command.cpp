@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <ostream>
@@ -44,6 +45,9 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
       "noise from C/N0), multipath (statistical code multipath).\n"
       "Modes: standalone (raw L1), dual (raw L1/L2/L5), dgps and rtk (C1C holds the pseudorange\n"
       "after differential correction: process it without iono/tropo corrections).\n"
+      "--systems adds the other systems of a mixed --nav file, each with its own signals: GLONASS\n"
+      "L1OF/L2OF (C1C, C2C), Galileo E1/E5b/E5a (C1C, C7Q, C5Q), BeiDou B1I/B2I (C2I, C7I), QZSS\n"
+      "as GPS; the built-in constellation is GPS only.\n"
       "Example:\n"
       "  navemu obs --nav 07590920.05n --at 35.1609,139.6138,68.4 --start 2005-04-01T23:59:47Z \\\n"
       "      --duration 3600 --interval 30 --out synth.rnx --seed 7");
@@ -62,6 +66,12 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
       ->capture_default_str()
       ->check(number_between(0.001, 3600.0));
   obs->add_option("--out", opt.out_file, "Output RINEX 3 observation file")->required();
+  obs->add_option("--systems", opt.systems,
+                  "Systems, RINEX letters separated by commas: G GPS, R GLONASS, E Galileo, "
+                  "C BeiDou, J QZSS")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::IsMember({"G", "R", "E", "C", "J"}));
   obs->add_option("--mode", opt.mode, "Receiver mode")
       ->capture_default_str()
       ->check(CLI::IsMember({"standalone", "dual", "dgps", "rtk"}));
@@ -117,6 +127,10 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
   apply_receiver_class(cfg, opt.receiver == "geodetic" ? ReceiverClass::kGeodetic
                                                        : ReceiverClass::kConsumer);
   cfg.seed = opt.seed;
+  cfg.systems = 0;
+  for (const GnssSystemInfo& i : kGnssSystems)
+    if (std::find(opt.systems.begin(), opt.systems.end(), std::string(1, i.rinex_letter)) != opt.systems.end())
+      cfg.systems |= system_bit(i.system);
   if (opt.sisre_m) cfg.sat_errors = cfg.sat_errors.scaled_to_sisre(*opt.sisre_m);
   if (opt.sat_errors == "paper") cfg.sat_error_model = SatErrorModel::kPaper;
   if (opt.clock_h0) cfg.clock.h0 = *opt.clock_h0;
@@ -144,17 +158,22 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
 
   ObsHeader h;
   h.version = 3.04;
-  h.file_system = 'G';
-  // Per band: pseudorange, carrier phase, Doppler and C/N0 of its signal (RINEX 3.04 section
-  // 5.1: C1C L1C D1C S1C for L1 C/A, C2L.. for L2C (L), C5Q.. for the L5 pilot).
-  for (int b = 0; b < n_bands; ++b)
-    for (const char type : {'C', 'L', 'D', 'S'})
-      h.types['G'].push_back(type + kBandSignals[static_cast<std::size_t>(b)].rinex_code());
+  // Per system and band: pseudorange, carrier phase, Doppler and C/N0 of the system's signal
+  // there (RINEX 3.04 section 5.1: C1C L1C D1C S1C for GPS L1 C/A, C2L.. for L2C (L), C5Q..
+  // for the L5 pilot; band_signal for the other systems).
+  for (const GnssSystemInfo& i : kGnssSystems) {
+    if (!(cfg.systems & system_bit(i.system))) continue;
+    for (int b = 0; b < n_bands; ++b)
+      if (const std::optional<BandSignal> s = band_signal(i.system, static_cast<Band>(b)))
+        for (const char type : {'C', 'L', 'D', 'S'}) h.types[i.rinex_letter].push_back(type + s->id.rinex_code());
+  }
+  h.file_system = h.types.size() == 1 ? h.types.begin()->first : 'M';
   h.marker_name = "NAVEMU";
   h.approx_position_ecef_m = p_rx;
   h.interval_s = opt.interval_s;
   h.leap_seconds = leap_seconds_at_gps(start, nav.leap_seconds);
 
+  ObsWriterInfo info;
   std::vector<ObsEpoch> epochs;
   const auto n_epochs = static_cast<long long>(std::floor(opt.duration_s / opt.interval_s + 1e-9)) + 1;
   std::size_t n_obs = 0;
@@ -167,7 +186,10 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
       SatObs so;
       so.system = m.sat.info().rinex_letter;
       so.number = m.sat.number();
+      if (m.sat.system() == GnssSystem::kGlonass)
+        info.glonass_frequency_numbers[m.sat.number()] = m.glonass_channel;
       for (int b = 0; b < n_bands; ++b) {
+        if (!band_signal(m.sat.system(), static_cast<Band>(b))) continue;
         const auto& s = m.signals[static_cast<std::size_t>(b)];
         const bool corrected = b == 0 && !raw_dual && cfg.mode != ReceiverMode::kStandalone;
         const int ssi = s ? ssi_from_cn0(s->cn0_dbhz) : 0;
@@ -184,7 +206,6 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
     epochs.push_back(std::move(oe));
   }
 
-  ObsWriterInfo info;
   info.comments = {
       fmt::format("navemu obs: mode {}, seed {}", opt.mode, opt.seed),
       fmt::format("nav: {}", nav.source.substr(0, 50)),

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -161,6 +163,42 @@ TEST(MultiGnssReceiver, DualFrequencySignalsOfEverySystem) {
   EXPECT_EQ(signals[GnssSystem::kGalileo], (std::set<std::string>{"1C", "7Q", "5Q"}));
   EXPECT_EQ(signals[GnssSystem::kBeidou], (std::set<std::string>{"2I", "7I"}));
   EXPECT_EQ(signals[GnssSystem::kGlonass], (std::set<std::string>{"1C", "2C"}));
+}
+
+// `navemu obs` with four systems: RTKLIB's rnx2rtkp reads the mixed RINEX 3 file (GLONASS
+// slots and channels in its header) and solves it with all four systems near the truth.
+TEST(MultiGnssReceiver, RtklibSolvesNavemusFourSystemObservationFile) {
+  NAVEMU_REQUIRE_SHARED();
+  const auto nav = test::shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx");
+  const auto dir = std::filesystem::path(::testing::TempDir()) / "navemu_multi_gnss_obs";
+  std::filesystem::create_directories(dir);
+  const Vec3 truth = esbc_arp();
+  const Geodetic g = geodetic_from_ecef(truth);
+  const auto obs = dir / "esbc_synth.rnx", pos = dir / "esbc_synth.pos";
+  const auto made = test::run_command(
+      test::shell_quote(test::navemu_binary().string()) + " obs --nav " + test::shell_quote(nav) +
+      " --systems G,R,E,C --receiver geodetic --seed 3 --start 2020-06-25T00:00:00Z --duration 3600"
+      " --interval 30 --at " + std::to_string(g.lat_deg) + "," + std::to_string(g.lon_deg) + "," +
+      std::to_string(g.h_m) + " --out " + test::shell_quote(obs) + " 2>/dev/null");
+  ASSERT_EQ(made.exit_code, 0);
+  {
+    std::ofstream conf(dir / "spp.conf");
+    conf << "pos1-posmode=single\npos1-elmask=15\npos1-ionoopt=brdc\npos1-tropopt=saas\n"
+            "pos1-navsys=45\n";
+  }
+  std::filesystem::remove(pos);
+  const auto rtk = test::run_command("rnx2rtkp -k " + test::shell_quote(dir / "spp.conf") + " -e -o " +
+                                     test::shell_quote(pos) + " " + test::shell_quote(obs) + " " +
+                                     test::shell_quote(nav) + " 2>/dev/null");
+  ASSERT_EQ(rtk.exit_code, 0) << "rnx2rtkp (Debian package rtklib) missing or failed";
+  const std::vector<test::RtklibFix> sol = test::read_rtklib_ecef_pos(pos);
+  double sum_m = 0.0;
+  for (const test::RtklibFix& fix : sol) sum_m += (fix.p_ecef_m - truth).norm();
+  const double mean_m = sum_m / static_cast<double>(std::max<std::size_t>(sol.size(), 1));
+  std::printf("rnx2rtkp (GPS, GLONASS, Galileo, BeiDou) on navemu's file: %zu of 121 epochs, "
+              "mean 3D error %.2f m\n", sol.size(), mean_m);
+  EXPECT_EQ(sol.size(), 121u);
+  EXPECT_LT(mean_m, 3.0);  // the end-to-end bound
 }
 
 }  // namespace
