@@ -107,6 +107,21 @@ constexpr PlatformLimits kPlatformLimits[] = {
     {CfgNav5::kDynAirborne2g, 50000, 250, 100, true}, {CfgNav5::kDynAirborne4g, 50000, 500, 100, true},
     {CfgNav5::kDynWrist, 9000, 30, 20, false}};
 
+// The systems an F9 tracks: a GNSS is on when its CFG-SIGNAL-*_ENA and its L1 signal's enable
+// are (F9 HPG 1.13 interface description UBX-21023318 "CFG-SIGNAL", integration manual
+// UBX-18010802 3.1.1 "GNSS signal configuration"). SBAS follows GPS here.
+std::uint32_t f9_tracked_systems(const UbxConfig& c) {
+  const auto on = [&](const char* gnss, const char* l1) { return c.get(item(gnss)) != 0 && c.get(item(l1)) != 0; };
+  std::uint32_t s = 0;
+  if (on("CFG-SIGNAL-GPS_ENA", "CFG-SIGNAL-GPS_L1CA_ENA"))
+    s |= system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kSbas);
+  if (on("CFG-SIGNAL-GAL_ENA", "CFG-SIGNAL-GAL_E1_ENA")) s |= system_bit(GnssSystem::kGalileo);
+  if (on("CFG-SIGNAL-BDS_ENA", "CFG-SIGNAL-BDS_B1_ENA")) s |= system_bit(GnssSystem::kBeidou);
+  if (on("CFG-SIGNAL-QZSS_ENA", "CFG-SIGNAL-QZSS_L1CA_ENA")) s |= system_bit(GnssSystem::kQzss);
+  if (on("CFG-SIGNAL-GLO_ENA", "CFG-SIGNAL-GLO_L1_ENA")) s |= system_bit(GnssSystem::kGlonass);
+  return s;
+}
+
 // The position engine's settings from its CFG-NAVSPG items (integration manual 3.1.7 "Navigation
 // configuration": platform, input filters; the u-blox 8's CFG-NAV5 sets the same items).
 NavEngineSettings engine_settings_of(const UbxConfig& c) {
@@ -240,6 +255,11 @@ void UbxDevice::refresh() {
   status_.outfil_pacc_m = static_cast<double>(config_.get(item("CFG-NAVSPG-OUTFIL_PACC")));
   const auto flag = [&](std::uint32_t id, bool fallback) { return id ? config_.get(id) != 0 : fallback; };
   engine_ = engine_settings_of(config_);
+  // The u-blox 8 keeps its power-up GPS + GLONASS (+ SBAS, QZSS): its CFG-GNSS is stored, not
+  // applied (M8 receiver description UBX-13003221 "GNSS configuration": the default set).
+  engine_.systems = protocol27_ ? f9_tracked_systems(config_)
+                                : system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kSbas) |
+                                      system_bit(GnssSystem::kQzss) | system_bit(GnssSystem::kGlonass);
   // Switches the outputs follow: configuration items on the F9, the legacy CFG-ITFM (config
   // bit 31 "enable") and CFG-ODO (flags bit 0 "useODO") on the u-blox 8 (UBX-13003221).
   if (protocol27_) {
@@ -259,11 +279,12 @@ void UbxDevice::refresh() {
     }
     status_.odometer = decode(legacy_.current(kCfgOdo), odo) && (odo.flags & CfgOdo::kUseOdo);
   }
-  status_.gnss_enabled = protocol27_ ? static_cast<std::uint8_t>((flag(item("CFG-SIGNAL-GPS_ENA"), true) ? 0x01 : 0) |
-                                                                 (flag(item("CFG-SIGNAL-GLO_ENA"), true) ? 0x02 : 0) |
-                                                                 (flag(item("CFG-SIGNAL-BDS_ENA"), true) ? 0x04 : 0) |
-                                                                 (flag(item("CFG-SIGNAL-GAL_ENA"), true) ? 0x08 : 0))
-                                     : 0x03;  // the u-blox 8's default GPS + GLONASS (CFG-GNSS kept, not applied)
+  // MON-GNSS enabled bits: GPS 0, GLONASS 1, BeiDou 2, Galileo 3 (F9 5.13.2).
+  const auto enabled = [&](GnssSystem g) { return (engine_.systems & system_bit(g)) != 0; };
+  status_.gnss_enabled = static_cast<std::uint8_t>((enabled(GnssSystem::kGps) ? 0x01 : 0) |
+                                                   (enabled(GnssSystem::kGlonass) ? 0x02 : 0) |
+                                                   (enabled(GnssSystem::kBeidou) ? 0x04 : 0) |
+                                                   (enabled(GnssSystem::kGalileo) ? 0x08 : 0));
   // NMEA version and main talker ID: the F9's CFG-NMEA-PROTVER and -MAINTALKERID, the u-blox 8's
   // legacy CFG-NMEA nmeaVersion (BCD: 0x40 is 4.0, its power-up value) and mainTalkerId
   // (UBX-13003221 "UBX-CFG-NMEA"). Talker 0: as the GNSS configuration says (the profile's),

@@ -388,6 +388,11 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   }
   if (out.t_true >= st.renew_at) st.renew(out.t_true);  // renewing data (the built-in sky)
   for (SatId sat : st.sat_ids) {
+    if (!(active_systems_ & system_bit(sat.system()))) {  // switched off: not tracked
+      st.receivable_since.erase(sat);
+      st.arcs.update(sat, t_s, false);
+      continue;
+    }
     if (const double* until = st.below_horizon_until_s.find(sat); until && t_s < *until) continue;
     // The record in use: GPS and QZSS by their selection spans, the others by their rules.
     BroadcastRecord record;

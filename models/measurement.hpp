@@ -364,11 +364,16 @@ class MeasurementGenerator {
   // Events added while running (live control), and all of them ended.
   void add_events(const GnssEvents& e);
   void clear_events() { cfg_.events = {}; }
+  // Of the systems configured (MeasurementConfig::systems), those tracked from the next epoch
+  // on (system_bit; all by default): the others' satellites lose lock at once and are
+  // re-acquired after the tracking loops' re-acquisition time when enabled again.
+  void set_active_systems(std::uint32_t systems) { active_systems_ = systems; }
 
  private:
   struct State;
   const NavData& nav_;
   MeasurementConfig cfg_;
+  std::uint32_t active_systems_ = ~0u;
   std::unique_ptr<State> state_;
 };
 

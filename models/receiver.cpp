@@ -37,6 +37,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   const Vec3 p_ecef = ecef_from_geodetic(truth->position);
   const Vec3 v_ecef = R_ned_from_ecef(truth->position).transpose() * truth->v_ned_mps;
   EpochMeasurements& e = meas_;
+  gen_.set_active_systems(engine_.systems);
   gen_.generate(t, p_ecef, v_ecef, e);
   // The receiver keeps its time by its clock solution: a time spoofer's pull moves it.
   out.t = t.plus_s(e.spoofed_time_s);

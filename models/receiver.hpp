@@ -45,6 +45,9 @@ struct NavEngineSettings {
   double max_h_speed_mps = std::numeric_limits<double>::infinity();
   double max_v_speed_mps = std::numeric_limits<double>::infinity();
   bool zero_velocity = false;  // a stationary platform: velocity reported as 0
+  // The systems whose signals the receiver tracks (system_bit; u-blox CFG-SIGNAL-*_ENA): the
+  // others' satellites are dropped and re-acquired when enabled again.
+  std::uint32_t systems = ~0u;
 };
 
 struct ReceiverSatellite {

@@ -1441,6 +1441,16 @@ TEST_F(UbxDeviceTest, MonitorsFollowTheirConfiguration) {
   set_items(d, {{"CFG-SIGNAL-GLO_ENA", 0}});
   EXPECT_EQ(gnss().enabled, 0x0D);
   EXPECT_EQ(gnss().supported, 0x0F);
+  // The systems the receiver tracks follow: a GNSS is off with its enable or its L1 signal's.
+  const auto tracked = [&](GnssSystem s) { return (d.engine_settings()->systems & system_bit(s)) != 0; };
+  EXPECT_FALSE(tracked(GnssSystem::kGlonass));
+  EXPECT_TRUE(tracked(GnssSystem::kGalileo));
+  set_items(d, {{"CFG-SIGNAL-GAL_E1_ENA", 0}});
+  EXPECT_FALSE(tracked(GnssSystem::kGalileo));
+  EXPECT_EQ(gnss().enabled, 0x05);
+  EXPECT_TRUE(tracked(GnssSystem::kGps));
+  EXPECT_TRUE(tracked(GnssSystem::kBeidou));
+  EXPECT_TRUE(tracked(GnssSystem::kQzss));
 }
 
 // ---- The navigation engine's configuration (CFG-NAVSPG, CFG-NAV5) ----------------------------

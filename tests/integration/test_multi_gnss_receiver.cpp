@@ -201,5 +201,38 @@ TEST(MultiGnssReceiver, RtklibSolvesNavemusFourSystemObservationFile) {
   EXPECT_LT(mean_m, 3.0);  // the end-to-end bound
 }
 
+// Systems switched off and on while running (u-blox CFG-SIGNAL): the satellites go at once and
+// come back after the re-acquisition time, on a new carrier arc.
+TEST(MultiGnssReceiver, SystemsSwitchedOffAndOnWhileRunning) {
+  NAVEMU_REQUIRE_SHARED();
+  const NavData nav = test::rinex_nav_file(
+      test::shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx"));
+  MeasurementConfig cfg;
+  for (GnssSystem s : kSystems) cfg.systems |= system_bit(s);
+  MeasurementGenerator gen(nav, cfg);
+  const Vec3 p = esbc_arp();
+  const GpsTime t0 = gps_from_calendar({2020, 6, 25, 0, 0, 0.0});
+  const auto galileo_at = [&](double t_s) {
+    int n = 0;
+    bool new_arcs = true;
+    for (const SatMeasurement& m : gen.generate(t0.plus_s(t_s), p).sats)
+      if (m.sat.system() == GnssSystem::kGalileo) {
+        ++n;
+        new_arcs = new_arcs && m.signals[0]->loss_of_lock;
+      }
+    return std::make_pair(n, new_arcs);
+  };
+  const int before = galileo_at(0.0).first;
+  EXPECT_GE(before, 5);
+  EXPECT_FALSE(galileo_at(0.2).second) << "continuing arcs";
+  gen.set_active_systems(~system_bit(GnssSystem::kGalileo));
+  EXPECT_EQ(galileo_at(0.4).first, 0);
+  gen.set_active_systems(~0u);
+  EXPECT_EQ(galileo_at(0.6).first, 0) << "re-acquiring (TrackingParams::reacquisition_s 1 s)";
+  const auto back = galileo_at(1.6);
+  EXPECT_EQ(back.first, before);
+  EXPECT_TRUE(back.second) << "new carrier arcs";
+}
+
 }  // namespace
 }  // namespace navemu
