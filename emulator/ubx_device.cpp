@@ -107,20 +107,40 @@ constexpr PlatformLimits kPlatformLimits[] = {
     {CfgNav5::kDynAirborne2g, 50000, 250, 100, true}, {CfgNav5::kDynAirborne4g, 50000, 500, 100, true},
     {CfgNav5::kDynWrist, 9000, 30, 20, false}};
 
-// The systems an F9 tracks: a GNSS is on when its CFG-SIGNAL-*_ENA and its L1 signal's enable
-// are (F9 HPG 1.13 interface description UBX-21023318 "CFG-SIGNAL", integration manual
-// UBX-18010802 3.1.1 "GNSS signal configuration"). SBAS follows GPS here.
-std::uint32_t f9_tracked_systems(const UbxConfig& c) {
-  const auto on = [&](const char* gnss, const char* l1) { return c.get(item(gnss)) != 0 && c.get(item(l1)) != 0; };
+namespace {
+// The F9's systems in CFG-GNSS (F9 interface description UBX-18010854, "UBX-CFG-GNSS", flags
+// sigCfgMask): gnssId, channels as the u-blox 8's, the CFG-SIGNAL enable of the system, and
+// each sigCfgMask bit with the signal's enable.
+struct F9GnssBlock {
+  std::uint8_t gnss_id, res_trk_ch, max_trk_ch;
+  const char* enable;
+  std::array<std::pair<std::uint8_t, const char*>, 3> signals;
+};
+constexpr F9GnssBlock kF9GnssBlocks[] = {
+    {0, 8, 16, "CFG-SIGNAL-GPS_ENA", {{{0x01, "CFG-SIGNAL-GPS_L1CA_ENA"}, {0x10, "CFG-SIGNAL-GPS_L2C_ENA"}, {0, nullptr}}}},
+    {1, 1, 3, "CFG-SIGNAL-SBAS_ENA", {{{0x01, "CFG-SIGNAL-SBAS_L1CA_ENA"}, {0, nullptr}, {0, nullptr}}}},
+    {2, 4, 8, "CFG-SIGNAL-GAL_ENA", {{{0x01, "CFG-SIGNAL-GAL_E1_ENA"}, {0x20, "CFG-SIGNAL-GAL_E5B_ENA"}, {0, nullptr}}}},
+    {3, 8, 16, "CFG-SIGNAL-BDS_ENA", {{{0x01, "CFG-SIGNAL-BDS_B1_ENA"}, {0x10, "CFG-SIGNAL-BDS_B2_ENA"}, {0, nullptr}}}},
+    {5, 0, 3, "CFG-SIGNAL-QZSS_ENA",
+     {{{0x01, "CFG-SIGNAL-QZSS_L1CA_ENA"}, {0x04, "CFG-SIGNAL-QZSS_L1S_ENA"}, {0x10, "CFG-SIGNAL-QZSS_L2C_ENA"}}}},
+    {6, 8, 14, "CFG-SIGNAL-GLO_ENA", {{{0x01, "CFG-SIGNAL-GLO_L1_ENA"}, {0x10, "CFG-SIGNAL-GLO_L2_ENA"}, {0, nullptr}}}},
+};
+// The major GNSS (GPS, Galileo, BeiDou, GLONASS), of which the u-blox 8 runs 3 at once
+// (MON-GNSS simultaneous).
+bool major_gnss(std::uint8_t gnss_id) { return gnss_id == 0 || gnss_id == 2 || gnss_id == 3 || gnss_id == 6; }
+
+// The systems tracked under a CFG-GNSS configuration: a system is tracked while enabled
+// with its L1 signal (sigCfgMask bit 0); SBAS and QZSS with theirs.
+std::uint32_t systems_of(const CfgGnss& g) {
   std::uint32_t s = 0;
-  if (on("CFG-SIGNAL-GPS_ENA", "CFG-SIGNAL-GPS_L1CA_ENA"))
-    s |= system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kSbas);
-  if (on("CFG-SIGNAL-GAL_ENA", "CFG-SIGNAL-GAL_E1_ENA")) s |= system_bit(GnssSystem::kGalileo);
-  if (on("CFG-SIGNAL-BDS_ENA", "CFG-SIGNAL-BDS_B1_ENA")) s |= system_bit(GnssSystem::kBeidou);
-  if (on("CFG-SIGNAL-QZSS_ENA", "CFG-SIGNAL-QZSS_L1CA_ENA")) s |= system_bit(GnssSystem::kQzss);
-  if (on("CFG-SIGNAL-GLO_ENA", "CFG-SIGNAL-GLO_L1_ENA")) s |= system_bit(GnssSystem::kGlonass);
+  for (const CfgGnssBlock& b : g.blocks) {
+    const std::optional<SatId> sat = SatId::from_ubx(b.gnss_id, b.gnss_id == 1 ? 120 : 1);
+    if (sat && (b.flags & CfgGnssBlock::kEnable) && (b.flags >> CfgGnssBlock::kSigCfgMaskShift & 0x01))
+      s |= system_bit(sat->system());
+  }
   return s;
 }
+}  // namespace
 
 // The position engine's settings from its CFG-NAVSPG items (integration manual 3.1.7 "Navigation
 // configuration": platform, input filters; the u-blox 8's CFG-NAV5 sets the same items).
@@ -255,11 +275,9 @@ void UbxDevice::refresh() {
   status_.outfil_pacc_m = static_cast<double>(config_.get(item("CFG-NAVSPG-OUTFIL_PACC")));
   const auto flag = [&](std::uint32_t id, bool fallback) { return id ? config_.get(id) != 0 : fallback; };
   engine_ = engine_settings_of(config_);
-  // The u-blox 8 keeps its power-up GPS + GLONASS (+ SBAS, QZSS): its CFG-GNSS is stored, not
-  // applied (M8 receiver description UBX-13003221 "GNSS configuration": the default set).
-  engine_.systems = protocol27_ ? f9_tracked_systems(config_)
-                                : system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kSbas) |
-                                      system_bit(GnssSystem::kQzss) | system_bit(GnssSystem::kGlonass);
+  // The systems tracked: the F9's CFG-SIGNAL items, the u-blox 8's CFG-GNSS (power-up: GPS,
+  // SBAS, QZSS, GLONASS; m8_power_up_gnss), both seen as CFG-GNSS.
+  engine_.systems = systems_of(current_cfg_gnss());
   // Switches the outputs follow: configuration items on the F9, the legacy CFG-ITFM (config
   // bit 31 "enable") and CFG-ODO (flags bit 0 "useODO") on the u-blox 8 (UBX-13003221).
   if (protocol27_) {
@@ -1128,18 +1146,70 @@ void UbxDevice::handle_cfg_tp5(Payload p, std::uint8_t, Bytes& out) {
   config_.set_ram(v) ? ack(kCfgTp5, out) : nak(kCfgTp5, out);
 }
 
-void UbxDevice::poll_cfg_gnss(std::uint8_t, Bytes& out) {
+// CFG-GNSS (M8 32.10.12, F9 5.9.x, deprecated there): every supported system's block. The F9
+// reports its CFG-SIGNAL items; the u-blox 8 what was set (or its power-up set).
+CfgGnss UbxDevice::current_cfg_gnss() const {
   CfgGnss g;
-  g.num_trk_ch_hw = static_cast<std::uint8_t>(std::min(profile_.max_channels, 255));
-  g.num_trk_ch_use = g.num_trk_ch_hw;
-  g.blocks.push_back({0, 8, 16, 0, CfgGnssBlock::kEnable | (1u << 16)});  // GPS L1C/A
-  append(g, out);
+  if (!protocol27_) {
+    decode(legacy_.current(kCfgGnss), g);
+    return g;
+  }
+  g.num_trk_ch_hw = g.num_trk_ch_use = static_cast<std::uint8_t>(std::min(profile_.max_channels, 255));
+  for (const F9GnssBlock& f : kF9GnssBlocks) {
+    std::uint32_t flags = config_.get(item(f.enable)) ? CfgGnssBlock::kEnable : 0u;
+    for (const auto& [bit, key] : f.signals)
+      if (key != nullptr && config_.get(item(key))) flags |= static_cast<std::uint32_t>(bit) << CfgGnssBlock::kSigCfgMaskShift;
+    g.blocks.push_back({f.gnss_id, f.res_trk_ch, f.max_trk_ch, 0, flags});
+  }
+  return g;
+}
+
+void UbxDevice::poll_cfg_gnss(std::uint8_t, Bytes& out) {
+  append(current_cfg_gnss(), out);
   ack(kCfgGnss, out);
 }
 
+// A set: its blocks replace those of their systems; the result must be valid (M8 32.10.12
+// "Configuration requirements": a major GNSS enabled, at least 4 channels for each enabled
+// major GNSS, the reserved channels within those in use; and on the u-blox 8 at most 3 major
+// GNSS at once), else ACK-NAK and nothing changes. A valid configuration applies at once.
 void UbxDevice::handle_cfg_gnss(Payload p, std::uint8_t, Bytes& out) {
-  CfgGnss g;
-  decode(p, g) ? ack(kCfgGnss, out) : nak(kCfgGnss, out);
+  CfgGnss set;
+  if (!decode(p, set)) return nak(kCfgGnss, out);
+  CfgGnss g = current_cfg_gnss();
+  for (const CfgGnssBlock& b : set.blocks) {
+    auto it = std::find_if(g.blocks.begin(), g.blocks.end(), [&](const CfgGnssBlock& x) { return x.gnss_id == b.gnss_id; });
+    if (it == g.blocks.end()) return nak(kCfgGnss, out);  // a system the part does not have
+    it->flags = b.flags;
+    if (!protocol27_) {  // read-only from protocol 23.01 on
+      it->res_trk_ch = b.res_trk_ch;
+      it->max_trk_ch = b.max_trk_ch;
+    }
+  }
+  int majors = 0, reserved = 0;
+  for (const CfgGnssBlock& b : g.blocks) {
+    reserved += b.res_trk_ch;
+    if (!major_gnss(b.gnss_id) || !(b.flags & CfgGnssBlock::kEnable)) continue;
+    ++majors;
+    if (b.max_trk_ch < 4 || !(b.flags >> CfgGnssBlock::kSigCfgMaskShift & 0xFF)) return nak(kCfgGnss, out);
+  }
+  if (majors == 0 || (!protocol27_ && majors > 3) || reserved > g.num_trk_ch_use) return nak(kCfgGnss, out);
+  if (!protocol27_) {
+    Bytes frame, unused;
+    append(g, frame);  // the whole frame: the payload lies between the 6-byte header and the checksum
+    if (!legacy_.handle(kCfgGnss, std::span<const std::uint8_t>(frame).subspan(6, frame.size() - 8), unused))
+      return nak(kCfgGnss, out);
+    stale_ = true;
+    return ack(kCfgGnss, out);
+  }
+  std::vector<CfgKeyValue> v;
+  for (const F9GnssBlock& f : kF9GnssBlocks) {
+    const auto it = std::find_if(g.blocks.begin(), g.blocks.end(), [&](const CfgGnssBlock& x) { return x.gnss_id == f.gnss_id; });
+    v.push_back({item(f.enable), (it->flags & CfgGnssBlock::kEnable) ? 1u : 0u});
+    for (const auto& [bit, key] : f.signals)
+      if (key != nullptr) v.push_back({item(key), (it->flags >> CfgGnssBlock::kSigCfgMaskShift & bit) ? 1u : 0u});
+  }
+  config_.set_ram(v) ? ack(kCfgGnss, out) : nak(kCfgGnss, out);
 }
 
 // CFG-CFG: clear, save, load (in that order) on BBR and flash, or on the layers of deviceMask

@@ -99,6 +99,7 @@ class UbxDevice final : public GnssDevice {
   void poll_cfg_rate(std::uint8_t port, Bytes& out);
   void poll_cfg_nav5(std::uint8_t port, Bytes& out);
   void poll_cfg_gnss(std::uint8_t port, Bytes& out);
+  ubx::CfgGnss current_cfg_gnss() const;
   void handle_cfg_prt(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_msg(Payload payload, std::uint8_t port, Bytes& out);
   void handle_cfg_rate(Payload payload, std::uint8_t port, Bytes& out);

@@ -56,7 +56,8 @@ Bytes power_up(MsgId id, std::uint8_t index, bool protocol27) {
     }
     return encoded(m);
   }
-  if (id == kCfgSbas) return encoded(CfgSbas{1, 3, 3, 0, 0});  // on, ranging + corrections, 3 SBAS
+  if (id == kCfgSbas) return encoded(CfgSbas{1, 3, 3, 0, 0});
+  if (id == kCfgGnss) return encoded(m8_power_up_gnss());  // on, ranging + corrections, 3 SBAS
   if (id == kCfgNmea) {
     CfgNmea m;
     m.nmea_version = 0x40;
@@ -129,11 +130,23 @@ constexpr struct {
     {kCfgGeofence, true, true, false, true, &decodes<CfgGeofence>},
     {kCfgDgnss, false, true, false, true, &decodes<CfgDgnss>},
     {kCfgPms, true, false, false, true, &decodes<CfgPms>},
+    {kCfgGnss, true, false, false, true, &decodes<CfgGnss>},
 };
 
 constexpr std::uint16_t key_of(MsgId id) { return static_cast<std::uint16_t>(id.cls << 8 | id.id); }
 
 }  // namespace
+
+CfgGnss m8_power_up_gnss() {
+  CfgGnss g;
+  g.num_trk_ch_hw = g.num_trk_ch_use = 32;
+  const auto block = [](std::uint8_t id, std::uint8_t res, std::uint8_t max, bool on) {
+    return CfgGnssBlock{id, res, max, 0, (on ? CfgGnssBlock::kEnable : 0u) | (1u << CfgGnssBlock::kSigCfgMaskShift)};
+  };
+  g.blocks = {block(0, 8, 16, true), block(1, 1, 3, true),  block(2, 4, 8, false), block(3, 8, 16, false),
+              block(4, 0, 8, false), block(5, 0, 3, true), block(6, 8, 14, true)};
+  return g;
+}
 
 UbxLegacyCfg::UbxLegacyCfg(bool protocol27) : protocol27_(protocol27) {}
 

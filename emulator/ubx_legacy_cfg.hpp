@@ -24,6 +24,12 @@ namespace navemu {
 inline constexpr std::array<std::uint8_t, 4> kPortsButUart2 = {ubx::kPortDdc, ubx::kPortUart1, ubx::kPortUsb,
                                                                ubx::kPortSpi};
 
+// The u-blox 8's power-up CFG-GNSS (M8 receiver description UBX-13003221 "GNSS
+// configuration", default set of the standard-precision parts): GPS, SBAS, QZSS and GLONASS on,
+// Galileo, BeiDou and IMES off; channels (reserved, maximum) GPS 8/16, SBAS 1/3, Galileo 4/8,
+// BeiDou 8/16, IMES 0/8, QZSS 0/3, GLONASS 8/14 of 32; each with its L1 signal (sigCfgMask 0x01).
+ubx::CfgGnss m8_power_up_gnss();
+
 class UbxLegacyCfg {
  public:
   explicit UbxLegacyCfg(bool protocol27);

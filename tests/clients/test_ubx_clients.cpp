@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <thread>
 #include <set>
 
 #include "emulator/commands.hpp"
@@ -611,6 +612,59 @@ TEST(UbxTool, F9pValsetValget) {
   EXPECT_NEAR(static_cast<double>(tows.size()), 20.0, 2.0) << "NAV-PVT at 5 Hz over 4 s";
   for (std::size_t i = 1; i < tows.size(); ++i) EXPECT_EQ(tows[i] - tows[i - 1], 200u);
   std::printf("ubxtool F9P: NAV-PVT after CFG-RATE-MEAS 200: %zu in 4 s\n", tows.size());
+}
+
+// ubxtool -d GALILEO / -e GALILEO (CFG-GNSS, as ubxtool 3.22 sends it to every protocol
+// version) on an F9P profile tracking four systems, at the ESBC station's hour with its real
+// broadcast file: NAV-SAT loses the Galileo satellites and gets them back, GPS stays.
+TEST(UbxTool, GalileoSwitchedOffAndOnChangesNavSat) {
+  NAVEMU_REQUIRE_TOOL(ubxtool, "ubxtool", "python3-gps 3.22 (gpsd-clients)");
+  NAVEMU_REQUIRE_SHARED();
+  TempDir dir("ubxtool-gnss");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx", profile = dir / "f9p-four-systems.yaml";
+  {
+    std::string yaml = slurp(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-f9p.yaml");
+    const std::size_t talker = yaml.find("talker: GP\n");
+    ASSERT_NE(talker, std::string::npos);
+    yaml.replace(talker, 11, "systems: [GPS, GLONASS, Galileo, BeiDou]\n");
+    std::ofstream(profile) << yaml;
+  }
+  NavemuRun nav(dir, "navemu",
+                fmt::format("scenario: {{status_interval_s: 1, start: '2020-06-25T00:10:00Z', nav: '{}'}}\n"
+                            "truth: {{source: stationary, position: {{lat_deg: 55.4936, lon_deg: 8.4568, h_m: 60}}}}\n"
+                            "gnss:\n  profile: '{}'\n  outputs:\n    - {{type: pty, link: '{}'}}\n"
+                            "    - {{type: file, path: '{}'}}\nimu: {{enabled: false}}\n",
+                            shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx").string(),
+                            profile.string(), link.string(), log.string()),
+                60);
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  // Satellites per gnssId in the NAV-SAT ubxtool polls 2.5 s on (the 1 Hz receiver's
+  // answer is its latest epoch; a system switched on is re-acquired 1 s after the switch).
+  const auto nav_sat = [&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+    const std::vector<std::string> m = ubxtool_messages(run_ubxtool(ubxtool, dir, link, "27", {"-p", "NAV-SAT"}), "UBX-NAV-SAT:");
+    std::map<int, int> n;
+    if (m.empty()) return n;
+    std::stringstream ss(m.back());
+    for (std::string line; std::getline(ss, line);)
+      if (const std::size_t k = line.find("gnssId "); k != std::string::npos) ++n[std::stoi(line.substr(k + 7))];
+    return n;
+  };
+  std::map<int, int> before = nav_sat();
+  EXPECT_GE(before[0], 4);
+  EXPECT_GE(before[2], 4) << "Galileo tracked at the start";
+  std::string out = run_ubxtool(ubxtool, dir, link, "27", {"-d", "GALILEO"});
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x3e (GNSS)")) << out;
+  std::map<int, int> off = nav_sat();
+  EXPECT_EQ(off[2], 0) << "no Galileo satellite after -d GALILEO";
+  EXPECT_GE(off[0], before[0]) << "GPS stays (with the channels Galileo freed: 32 in all)";
+  out = run_ubxtool(ubxtool, dir, link, "27", {"-e", "GALILEO"});
+  EXPECT_TRUE(has_message(out, "UBX-ACK-ACK:", "ACK to Class x06 (CFG) ID x3e (GNSS)")) << out;
+  std::map<int, int> on = nav_sat();
+  EXPECT_EQ(on[2], before[2]);
+  nav.stop();
+  std::printf("ubxtool F9P NAV-SAT satellites GPS/Galileo: %d/%d, after -d GALILEO %d/%d, after -e GALILEO %d/%d\n",
+              before[0], before[2], off[0], off[2], on[0], on[2]);
 }
 
 // ---- RTKLIB ----------------------------------------------------------------------------------

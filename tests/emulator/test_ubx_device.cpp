@@ -1453,6 +1453,58 @@ TEST_F(UbxDeviceTest, MonitorsFollowTheirConfiguration) {
   EXPECT_TRUE(tracked(GnssSystem::kQzss));
 }
 
+// CFG-GNSS (M8 receiver description 32.10.12 "Configuration requirements"; deprecated on the F9,
+// a view of its CFG-SIGNAL items): a poll lists every supported system; a valid set applies at
+// once (the systems tracked follow), an invalid one is refused and changes nothing.
+TEST_F(UbxDeviceTest, CfgGnssSwitchesSystemsWithTheRequirementsChecked) {
+  const auto polled = [&](UbxDevice& d) {
+    const std::vector<Frame> f = frames_of(send(d, poll(ubx::kCfgGnss)));
+    ubx::CfgGnss g;
+    EXPECT_TRUE(!f.empty() && ubx::decode(f[0].payload, g));
+    std::map<int, std::uint32_t> flags;
+    for (const ubx::CfgGnssBlock& b : g.blocks) flags[b.gnss_id] = b.flags;
+    return flags;
+  };
+  const auto one_block = [](std::uint8_t gnss_id, bool on, std::uint8_t sig = 0x01) {
+    ubx::CfgGnss g;
+    g.num_trk_ch_use = 0xFF;
+    g.blocks = {{gnss_id, 4, 8, 0, (on ? ubx::CfgGnssBlock::kEnable : 0u) | static_cast<std::uint32_t>(sig) << 16}};
+    return frame(g);
+  };
+  const auto tracked = [](UbxDevice& d, GnssSystem s) { return (d.engine_settings()->systems & system_bit(s)) != 0; };
+
+  UbxDevice f9(f9p_, ReceiverMode::kStandalone, empty_nav());
+  std::map<int, std::uint32_t> flags = polled(f9);
+  EXPECT_EQ(flags.size(), 6u);  // GPS, SBAS, Galileo, BeiDou, QZSS, GLONASS
+  EXPECT_EQ(flags[0], 0x00110001u);  // GPS: L1C/A and L2C
+  EXPECT_EQ(flags[2], 0x00210001u);  // Galileo: E1 and E5b
+  EXPECT_TRUE(only_ack(send(f9, one_block(2, false)), ubx::kCfgGnss));
+  EXPECT_FALSE(tracked(f9, GnssSystem::kGalileo));
+  EXPECT_EQ(polled(f9)[2] & ubx::CfgGnssBlock::kEnable, 0u);
+  const std::uint32_t gal_ena = ubx::find_config_key("CFG-SIGNAL-GAL_ENA")->id;
+  EXPECT_EQ(valget_items(f9, {gal_ena})[gal_ena], 0u) << "the set is the CFG-SIGNAL items";
+  EXPECT_TRUE(tracked(f9, GnssSystem::kGps));
+
+  UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
+  flags = polled(m8);
+  EXPECT_EQ(flags.size(), 7u);  // and IMES
+  EXPECT_TRUE(tracked(m8, GnssSystem::kGlonass));
+  EXPECT_FALSE(tracked(m8, GnssSystem::kGalileo));
+  EXPECT_TRUE(only_ack(send(m8, one_block(2, true)), ubx::kCfgGnss));  // GPS, GLONASS, Galileo
+  EXPECT_TRUE(tracked(m8, GnssSystem::kGalileo));
+  EXPECT_NE(polled(m8)[2] & ubx::CfgGnssBlock::kEnable, 0u);
+  // A fourth major GNSS at once is more than the u-blox 8 runs (MON-GNSS simultaneous 3).
+  EXPECT_TRUE(only_ack(send(m8, one_block(3, true)), ubx::kCfgGnss, true));
+  EXPECT_FALSE(tracked(m8, GnssSystem::kBeidou));
+  // An enabled major GNSS without a signal, or none enabled at all, is refused too.
+  EXPECT_TRUE(only_ack(send(m8, one_block(6, true, 0x00)), ubx::kCfgGnss, true));
+  EXPECT_TRUE(only_ack(send(m8, one_block(0, false)), ubx::kCfgGnss));
+  EXPECT_TRUE(only_ack(send(m8, one_block(2, false)), ubx::kCfgGnss));
+  EXPECT_TRUE(only_ack(send(m8, one_block(6, false)), ubx::kCfgGnss, true));
+  EXPECT_TRUE(tracked(m8, GnssSystem::kGlonass));
+  EXPECT_FALSE(tracked(m8, GnssSystem::kGps));
+}
+
 // ---- The navigation engine's configuration (CFG-NAVSPG, CFG-NAV5) ----------------------------
 
 // The items as the engine takes them (ZED-F9P integration manual UBX-18010802, 3.1.7): masks,
