@@ -136,6 +136,27 @@ const GlonassEphemeris* select_glonass_ephemeris(std::span<const GlonassEphemeri
   return records.empty() ? nullptr : glonass_rule(records, records.front()->sat, t);
 }
 
+BroadcastRecord select_record(const NavData& nav, SatId sat, GpsTime t) {
+  switch (sat.system()) {
+    case GnssSystem::kGps:
+    case GnssSystem::kQzss:
+      if (const GpsEphemeris* e = select_ephemeris(nav, sat, t);
+          e && std::abs(seconds_between(t, e->toe)) <= kMaxEphemerisAge_s)
+        return e;
+      return {};
+    case GnssSystem::kGalileo:
+      if (const GalileoEphemeris* e = select_galileo_ephemeris(nav, sat, t)) return e;
+      return {};
+    case GnssSystem::kBeidou:
+      if (const BeidouEphemeris* e = select_beidou_ephemeris(nav, sat, t)) return e;
+      return {};
+    case GnssSystem::kGlonass:
+      if (const GlonassEphemeris* e = select_glonass_ephemeris(nav, sat, t)) return e;
+      return {};
+    default: return {};
+  }
+}
+
 GpsTime reference_time(const BroadcastRecord& r) {
   return std::visit(
       [](const auto& p) -> GpsTime {

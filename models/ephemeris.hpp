@@ -62,6 +62,10 @@ using BroadcastRecord = std::variant<std::monostate, const GpsEphemeris*, const 
                                      const BeidouEphemeris*, const GlonassEphemeris*>;
 // Its reference time: toe, or tb for GLONASS.
 GpsTime reference_time(const BroadcastRecord& r);
+// The record a single-frequency user takes for a satellite of any system at t: GPS and QZSS by
+// select_ephemeris within kMaxEphemerisAge_s, the others by their rules above; the monostate
+// when there is none.
+BroadcastRecord select_record(const NavData& nav, SatId sat, GpsTime t);
 
 // The record select_ephemeris gives at a time, with the open span of times around it over which
 // it gives the same record: the choice changes only where t passes midway between the toe of

@@ -643,13 +643,8 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
                                         std::vector<RangeMeasurement>& out) const {
   out.clear();
   for (const SatMeasurement& m : e.sats)
-    std::visit(
-        [&](const auto& record) {
-          if constexpr (!std::is_same_v<std::decay_t<decltype(record)>, std::monostate>)
-            out.push_back(make_range_measurement(*record, e.t_receiver, m.engine_pseudorange_m,
-                                                 m.signals[0]->doppler_hz));
-        },
-        m.record);
+    out.push_back(make_range_measurement(m.record, e.t_receiver, m.engine_pseudorange_m,
+                                         m.signals[0]->doppler_hz));
 }
 
 }  // namespace navemu

@@ -153,6 +153,18 @@ RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_r
   return m;
 }
 
+RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_receive,
+                                        double pseudorange_m, std::optional<double> doppler_hz) {
+  return std::visit(
+      [&](const auto& record) -> RangeMeasurement {
+        if constexpr (std::is_same_v<std::decay_t<decltype(record)>, std::monostate>)
+          return {};
+        else
+          return make_range_measurement(*record, t_receive, pseudorange_m, doppler_hz);
+      },
+      r);
+}
+
 Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const SolverOptions& opt) {
   Solution sol;
   solve(meas, t, opt, sol);

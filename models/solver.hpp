@@ -128,6 +128,9 @@ RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_re
 RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
                                         std::optional<double> doppler_l1_hz = {});
+// The one of these for whichever record `r` holds (it must hold one).
+RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_receive,
+                                        double pseudorange_m, std::optional<double> doppler_hz = {});
 
 // The solver's matrices live on the stack up to this many satellites (no allocation per epoch);
 // measurements beyond it are not used.

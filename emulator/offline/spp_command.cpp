@@ -47,33 +47,6 @@ struct SystemColumns {
   int doppler_index = -1;
 };
 
-// A measurement from the record spp takes for the satellite at `t`, if there is one (models/
-// ephemeris.hpp) and it is within its system's age limit.
-std::optional<RangeMeasurement> measurement(const NavData& nav, SatId sat, GpsTime t, double pr_m,
-                                            std::optional<double> doppler_hz) {
-  switch (sat.system()) {
-    case GnssSystem::kGps:
-    case GnssSystem::kQzss:
-      if (const GpsEphemeris* e = select_ephemeris(nav, sat, t);
-          e && std::abs(seconds_between(t, e->toe)) <= kMaxEphemerisAge_s)
-        return make_range_measurement(*e, t, pr_m, doppler_hz);
-      return std::nullopt;
-    case GnssSystem::kGalileo:
-      if (const GalileoEphemeris* e = select_galileo_ephemeris(nav, sat, t))
-        return make_range_measurement(*e, t, pr_m, doppler_hz);
-      return std::nullopt;
-    case GnssSystem::kBeidou:
-      if (const BeidouEphemeris* e = select_beidou_ephemeris(nav, sat, t))
-        return make_range_measurement(*e, t, pr_m, doppler_hz);
-      return std::nullopt;
-    case GnssSystem::kGlonass:
-      if (const GlonassEphemeris* e = select_glonass_ephemeris(nav, sat, t))
-        return make_range_measurement(*e, t, pr_m, doppler_hz);
-      return std::nullopt;
-    default: return std::nullopt;
-  }
-}
-
 }  // namespace
 
 void add_spp_command(CLI::App& app, SppOptions& opt) {
@@ -195,8 +168,9 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
         const double v = s.values[static_cast<std::size_t>(c.doppler_index)];
         if (std::isfinite(v)) d = v;
       }
-      if (std::optional<RangeMeasurement> m = measurement(nav, *sat, epoch.time, pr, d))
-        meas.push_back(*m);
+      if (const BroadcastRecord r = select_record(nav, *sat, epoch.time);
+          !std::holds_alternative<std::monostate>(r))
+        meas.push_back(make_range_measurement(r, epoch.time, pr, d));
     }
     const Solution sol = solve(meas, epoch.time, so);
     if (sol.fix != FixType::k3D) {

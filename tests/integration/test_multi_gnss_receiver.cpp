@@ -37,17 +37,6 @@ Vec3 esbc_arp() {
 // The L1 code the real file holds per system (RINEX 3.05 header of the file).
 const char* l1_code(GnssSystem s) { return s == GnssSystem::kBeidou ? "C2I" : "C1C"; }
 
-// The record in use for a satellite, as the spp command picks it.
-BroadcastRecord record_of(const NavData& nav, SatId sat, GpsTime t) {
-  switch (sat.system()) {
-    case GnssSystem::kGps: return select_ephemeris(nav, sat, t);
-    case GnssSystem::kGalileo: return select_galileo_ephemeris(nav, sat, t);
-    case GnssSystem::kBeidou: return select_beidou_ephemeris(nav, sat, t);
-    case GnssSystem::kGlonass: return select_glonass_ephemeris(nav, sat, t);
-    default: return {};
-  }
-}
-
 TEST(MultiGnssReceiver, TracksAndMeasuresEverySystemLikeTheRealReceiverAtEsbc) {
   NAVEMU_REQUIRE_SHARED();
   const NavData nav = test::rinex_nav_file(
@@ -86,7 +75,7 @@ TEST(MultiGnssReceiver, TracksAndMeasuresEverySystemLikeTheRealReceiverAtEsbc) {
       if (k < 0) continue;
       const double pr = so_real.values[static_cast<std::size_t>(k)];
       if (!std::isfinite(pr) || pr <= 0.0) continue;
-      const BroadcastRecord r = record_of(nav, *sat, epoch.time);
+      const BroadcastRecord r = select_record(nav, *sat, epoch.time);
       if (std::holds_alternative<std::monostate>(r)) continue;
       if (sat_geometry(r, epoch.time, rx).dir.el_rad * kRadToDeg < kMaskDeg) continue;
       real_count[sat->system()] += 1.0;
