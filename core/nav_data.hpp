@@ -71,6 +71,12 @@ struct GalileoEphemeris : KeplerEphemeris {
   double bgd_e1e5a_s = 0.0;
   double bgd_e1e5b_s = 0.0;
   double transmission_tow_s = 0.0;
+
+  // RINEX 3.05 data sources bit 9: the clock is for the E5b/E1 pair (I/NAV), else E5a/E1 (F/NAV).
+  bool inav_clock() const { return (data_sources & (1 << 9)) != 0; }
+  // The group delay an E1 user removes with this record's clock: BGD of its pair (OS SIS ICD
+  // 2.0 5.1.5).
+  double bgd_e1_s() const { return inav_clock() ? bgd_e1e5b_s : bgd_e1e5a_s; }
 };
 
 // BeiDou D1/D2 ephemeris (BDS-SIS-ICD-B1I 3.0 section 5.2; RINEX 3.05 BDS navigation data

@@ -91,11 +91,10 @@ auto nearest_record(const Records& records, SatId sat, GpsTime t, double max_age
 
 template <class Records>
 const GalileoEphemeris* galileo_rule(const Records& records, SatId sat, GpsTime t) {
-  constexpr int kInavClock = 1 << 9, kE1bHealth = 0x7;
+  constexpr int kE1bHealth = 0x7;
   const auto usable = [t](bool inav) {
     return [t, inav](const GalileoEphemeris& e) {
-      return ((e.data_sources & kInavClock) != 0) == inav && (e.health & kE1bHealth) == 0 &&
-             e.toe <= t;
+      return e.inav_clock() == inav && (e.health & kE1bHealth) == 0 && e.toe <= t;
     };
   };
   const GalileoEphemeris* inav = nearest_record(records, sat, t, kMaxEphemerisAge_s, usable(true));

@@ -29,9 +29,8 @@ double group_delay_s(const BroadcastRecord& r, Band band, double carrier_hz) {
   if (const auto* gps = std::get_if<const GpsEphemeris*>(&r))
     return gamma(carrier_hz) * (*gps)->tgd_s;
   if (const auto* gal = std::get_if<const GalileoEphemeris*>(&r)) {
-    constexpr int kInavClock = 1 << 9;
     switch (band) {
-      case Band::kL1: return ((*gal)->data_sources & kInavClock) ? (*gal)->bgd_e1e5b_s : (*gal)->bgd_e1e5a_s;
+      case Band::kL1: return (*gal)->bgd_e1_s();
       case Band::kL2: return gamma(carrier_hz) * (*gal)->bgd_e1e5b_s;
       case Band::kL5: return gamma(carrier_hz) * (*gal)->bgd_e1e5a_s;
     }

@@ -257,6 +257,10 @@ GloState glonass_derivative(const GloState& s, const Vec3& a_ls) {
 
 }  // namespace
 
+double glonass_sat_clock_s(const GlonassEphemeris& eph, GpsTime t) {
+  return -eph.tau_n_s + eph.gamma_n * seconds_between(t, eph.tb);
+}
+
 SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t) {
   // Fourth-order Runge-Kutta from tb to t (A.3.1.2) in steps of at most 60 s.
   constexpr double kMaxStep_s = 60.0;
@@ -278,7 +282,7 @@ SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t) {
   out.v_ecef_mps = s.v;
   // Satellite clock (ICD 3.3.3.x, "tau_n(tb) - gamma_n (t - tb)" is GLONASS time minus the
   // satellite's): the offset of the satellite's time from GLONASS time, relativity included.
-  out.clock_bias_s = -eph.tau_n_s + eph.gamma_n * span_s;
+  out.clock_bias_s = glonass_sat_clock_s(eph, t);
   out.clock_drift_sps = eph.gamma_n;
   return out;
 }

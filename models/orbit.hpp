@@ -43,6 +43,8 @@ SatState broadcast_sat_state(const KeplerEphemeris& eph, GpsTime t);
 // (t - tb) (ICD 3.3.3; relativity included by the ground segment); GLONASS time's own offset
 // from GPS time is the receiver's to estimate.
 SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t);
+// That clock alone, -tau_n + gamma_n (t - tb) (to turn the satellite's time into GPS time).
+double glonass_sat_clock_s(const GlonassEphemeris& eph, GpsTime t);
 
 // Satellite clock polynomial only (no relativistic term), used to turn the satellite's own
 // time into GPS system time (IS-GPS-200 20.3.3.3.3.1).

@@ -120,10 +120,8 @@ RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_recei
 
 RangeMeasurement make_range_measurement(const GalileoEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m, std::optional<double> doppler_e1_hz) {
-  constexpr int kInavClock = 1 << 9;  // RINEX 3.05 Galileo data sources, bit 9: E5b/E1 clock
-  const double bgd_s = (eph.data_sources & kInavClock) ? eph.bgd_e1e5b_s : eph.bgd_e1e5a_s;
   const double sisa_m = eph.sisa_m > 0.0 ? eph.sisa_m : 500.0;
-  return kepler_measurement(eph, t_receive, pseudorange_m, bgd_s, sisa_m * sisa_m,
+  return kepler_measurement(eph, t_receive, pseudorange_m, eph.bgd_e1_s(), sisa_m * sisa_m,
                             carrier_frequency_hz(kGalileoE1C), doppler_e1_hz);
 }
 
@@ -138,7 +136,7 @@ RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_r
                                         double pseudorange_m, std::optional<double> doppler_l1_hz) {
   constexpr double kGlonassEphemerisSigma_m = 5.0;  // RTKLIB's ERREPH_GLO
   GpsTime t_tx = t_receive.plus_s(-pseudorange_m / kSpeedOfLight_mps);
-  t_tx = t_tx.plus_s(-(eph.gamma_n * seconds_between(t_tx, eph.tb) - eph.tau_n_s));
+  t_tx = t_tx.plus_s(-glonass_sat_clock_s(eph, t_tx));
   const SatState s = glonass_sat_state(eph, t_tx);
   RangeMeasurement m;
   m.sat = eph.sat;
