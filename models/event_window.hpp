@@ -2,6 +2,7 @@
 // When a scheduled event (`events:`, issue "impairments") acts, and how strongly.
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "core/time.hpp"
@@ -18,10 +19,25 @@ struct EventWindow {
   std::optional<GpsTime> at;  // a start given as GPS time instead: start_s once resolved
 };
 
+// Times are exact to the nanosecond, but start_s + duration_s in double is not: an epoch on a
+// window's end can come out an ulp inside it (1 in ~1300 starts on a 200 ms grid). An edge is
+// where the times say it is, to within half a nanosecond.
+inline constexpr double kEventEdgeTolerance_s = 0.5e-9;
+
+// The time since the window's start and until its end, with t within the tolerance of an edge
+// taken as on it.
+struct EventPhase {
+  double in_s, out_s;
+};
+inline EventPhase event_phase(const EventWindow& w, double t_s) {
+  const auto snap = [](double x) { return std::abs(x) < kEventEdgeTolerance_s ? 0.0 : x; };
+  return {snap(t_s - w.start_s), snap(w.start_s + w.duration_s - t_s)};
+}
+
 // The rate of event_level at t, 1/s: +1/ramp_s on the ramp-in, -1/ramp_s on the ramp-out.
 inline double event_level_rate(const EventWindow& w, double t_s) {
   if (w.ramp_s <= 0.0) return 0.0;
-  const double in = t_s - w.start_s, out = w.start_s + w.duration_s - t_s;
+  const auto [in, out] = event_phase(w, t_s);
   if (in < 0.0 || out <= 0.0) return 0.0;
   if (in < w.ramp_s && in <= out) return 1.0 / w.ramp_s;
   if (out < w.ramp_s) return -1.0 / w.ramp_s;
@@ -40,7 +56,7 @@ inline void resolve_start(EventWindow& w, GpsTime origin) {
 // ramp_s before the end, falling linearly to 0 at start_s + duration_s (a trapezoid; ramp 0:
 // a step).
 inline double event_level(const EventWindow& w, double t_s) {
-  const double in = t_s - w.start_s, out = w.start_s + w.duration_s - t_s;
+  const auto [in, out] = event_phase(w, t_s);
   if (in < 0.0 || out <= 0.0) return 0.0;
   if (w.ramp_s <= 0.0) return 1.0;
   return std::min({1.0, in / w.ramp_s, out / w.ramp_s});

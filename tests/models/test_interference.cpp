@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 namespace navemu {
 namespace {
@@ -77,6 +78,16 @@ TEST(Interference, EventLevelIsATrapezoid) {
   EXPECT_EQ(event_level(step, 10.0), 1.0);
   EXPECT_EQ(event_level(step, 14.999), 1.0);
   EXPECT_EQ(event_level(step, 15.0), 0.0);
+  // A live event on a 5 Hz epoch for 2 s: every epoch (seconds from the origin, as the receiver
+  // counts them, exact to the ns) from its start is in it, and the epoch on its end is not, for
+  // every start (start + 2.0 in double lands an ulp past the end epoch for 15 of these).
+  for (std::int64_t k = 1; k < 20000; ++k) {
+    const auto epoch_s = [](std::int64_t n) { return seconds_between(GpsTime{n * 200'000'000}, GpsTime{}); };
+    const EventWindow live{epoch_s(k), 2.0};
+    ASSERT_EQ(event_level(live, epoch_s(k)), 1.0) << k;
+    ASSERT_EQ(event_level(live, epoch_s(k + 9)), 1.0) << k;
+    ASSERT_EQ(event_level(live, epoch_s(k + 10)), 0.0) << k;
+  }
   // A jammer's ramp is linear in dB over the 40 dB below its peak.
   EXPECT_FALSE(ramped_j_over_s_db(50.0, 0.0).has_value());
   EXPECT_DOUBLE_EQ(*ramped_j_over_s_db(50.0, 0.25), 20.0);
