@@ -57,17 +57,24 @@ class SatTable {
   // Calls f(SatId, T&) for every entry, in SatId order.
   template <class F>
   void for_each(F&& f) {
+    for_each_of(*this, f);
+  }
+  template <class F>
+  void for_each(F&& f) const {
+    for_each_of(*this, f);
+  }
+
+ private:
+  template <class Self, class F>
+  static void for_each_of(Self& self, F& f) {
     for (std::size_t sys = 0; sys < kGnssSystemCount; ++sys) {
       const GnssSystemInfo& info = kGnssSystems[sys];
       for (int n = info.first_number; n <= info.last_number; ++n) {
-        std::optional<T>& slot = slots_[sat_table_detail::kSlotStarts[sys] +
-                                        static_cast<std::size_t>(n - info.first_number)];
+        auto& slot = self.slots_[sat_table_detail::kSlotStarts[sys] + static_cast<std::size_t>(n - info.first_number)];
         if (slot) f(SatId(info.system, n), *slot);
       }
     }
   }
-
- private:
   static std::size_t idx(SatId s) {
     return sat_table_detail::kSlotStarts[static_cast<std::size_t>(s.system())] +
            static_cast<std::size_t>(s.number() - s.info().first_number);

@@ -39,8 +39,9 @@ GpsTime gps_now();
 GpsTime time_option(const std::string& text, const std::string& field);
 
 // The navigation data to use: the RINEX file when given, otherwise the built-in nominal
-// constellation around `t`.
-NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t);
+// constellations of `systems` (system_bit) around `t`.
+NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t,
+                            std::uint32_t systems = system_bit(GnssSystem::kGps));
 
 // What a user changes when navigation data do not cover the scenario: the option naming the
 // file (reported as the field), the scenario's start (its names, and the flag to give an example

@@ -104,8 +104,8 @@ GpsTime time_option(const std::string& text, const std::string& field) {
   return GpsTime{now.ns - now.ns % kNsPerS};  // whole seconds
 }
 
-NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t) {
-  if (nav_file.empty()) return nominal_constellation(t);
+NavData load_nav_or_nominal(const std::string& nav_file, GpsTime t, std::uint32_t systems) {
+  if (nav_file.empty()) return nominal_constellation(t, systems);
   return read_rinex_nav(nav_file);
 }
 

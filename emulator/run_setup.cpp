@@ -207,7 +207,8 @@ void print_outputs(const RunConfig& cfg, const RunPlan& plan, const RunOutputs& 
 
 NavData scenario_nav(const RunPlan& plan, GpsTime start, const EngineOptions& opt, std::ostream& log) {
   if (!plan.gnss) return {};
-  NavData nav = plan.gnss->nav_file ? *plan.gnss->nav_file : nominal_constellation(start);
+  NavData nav = plan.gnss->nav_file ? *plan.gnss->nav_file
+                                    : nominal_constellation(start, plan.gnss->receiver.measurement.systems);
   check_scenario_nav(nav, start, opt.duration_s, log);
   return nav;
 }

@@ -16,6 +16,9 @@ namespace navemu {
 // The spacing of the built-in constellation's uploads: regular GPS data sets are each sent for
 // 2 h (IS-GPS-200 20.3.4.4), their toes on even GPS hours, as in real broadcast files.
 inline constexpr double kUploadInterval_s = 7200.0;
+// GLONASS immediate data: a state vector every 30 min, tb at 15 and 45 min past the hour
+// (GLONASS ICD 5.1, 4.4: P1 = 30 min).
+inline constexpr double kGlonassUploadInterval_s = 1800.0;
 
 // How far from its toe a broadcast ephemeris is still used: twice the half-width of the
 // nominal 4 h curve-fit interval (IS-GPS-200 20.3.4.4), lenient for sparse files.

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "core/sat_table.hpp"
+#include "models/constellation.hpp"
 #include "models/orbit.hpp"
 
 namespace navemu {
@@ -192,10 +194,14 @@ struct MeasurementGenerator::State {
   // when renewed, which clears it).
   SatTable<EphemerisSelection> selection;
   // Data that renew (NavData::renews, the built-in constellation): from `renew_at` on, each
-  // satellite's latest set goes on with a new upload every 2 h (reuploaded()) for the next day. The
+  // satellite's latest set goes on with a new upload every 2 h (reuploaded(); GLONASS every
+  // 30 min) for the next day, Galileo's and BeiDou's as their nominal orbits give them anew. The
   // sets in use are renewed[0]; renewed[1] keeps the ones before them, which the last epoch's
   // measurements may still point to, until the next renewal.
   std::array<std::vector<GpsEphemeris>, 2> renewed;
+  std::array<std::vector<GalileoEphemeris>, 2> renewed_galileo;
+  std::array<std::vector<BeidouEphemeris>, 2> renewed_beidou;
+  std::array<std::vector<GlonassEphemeris>, 2> renewed_glonass;
   GpsTime renew_at{std::numeric_limits<std::int64_t>::max()};
   // The uploads a renewal at t holds per satellite: toe from t - 2 h (the set in use) to t + 26 h.
   static constexpr double kRenewFrom_s = -kUploadInterval_s, kRenewTo_s = 26 * 3600.0;
@@ -203,9 +209,8 @@ struct MeasurementGenerator::State {
       static_cast<std::size_t>((kRenewTo_s - kRenewFrom_s) / kUploadInterval_s) + 1;
 
   // `records` and `sat_ids` from a set of records (reusing their storage: a renewal of as many
-  // records allocates nothing), and when renewing data would run short.
-  void index(const std::vector<GpsEphemeris>& gps, bool renews,
-             const std::vector<GpsEphemeris>* qzss = nullptr) {
+  // records allocates nothing).
+  void index(const std::vector<GpsEphemeris>& gps, const std::vector<GpsEphemeris>* qzss = nullptr) {
     for (SatId sat : lnav_sat_ids) records.find(sat)->clear();
     for (const GpsEphemeris& e : gps) records.try_emplace(e.sat).first.push_back(&e);
     if (qzss != nullptr)
@@ -218,36 +223,92 @@ struct MeasurementGenerator::State {
     sat_ids.insert(sat_ids.end(), other_sat_ids.begin(), other_sat_ids.end());
     std::sort(sat_ids.begin(), sat_ids.end());
     selection.clear();
-    if (!renews) return;
-    // An upload before the earliest of the satellites' latest toes: the nearest toe stays
-    // within 1 h.
-    renew_at = GpsTime{std::numeric_limits<std::int64_t>::max()};
-    for (SatId sat : lnav_sat_ids) renew_at = std::min(renew_at, latest(sat).toe.plus_s(-kUploadInterval_s));
+  }
+  // The other systems' tables from their records (the same satellites at every renewal).
+  template <class Eph>
+  static void index_other(const std::vector<Eph>& list, SatTable<std::vector<const Eph*>>& table) {
+    table.for_each([](SatId, std::vector<const Eph*>& r) { r.clear(); });
+    for (const Eph& e : list) table.try_emplace(e.sat).first.push_back(&e);
   }
 
-  const GpsEphemeris& latest(SatId sat) const {
-    const auto& r = *records.find(sat);
-    return **std::max_element(r.begin(), r.end(), [](const GpsEphemeris* a, const GpsEphemeris* b) {
-      return a->toe < b->toe;
+  static GpsTime reference_time(const KeplerEphemeris& e) { return e.toe; }
+  static GpsTime reference_time(const GlonassEphemeris& e) { return e.tb; }
+  template <class Eph>
+  static const Eph& latest(const std::vector<const Eph*>& r) {
+    return **std::max_element(r.begin(), r.end(),
+                              [](const Eph* a, const Eph* b) { return reference_time(*a) < reference_time(*b); });
+  }
+
+  // When renewing data would run short: an upload before the earliest of the satellites' latest
+  // sets, so the nearest one stays within half an upload interval.
+  void schedule_renewal() {
+    renew_at = GpsTime{std::numeric_limits<std::int64_t>::max()};
+    const auto earliest = [this](const auto& table, double interval_s) {
+      table.for_each([&](SatId, const auto& r) {
+        if (!r.empty()) renew_at = std::min(renew_at, reference_time(latest(r)).plus_s(-interval_s));
+      });
+    };
+    earliest(records, kUploadInterval_s);
+    earliest(galileo_records, kUploadInterval_s);
+    earliest(beidou_records, kUploadInterval_s);
+    earliest(glonass_records, kGlonassUploadInterval_s);
+  }
+
+  // Each satellite's sets in force from t on: those held with reference times from t - one
+  // interval on, then its latest set uploaded anew every interval to t + 26 h.
+  template <class Eph>
+  void continue_uploads(const SatTable<std::vector<const Eph*>>& table, GpsTime t, double interval_s,
+                        std::vector<Eph>& next) {
+    const GpsTime from = t.plus_s(-interval_s), to = t.plus_s(kRenewTo_s);
+    table.for_each([&](SatId, const std::vector<const Eph*>& r) {
+      if (r.empty()) return;
+      for (const Eph* e : r)
+        if (reference_time(*e) >= from) next.push_back(*e);
+      const Eph& newest = latest(r);
+      const double k0 = std::max(1.0, std::ceil(seconds_between(from, reference_time(newest)) / interval_s));
+      for (double k = k0; reference_time(newest).plus_s(k * interval_s) <= to; ++k) {
+        // A Keplerian set is parametrised anew from the newest; a GLONASS state integrates on
+        // from the one before (the same steps, not all of them again).
+        const GpsTime ref = reference_time(newest).plus_s(k * interval_s);
+        if constexpr (std::is_same_v<Eph, GlonassEphemeris>)
+          next.push_back(reuploaded(k == k0 ? newest : next.back(), ref));
+        else
+          next.push_back(reuploaded(newest, ref));
+      }
     });
   }
 
-  // The sets in force from t on: those held with toe from t - 2 h on, then each satellite's latest
-  // set uploaded anew every 2 h to t + 26 h.
   void renew(GpsTime t) {
     std::vector<GpsEphemeris>& next = renewed[1];  // nothing points into it any more
     next.clear();
-    const GpsTime from = t.plus_s(kRenewFrom_s), to = t.plus_s(kRenewTo_s);
-    for (SatId sat : lnav_sat_ids) {
-      for (const GpsEphemeris* e : *records.find(sat))
-        if (e->toe >= from) next.push_back(*e);
-      const GpsEphemeris& newest = latest(sat);
-      const double k0 = std::max(1.0, std::ceil(seconds_between(from, newest.toe) / kUploadInterval_s));
-      for (double k = k0; newest.toe.plus_s(k * kUploadInterval_s) <= to; ++k)
-        next.push_back(reuploaded(newest, newest.toe.plus_s(k * kUploadInterval_s)));
-    }
+    continue_uploads(records, t, kUploadInterval_s, next);
     std::swap(renewed[0], renewed[1]);
-    index(renewed[0], true);
+    index(renewed[0]);
+    renew_other(renewed_galileo, galileo_records, [&](auto& v) { nominal_galileo(t, v); });
+    renew_other(renewed_beidou, beidou_records, [&](auto& v) { nominal_beidou(t, v); });
+    renew_other(renewed_glonass, glonass_records, [&](auto& v) {
+      v.clear();
+      continue_uploads(glonass_records, t, kGlonassUploadInterval_s, v);
+    });
+    schedule_renewal();
+  }
+  template <class Eph, class Fill>
+  void renew_other(std::array<std::vector<Eph>, 2>& sets, SatTable<std::vector<const Eph*>>& table, Fill fill) {
+    if (!tracks(table)) return;
+    fill(sets[1]);
+    // Only the satellites the data had (edited built-in data stay edited).
+    std::erase_if(sets[1], [&](const Eph& e) {
+      const auto* r = table.find(e.sat);
+      return r == nullptr || r->empty();
+    });
+    std::swap(sets[0], sets[1]);
+    index_other(sets[0], table);
+  }
+  template <class Eph>
+  static bool tracks(const SatTable<std::vector<const Eph*>>& table) {
+    bool any = false;
+    table.for_each([&](SatId, const std::vector<const Eph*>& r) { any = any || !r.empty(); });
+    return any;
   }
 };
 
@@ -256,24 +317,29 @@ MeasurementGenerator::MeasurementGenerator(const NavData& nav, const Measurement
   if (cfg_.mode == ReceiverMode::kDualFrequency) cfg_.dual_frequency_signals = true;
   if (cfg_.iono_model == IonoModel::kKlobuchar && !nav_.klobuchar)
     cfg_.iono_model = IonoModel::kPaperVtec;
-  // The other systems' records, indexed once (only GPS's renew).
+  // The records of the systems tracked, indexed once and at each renewal.
   State& st = *state_;
   const auto tracked = [&](GnssSystem s) { return (cfg_.systems & system_bit(s)) != 0; };
-  const auto index_other = [&](const auto& list, auto& table) {
-    if (list.empty() || !tracked(list.front().sat.system())) return;
-    for (const auto& e : list) table.try_emplace(e.sat).first.push_back(&e);
+  if (tracked(GnssSystem::kGalileo)) State::index_other(nav_.galileo, st.galileo_records);
+  if (tracked(GnssSystem::kBeidou)) State::index_other(nav_.beidou, st.beidou_records);
+  if (tracked(GnssSystem::kGlonass)) State::index_other(nav_.glonass, st.glonass_records);
+  const auto add_sats = [&](auto& table) {
     table.for_each([&](SatId sat, const auto& r) {
       if (!r.empty()) st.other_sat_ids.push_back(sat);
     });
   };
-  index_other(nav_.galileo, st.galileo_records);
-  index_other(nav_.beidou, st.beidou_records);
-  index_other(nav_.glonass, st.glonass_records);
+  add_sats(st.galileo_records);
+  add_sats(st.beidou_records);
+  add_sats(st.glonass_records);
   static const std::vector<GpsEphemeris> kNone;
-  st.index(tracked(GnssSystem::kGps) ? nav_.gps : kNone, nav_.renews,
-           tracked(GnssSystem::kQzss) ? &nav_.qzss : nullptr);
-  if (nav_.renews)  // a steady run renews without allocating
-    for (auto& r : state_->renewed) r.reserve(state_->sat_ids.size() * State::kRenewedPerSat);
+  st.index(tracked(GnssSystem::kGps) ? nav_.gps : kNone, tracked(GnssSystem::kQzss) ? &nav_.qzss : nullptr);
+  if (nav_.renews) {  // a steady run renews without allocating
+    st.schedule_renewal();
+    for (auto& r : st.renewed) r.reserve(st.sat_ids.size() * State::kRenewedPerSat);
+    for (auto& r : st.renewed_galileo) r.reserve(2 * nav_.galileo.size());
+    for (auto& r : st.renewed_beidou) r.reserve(2 * nav_.beidou.size());
+    for (auto& r : st.renewed_glonass) r.reserve(2 * nav_.glonass.size());
+  }
 }
 
 MeasurementGenerator::~MeasurementGenerator() = default;

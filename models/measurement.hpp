@@ -247,8 +247,7 @@ struct MeasurementConfig {
   double rtk_noise_sigma_m = 0.01;
 
   bool dual_frequency_signals = false;  // also generate L2 (L2C) and L5; on in kDualFrequency
-  // The systems tracked (system_bit) among those the navigation data have records of. The
-  // built-in constellation is GPS only.
+  // The systems tracked (system_bit) among those the navigation data have records of.
   std::uint32_t systems = system_bit(GnssSystem::kGps);
   double elevation_mask_deg = 5.0;      // the position engine's mask
   // A scene around the receiver (models/signal_environment.hpp): visibility, multipath of

@@ -287,6 +287,18 @@ SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t) {
   return out;
 }
 
+GlonassEphemeris reuploaded(const GlonassEphemeris& eph, GpsTime tb) {
+  const SatState s = glonass_sat_state(eph, tb);
+  GlonassEphemeris e = eph;
+  e.tb = tb;
+  e.p_pz90_m = s.p_ecef_m;
+  e.v_pz90_mps = s.v_ecef_mps;
+  e.tau_n_s = -s.clock_bias_s;  // -tau_n + gamma_n (tb - tb_old) continued
+  e.frame_time_s = eph.frame_time_s + seconds_between(tb, eph.tb);
+  if (e.frame_time_s >= 604800.0) e.frame_time_s -= 604800.0;
+  return e;
+}
+
 Vec3 rotate_earth(const Vec3& v_ecef, double dt_s) {
   const SinCos th = sin_cos_small(kOmegaEarth_radps * dt_s);
   const double c = th.cos, s = th.sin;

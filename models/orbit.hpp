@@ -59,6 +59,11 @@ double gps_sat_clock_poly_s(const KeplerEphemeris& eph, GpsTime t);
 // the transmission time keeps its offset from toe.
 GpsEphemeris reuploaded(const GpsEphemeris& eph, GpsTime toe);
 
+// The same for GLONASS, whose uploads are state vectors: the next record's state is this one's
+// integrated to `tb` (glonass_sat_state), its clock offset -tau_n + gamma_n (tb - tb_old) and
+// its frame time moved on, so the two agree to the integration's error at every time.
+GlonassEphemeris reuploaded(const GlonassEphemeris& eph, GpsTime tb);
+
 // Rotation of an ECEF vector by the Earth's rotation during `dt_s` (the Sagnac correction):
 // a vector fixed in inertial space, expressed in the ECEF frame at t, expressed in the ECEF
 // frame at t + dt_s.

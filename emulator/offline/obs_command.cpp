@@ -45,9 +45,9 @@ void add_obs_command(CLI::App& app, ObsOptions& opt) {
       "noise from C/N0), multipath (statistical code multipath).\n"
       "Modes: standalone (raw L1), dual (raw L1/L2/L5), dgps and rtk (C1C holds the pseudorange\n"
       "after differential correction: process it without iono/tropo corrections).\n"
-      "--systems adds the other systems of a mixed --nav file, each with its own signals: GLONASS\n"
-      "L1OF/L2OF (C1C, C2C), Galileo E1/E5b/E5a (C1C, C7Q, C5Q), BeiDou B1I/B2I (C2I, C7I), QZSS\n"
-      "as GPS; the built-in constellation is GPS only.\n"
+      "--systems adds the other systems (of a mixed --nav file, or built in), each with its own\n"
+      "signals: GLONASS L1OF/L2OF (C1C, C2C), Galileo E1/E5b/E5a (C1C, C7Q, C5Q), BeiDou B1I/B2I\n"
+      "(C2I, C7I), QZSS as GPS.\n"
       "Example:\n"
       "  navemu obs --nav 07590920.05n --at 35.1609,139.6138,68.4 --start 2005-04-01T23:59:47Z \\\n"
       "      --duration 3600 --interval 30 --out synth.rnx --seed 7");
@@ -119,9 +119,6 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
   const GpsTime start = time_option(opt.start, "--start");
   const Geodetic rx = parse_geodetic(opt.at, "--at");
   const Vec3 p_rx = ecef_from_geodetic(rx);
-  const NavData nav = load_nav_or_nominal(opt.nav_file, start);
-  require_nav_coverage(nav, start, start.plus_s(opt.duration_s), {});
-
   MeasurementConfig cfg;
   cfg.mode = kModes.at(opt.mode);
   apply_receiver_class(cfg, opt.receiver == "geodetic" ? ReceiverClass::kGeodetic
@@ -131,6 +128,8 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
   for (const GnssSystemInfo& i : kGnssSystems)
     if (std::find(opt.systems.begin(), opt.systems.end(), std::string(1, i.rinex_letter)) != opt.systems.end())
       cfg.systems |= system_bit(i.system);
+  const NavData nav = load_nav_or_nominal(opt.nav_file, start, cfg.systems);
+  require_nav_coverage(nav, start, start.plus_s(opt.duration_s), {});
   if (opt.sisre_m) cfg.sat_errors = cfg.sat_errors.scaled_to_sisre(*opt.sisre_m);
   if (opt.sat_errors == "paper") cfg.sat_error_model = SatErrorModel::kPaper;
   if (opt.clock_h0) cfg.clock.h0 = *opt.clock_h0;
