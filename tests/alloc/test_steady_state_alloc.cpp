@@ -152,6 +152,23 @@ TEST(SteadyStateAllocation, OfflineDailyRenewalOfTheBuiltInConstellation) {
   EXPECT_EQ(b - a, 0);
 }
 
+// The same with all five systems built in (Galileo and BeiDou made anew, GLONASS integrated
+// on, into the storage of the sets before).
+TEST(SteadyStateAllocation, OfflineDailyRenewalOfEverySystem) {
+  RunConfig cfg = config("default.yaml");
+  cfg.imu_enabled = false;
+  cfg.gnss.rate_hz = 1.0;
+  for (GnssSystem s : {GnssSystem::kGps, GnssSystem::kGalileo, GnssSystem::kBeidou, GnssSystem::kQzss,
+                       GnssSystem::kGlonass})
+    cfg.gnss.systems |= system_bit(s);
+  const auto dir = std::filesystem::temp_directory_path() / "navemu_alloc_renewal_gnss";
+  allocations_of_run(cfg, false, 10.0, dir / "warm-up");
+  const long long a = allocations_of_run(cfg, false, 600.0, dir / "a");
+  const long long b = allocations_of_run(cfg, false, 25 * 3600.0, dir / "b");
+  std::printf("renewal of five systems: %lld allocations for 600 s, %lld for 25 h\n", a, b);
+  EXPECT_EQ(b - a, 0);
+}
+
 // The truth stream (UDP datagrams) at 1 kHz through its buffer: once the 10 s window is full,
 // pushing and interpolating allocate nothing.
 TEST(SteadyStateAllocation, TruthBufferAtOneKilohertz) {
