@@ -50,6 +50,11 @@ GnssChannel::GnssChannel(std::unique_ptr<NavData> nav, const ReceiverParams& rec
   resets_ = receiver.measurement.events.resets;
 }
 
+std::uint32_t GnssChannel::tracked_systems() const {
+  const NavEngineSettings* engine = device_->engine_settings();
+  return receiver_->params().measurement.systems & (engine != nullptr ? engine->systems : ~0u);
+}
+
 void GnssChannel::begin(GpsTime start) {
   start_ = start;
   receiver_->set_event_origin(start);

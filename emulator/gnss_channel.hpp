@@ -59,6 +59,9 @@ class GnssChannel final : public SensorChannel {
   void add_events(const GnssEvents& events);
   GpsTime next_epoch() const { return epoch_time(k_); }
   void clear_events();
+  // The systems tracked now (system_bit): the profile's, less those the device's configuration
+  // has switched off (u-blox CFG-GNSS, CFG-SIGNAL-*).
+  std::uint32_t tracked_systems() const;
 
  private:
   static constexpr std::int64_t kComputeLead_ns = 2'000'000;  // computed 2 ms before output

@@ -232,19 +232,19 @@ std::vector<std::unique_ptr<SensorChannel>> make_channels(const RunConfig& cfg, 
     count("BeiDou", nav.beidou);
     count("QZSS", nav.qzss);
     count("GLONASS", nav.glonass);
-    std::vector<std::string_view> tracked;
-    for (const GnssSystemInfo& i : kGnssSystems)
-      if (cfg.gnss.systems & system_bit(i.system)) tracked.emplace_back(i.name);
-    fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode, tracking {}), navigation data {}: {} satellites{}\n",
-               cfg.gnss.name, cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode), fmt::join(tracked, ", "),
-               cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file, held.empty() ? "no" : held,
-               nav.skipped_records > 0
-                   ? fmt::format("; {} records of SBAS or NavIC not read", nav.skipped_records)
-                   : "");
-    fmt::print(log, "navemu: {}\n", egm96_geoid().description);
+    const std::string nav_name = cfg.nav_file.empty() ? "built-in constellation" : cfg.nav_file;
+    const int skipped = nav.skipped_records;
     auto gnss = std::make_unique<GnssChannel>(std::make_unique<NavData>(std::move(nav)), plan.gnss->receiver, cfg.gnss,
                                               cfg.gnss_mode, std::move(outputs.gnss),
                                               std::move(outputs.epoch_recorders));
+    std::vector<std::string_view> tracked;
+    for (const GnssSystemInfo& i : kGnssSystems)
+      if (gnss->tracked_systems() & system_bit(i.system)) tracked.emplace_back(i.name);
+    fmt::print(log, "navemu: GNSS {} ({} Hz, {} mode, tracking {}), navigation data {}: {} satellites{}\n",
+               cfg.gnss.name, cfg.gnss.rate_hz, receiver_mode_name(cfg.gnss_mode), fmt::join(tracked, ", "), nav_name,
+               held.empty() ? "no" : held,
+               skipped > 0 ? fmt::format("; {} records of SBAS or NavIC not read", skipped) : "");
+    fmt::print(log, "navemu: {}\n", egm96_geoid().description);
     targets.gnss = gnss.get();
     channels.push_back(std::move(gnss));
   }

@@ -317,7 +317,13 @@ void UbxDevice::refresh() {
     talker = m.main_talker_id;
   }
   static constexpr const char* kTalkers[] = {"", "GP", "GL", "GN", "GA", "GB", "", "GQ"};
-  talker_ = talker < std::size(kTalkers) && *kTalkers[talker] != '\0' ? kTalkers[talker] : profile_.talker;
+  // Not overridden: the talker of the systems enabled now (GP after CFG-GNSS leaves GPS alone),
+  // or the profile's own when it names one.
+  const std::string_view profile_auto = nmea::main_talker(profile_.systems);
+  const std::string automatic = profile_.talker == profile_auto
+                                    ? std::string(nmea::main_talker(profile_.systems & engine_.systems))
+                                    : profile_.talker;
+  talker_ = talker < std::size(kTalkers) && *kTalkers[talker] != '\0' ? kTalkers[talker] : automatic;
   // High precision mode "cannot be used while in NMEA compatibility mode or when NMEA output is
   // limited to 82 characters" (ZED-F9P integration manual UBX-18010802 3.1.4.5); the u-blox 8
   // profile's protocol 18 has no high precision mode (UBX-13003221 CFG-NMEA flags: highPrec

@@ -350,13 +350,15 @@ TEST(UbxGpsd, UbloxDriverFixSkyRawAndSubframes) {
     SCOPED_TRACE(fmt::format("SKY {}", str(s, "time")));
     const ubx::NavSat& ns = it->second;
     ASSERT_EQ(sats.size(), ns.svs.size());
-    std::map<int, YAML::Node> by_prn;
+    // By gpsd's gnssid and svid (u-blox's numbering; the M8 tracks GPS, GLONASS and QZSS).
+    std::map<std::pair<int, int>, YAML::Node> by_sat;
     for (std::size_t i = 0; i < sats.size(); ++i)
-      if (const auto prn = num(sats[i], "PRN")) by_prn[static_cast<int>(*prn)] = sats[i];
+      if (const auto gnss = num(sats[i], "gnssid"), sv = num(sats[i], "svid"); gnss && sv)
+        by_sat[{static_cast<int>(*gnss), static_cast<int>(*sv)}] = sats[i];
     for (const ubx::NavSatSv& sv : ns.svs) {
-      SCOPED_TRACE(fmt::format("PRN {}", sv.sv_id));
-      const auto gs = by_prn.find(sv.sv_id);
-      ASSERT_NE(gs, by_prn.end()) << "satellite of NAV-SAT missing in SKY";
+      SCOPED_TRACE(fmt::format("gnssId {} svId {}", sv.gnss_id, sv.sv_id));
+      const auto gs = by_sat.find({sv.gnss_id, sv.sv_id});
+      ASSERT_NE(gs, by_sat.end()) << "satellite of NAV-SAT missing in SKY";
       const YAML::Node& g_sat = gs->second;
       EXPECT_EQ(str(g_sat, "used"), (sv.flags & ubx::NavSatSv::kSvUsed) != 0 ? "true" : "false")
           << YAML::Dump(g_sat);
@@ -373,16 +375,16 @@ TEST(UbxGpsd, UbloxDriverFixSkyRawAndSubframes) {
   for (const YAML::Node& r : raws) {
     const YAML::Node data = r["rawdata"];
     if (!data || !data.IsSequence()) continue;
-    std::map<int, double> pr;
+    std::map<std::pair<int, int>, double> pr;  // by (gnssid, svid)
     for (std::size_t i = 0; i < data.size(); ++i) {
-      const auto sv = num(data[i], "svid"), p = num(data[i], "pseudorange");
-      EXPECT_TRUE(sv && p) << YAML::Dump(data[i]);
-      if (sv && p) pr[static_cast<int>(*sv)] = *p;
+      const auto gnss = num(data[i], "gnssid"), sv = num(data[i], "svid"), p = num(data[i], "pseudorange");
+      EXPECT_TRUE(gnss && sv && p) << YAML::Dump(data[i]);
+      if (gnss && sv && p) pr[{static_cast<int>(*gnss), static_cast<int>(*sv)}] = *p;
     }
     const bool found = std::any_of(rawx.begin(), rawx.end(), [&](const ubx::RxmRawx& x) {
       if (x.meas.size() != pr.size()) return false;
       for (const auto& m : x.meas) {
-        const auto it = pr.find(m.sv_id);
+        const auto it = pr.find({m.gnss_id, m.sv_id});
         if (it == pr.end() || std::abs(it->second - m.pr_mes_m) > 1e-5) return false;
       }
       return true;
@@ -615,27 +617,20 @@ TEST(UbxTool, F9pValsetValget) {
 }
 
 // ubxtool -d GALILEO / -e GALILEO (CFG-GNSS, as ubxtool 3.22 sends it to every protocol
-// version) on an F9P profile tracking four systems, at the ESBC station's hour with its real
+// version) on the F9P profile (five systems), at the ESBC station's hour with its real
 // broadcast file: NAV-SAT loses the Galileo satellites and gets them back, GPS stays.
 TEST(UbxTool, GalileoSwitchedOffAndOnChangesNavSat) {
   NAVEMU_REQUIRE_TOOL(ubxtool, "ubxtool", "python3-gps 3.22 (gpsd-clients)");
   NAVEMU_REQUIRE_SHARED();
   TempDir dir("ubxtool-gnss");
-  const fs::path link = dir / "gnss", log = dir / "gnss.ubx", profile = dir / "f9p-four-systems.yaml";
-  {
-    std::string yaml = slurp(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "gnss" / "ublox-f9p.yaml");
-    const std::size_t talker = yaml.find("talker: GP\n");
-    ASSERT_NE(talker, std::string::npos);
-    yaml.replace(talker, 11, "systems: [GPS, GLONASS, Galileo, BeiDou]\n");
-    std::ofstream(profile) << yaml;
-  }
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
   NavemuRun nav(dir, "navemu",
                 fmt::format("scenario: {{status_interval_s: 1, start: '2020-06-25T00:10:00Z', nav: '{}'}}\n"
                             "truth: {{source: stationary, position: {{lat_deg: 55.4936, lon_deg: 8.4568, h_m: 60}}}}\n"
-                            "gnss:\n  profile: '{}'\n  outputs:\n    - {{type: pty, link: '{}'}}\n"
+                            "gnss:\n  profile: ublox-f9p\n  outputs:\n    - {{type: pty, link: '{}'}}\n"
                             "    - {{type: file, path: '{}'}}\nimu: {{enabled: false}}\n",
                             shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx").string(),
-                            profile.string(), link.string(), log.string()),
+                            link.string(), log.string()),
                 60);
   ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
   // Satellites per gnssId in the NAV-SAT ubxtool polls 2.5 s on (the 1 Hz receiver's
@@ -725,21 +720,25 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   const auto rawx = decode_all<ubx::RxmRawx>(frames, ubx::kRxmRawx);
   const auto sfrbx = decode_all<ubx::RxmSfrbx>(frames, ubx::kRxmSfrbx);
   EXPECT_GE(rawx.size(), static_cast<std::size_t>(capture_s - 5.0));
-  std::map<int, std::uint16_t> lock;
+  std::map<std::pair<int, int>, std::uint16_t> lock;  // by (gnssId, svId)
   for (const auto& r : rawx) {
     EXPECT_NE(r.week, 0);
     for (const auto& m : r.meas) {
-      EXPECT_GE(m.locktime_ms, lock[m.sv_id]) << "lock time of PRN " << int(m.sv_id) << " went back";
-      lock[m.sv_id] = m.locktime_ms;
+      const std::pair<int, int> sat{m.gnss_id, m.sv_id};
+      EXPECT_GE(m.locktime_ms, lock[sat]) << "lock time of gnssId " << sat.first << " svId " << sat.second << " went back";
+      lock[sat] = m.locktime_ms;
     }
   }
-  std::map<int, std::vector<lnav::LnavSubframe>> subs;
+  // LNAV subframes of GPS (gnssId 0) and QZSS (5), by satellite.
+  std::map<SatId, std::vector<lnav::LnavSubframe>> subs;
   for (const auto& s : sfrbx) {
     ASSERT_EQ(s.words.size(), 10u);
     lnav::LnavSubframe w{};
     std::copy(s.words.begin(), s.words.end(), w.begin());
     EXPECT_TRUE(lnav::lnav_parity_ok(w));
-    subs[s.sv_id].push_back(w);
+    const std::optional<SatId> sat = SatId::from_ubx(s.gnss_id, s.sv_id);
+    ASSERT_TRUE(sat && (sat->system() == GnssSystem::kGps || sat->system() == GnssSystem::kQzss));
+    subs[*sat].push_back(w);
   }
 
   // convbin, then rnx2rtkp (single point, GPS, ECEF output).
@@ -791,38 +790,49 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   EXPECT_LE(mean3d, 5.0) << "mean 3D error of rnx2rtkp's single-point solutions vs the truth";
 
   // The ephemerides in the navigation file are navemu's: the built-in constellation at the
-  // scenario's start (IODE and toe identify the record; sqrt(A), e, i0 to their LNAV LSBs).
+  // scenario's start (IODE and toe identify the record; sqrt(A), e, i0 to their LNAV LSBs), for
+  // GPS and QZSS, whose LNAV subframes navemu sends.
   const NavData rinex = read_rinex_nav(navf);
-  const NavData truth_nav = nominal_constellation(start);
-  std::set<int> prns_in_file;
-  for (const GpsEphemeris& r : rinex.gps) {
-    SCOPED_TRACE(fmt::format("PRN {} IODE {}", r.sat.number(), r.iode));
-    prns_in_file.insert(r.sat.number());
-    const GpsEphemeris* sent = nullptr;
-    for (const GpsEphemeris& e : truth_nav.gps)
-      if (e.sat == r.sat && (e.iode & 0xFF) == r.iode && std::abs(seconds_between(e.toe, r.toe)) < 16.0) sent = &e;
-    ASSERT_NE(sent, nullptr) << "no record of the built-in constellation has this IODE and toe";
-    EXPECT_NEAR(r.sqrt_a_sqrtm, sent->sqrt_a_sqrtm, std::ldexp(1.0, -19));
-    EXPECT_NEAR(r.e, sent->e, std::ldexp(1.0, -33));
-    EXPECT_NEAR(r.i0_rad, sent->i0_rad, std::ldexp(lnav::kGpsPi, -31) * 1.01);
-    EXPECT_NEAR(r.omega0_rad, std::remainder(sent->omega0_rad, 2 * lnav::kGpsPi), std::ldexp(lnav::kGpsPi, -31) * 1.01);
-    // And the subframes in the capture decode to the same record.
-    const auto& w = subs[r.sat.number()];
-    for (std::size_t i = 0; i + 2 < w.size(); ++i) {
-      if (lnav::decode_tlm_how(w[i]).subframe_id != 1) continue;
-      const auto l = lnav::decode_ephemeris(w[i], w[i + 1], w[i + 2], wt.week);
-      ASSERT_TRUE(l.has_value());
-      EXPECT_EQ(l->iode, r.iode);
-      EXPECT_NEAR(l->toe_s, to_week_tow(r.toe).tow_s, 1e-6);
-      break;
+  const NavData truth_nav = nominal_constellation(start, system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kQzss));
+  std::set<SatId> sats_in_file;
+  for (const auto* records : {&rinex.gps, &rinex.qzss})
+    for (const GpsEphemeris& r : *records) {
+      SCOPED_TRACE(fmt::format("{} IODE {}", r.sat.rinex(), r.iode));
+      sats_in_file.insert(r.sat);
+      const GpsEphemeris* sent = nullptr;
+      for (const auto* made : {&truth_nav.gps, &truth_nav.qzss})
+        for (const GpsEphemeris& e : *made)
+          if (e.sat == r.sat && (e.iode & 0xFF) == r.iode && std::abs(seconds_between(e.toe, r.toe)) < 16.0) sent = &e;
+      ASSERT_NE(sent, nullptr) << "no record of the built-in constellation has this IODE and toe";
+      EXPECT_NEAR(r.sqrt_a_sqrtm, sent->sqrt_a_sqrtm, std::ldexp(1.0, -19));
+      EXPECT_NEAR(r.e, sent->e, std::ldexp(1.0, -33));
+      EXPECT_NEAR(r.i0_rad, sent->i0_rad, std::ldexp(lnav::kGpsPi, -31) * 1.01);
+      EXPECT_NEAR(r.omega0_rad, std::remainder(sent->omega0_rad, 2 * lnav::kGpsPi), std::ldexp(lnav::kGpsPi, -31) * 1.01);
+      // And the subframes in the capture decode to the same record.
+      const auto& w = subs[r.sat];
+      for (std::size_t i = 0; i + 2 < w.size(); ++i) {
+        if (lnav::decode_tlm_how(w[i]).subframe_id != 1) continue;
+        const auto l = lnav::decode_ephemeris(w[i], w[i + 1], w[i + 2], wt.week);
+        ASSERT_TRUE(l.has_value());
+        EXPECT_EQ(l->iode, r.iode);
+        EXPECT_NEAR(l->toe_s, to_week_tow(r.toe).tow_s, 1e-6);
+        break;
+      }
     }
-  }
-  std::set<int> tracked;
+  // Every tracked GPS and QZSS satellite has its ephemeris in the file; GLONASS ones are counted
+  // (navemu does not send GLONASS strings in RXM-SFRBX yet, so RTKLIB has no record of them).
+  std::set<SatId> tracked;
+  std::size_t glonass = 0;
   for (const auto& r : rawx)
-    for (const auto& m : r.meas) tracked.insert(m.sv_id);
-  for (int prn : tracked) EXPECT_TRUE(prns_in_file.count(prn)) << "no ephemeris for tracked PRN " << prn;
-  std::printf("RTKLIB: %zu ephemerides in the navigation file for %zu tracked satellites\n",
-              rinex.gps.size(), tracked.size());
+    for (const auto& m : r.meas)
+      if (const std::optional<SatId> sat = SatId::from_ubx(m.gnss_id, m.sv_id)) {
+        if (sat->system() == GnssSystem::kGlonass) ++glonass;
+        else tracked.insert(*sat);
+      }
+  for (SatId sat : tracked) EXPECT_TRUE(sats_in_file.count(sat)) << "no ephemeris for tracked " << sat.rinex();
+  std::printf("RTKLIB: %zu GPS and %zu QZSS ephemerides in the navigation file for %zu tracked satellites "
+              "(and %zu GLONASS measurements)\n",
+              rinex.gps.size(), rinex.qzss.size(), tracked.size(), glonass);
 }
 
 // RTKLIB's stock u-blox command files (../shared/clients/rtklib-ubx-cmd, RTKLIB 2.4.3's

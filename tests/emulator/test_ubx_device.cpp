@@ -232,12 +232,12 @@ TEST_F(UbxDeviceTest, CfgMsgPollAndBothSetForms) {
   EXPECT_EQ(poll_rate({ubx::kClassNmea, 0x04}), 1);
   std::string before;
   d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, before);
-  EXPECT_NE(before.find("$GPRMC"), std::string::npos);
+  EXPECT_NE(before.find("$GNRMC"), std::string::npos);
   EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{ubx::kClassNmea, 0x04, 0})), ubx::kCfgMsg));
   std::string after;
   d.encode_epoch(a_fix(kT0), EpochMeasurements{}, 0, after);
-  EXPECT_EQ(after.find("$GPRMC"), std::string::npos);
-  EXPECT_NE(after.find("$GPGGA"), std::string::npos);
+  EXPECT_EQ(after.find("$GNRMC"), std::string::npos);
+  EXPECT_NE(after.find("$GNGGA"), std::string::npos);
 
   // Messages of an output class that this receiver does not produce (gpsd's NAV-TIMELS, NMEA
   // GBS) are acknowledged as on the real part; an unknown class is refused.
@@ -1096,7 +1096,7 @@ TEST_F(UbxDeviceTest, EachPortKeepsItsOwnRatesAndProtocols) {
       d.encode(port, out);
       return out;
     };
-    EXPECT_NE(epoch(ReceiverPort::kUsb).find("$GPGGA"), std::string::npos) << p->ubx->protver;
+    EXPECT_NE(epoch(ReceiverPort::kUsb).find("$GNGGA"), std::string::npos) << p->ubx->protver;
     EXPECT_EQ(epoch(ReceiverPort::kUart1), epoch(ReceiverPort::kUsb));
 
     const std::vector<std::uint8_t> on = frame(ubx::CfgMsgCurrentPort{0x01, 0x07, 1});
@@ -1118,7 +1118,7 @@ TEST_F(UbxDeviceTest, EachPortKeepsItsOwnRatesAndProtocols) {
   d.encode(ReceiverPort::kUsb, usb);
   d.encode(ReceiverPort::kUart1, uart1);
   EXPECT_EQ(usb.find('$'), std::string::npos);
-  EXPECT_NE(uart1.find("$GPGGA"), std::string::npos);
+  EXPECT_NE(uart1.find("$GNGGA"), std::string::npos);
 
   // A baud rate is a UART's: set over USB, UART1 changes after the ACK and USB has none.
   set.values = {{0x40520001, 115200}};  // CFG-UART1-BAUDRATE
@@ -1876,14 +1876,14 @@ TEST_F(UbxDeviceTest, PubxConfigUbxOnlyStopsNmeaOnThatPort) {
     SCOPED_TRACE(p->ubx->protver);
     UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
     EXPECT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{0x01, 0x07, 1})), ubx::kCfgMsg));
-    EXPECT_NE(epoch_output(d, 0).find("$GPGGA"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 0).find("$GNGGA"), std::string::npos);
     EXPECT_EQ(send_nmea(d, "$PUBX,41,1,0001,0001,38400,0*24\r\n"), "");
     EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), p->baud == 38400 ? std::nullopt : std::optional<int>(38400));
     EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), std::nullopt);
     const std::string out = epoch_output(d, 1);
     EXPECT_EQ(out.find('$'), std::string::npos) << "no NMEA after PUBX,41 with outProto UBX";
     EXPECT_EQ(of_type(frames_of(out), ubx::kNavPvt).size(), 1u);
-    EXPECT_NE(epoch_output(d, 2, ReceiverPort::kUsb).find("$GPGGA"), std::string::npos) << "USB keeps NMEA";
+    EXPECT_NE(epoch_output(d, 2, ReceiverPort::kUsb).find("$GNGGA"), std::string::npos) << "USB keeps NMEA";
     const ubx::CfgPrt prt = cfg_prt_of(d, ubx::kPortUart1);
     EXPECT_EQ(prt.in_proto_mask, ubx::kProtoUbx);
     EXPECT_EQ(prt.out_proto_mask, ubx::kProtoUbx);
@@ -1896,7 +1896,7 @@ TEST_F(UbxDeviceTest, PubxConfigUbxOnlyStopsNmeaOnThatPort) {
     ubx::CfgPrt back = prt;
     back.in_proto_mask = back.out_proto_mask = ubx::kProtoUbx | ubx::kProtoNmea;
     EXPECT_TRUE(only_ack(send(d, frame(back)), ubx::kCfgPrt));
-    EXPECT_NE(epoch_output(d, 4).find("$GPGGA"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 4).find("$GNGGA"), std::string::npos);
   }
 }
 
@@ -1919,7 +1919,7 @@ TEST_F(UbxDeviceTest, PubxConfigDescriptionExampleAndOtherPorts) {
   EXPECT_EQ(d.take_baud_change(ReceiverPort::kUsb), std::nullopt);
   EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), std::nullopt);
   EXPECT_EQ(epoch_output(d, 0, ReceiverPort::kUsb).find('$'), std::string::npos);
-  EXPECT_NE(epoch_output(d, 0, ReceiverPort::kUart1).find("$GPGGA"), std::string::npos);
+  EXPECT_NE(epoch_output(d, 0, ReceiverPort::kUart1).find("$GNGGA"), std::string::npos);
 }
 
 // PUBX,40 sets one sentence's rate on each port given, like CFG-MSG: the description's example
@@ -1930,19 +1930,19 @@ TEST_F(UbxDeviceTest, PubxRateSetsTheSentenceRatePerPort) {
     SCOPED_TRACE(p->ubx->protver);
     UbxDevice d(*p, ReceiverMode::kStandalone, empty_nav());
     const ubx::MsgId gll{ubx::kClassNmea, 0x01}, zda{ubx::kClassNmea, 0x08};
-    EXPECT_NE(epoch_output(d, 0).find("$GPGLL"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 0).find("$GNGLL"), std::string::npos);
     EXPECT_EQ(send_nmea(d, "$PUBX,40,GLL,1,0,0,0,0,0*5D\r\n"), "");
     EXPECT_EQ(d.rate(gll, ubx::kPortDdc), 1);
     for (std::uint8_t q : {ubx::kPortUart1, ubx::kPortUart2, ubx::kPortUsb, ubx::kPortSpi}) EXPECT_EQ(d.rate(gll, q), 0);
-    EXPECT_EQ(epoch_output(d, 1).find("$GPGLL"), std::string::npos);
-    EXPECT_NE(epoch_output(d, 1).find("$GPGGA"), std::string::npos);
-    EXPECT_NE(epoch_output(d, 1, ReceiverPort::kI2c).find("$GPGLL"), std::string::npos);
+    EXPECT_EQ(epoch_output(d, 1).find("$GNGLL"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 1).find("$GNGGA"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 1, ReceiverPort::kI2c).find("$GNGLL"), std::string::npos);
 
     EXPECT_EQ(send_nmea(d, "$PUBX,40,ZDA,0,1,0,0,0,0*45\r\n"), "");
     EXPECT_EQ(d.rate(zda, ubx::kPortUart1), 1);
     EXPECT_EQ(d.rate(zda, ubx::kPortUsb), 0);
-    EXPECT_NE(epoch_output(d, 2).find("$GPZDA"), std::string::npos);
-    EXPECT_EQ(epoch_output(d, 2, ReceiverPort::kUsb).find("$GPZDA"), std::string::npos);
+    EXPECT_NE(epoch_output(d, 2).find("$GNZDA"), std::string::npos);
+    EXPECT_EQ(epoch_output(d, 2, ReceiverPort::kUsb).find("$GNZDA"), std::string::npos);
     if (p == &f9p_) {
       EXPECT_EQ(d.config().get(0x209100d9), 1u);  // CFG-MSGOUT-NMEA_ID_ZDA_UART1
     }
@@ -1993,22 +1993,23 @@ TEST_F(UbxDeviceTest, PubxPollsAnswerWithTheLatestEpoch) {
   EXPECT_EQ(d.counters().polls, 3u);
 }
 
-// Standard polls: $EIGPQ,RMC*3A (ZED-F9P description 4.2.9) is answered with the RMC the port
-// sends at that epoch; a sentence the port does not send (ZDA) is answered too; a poll naming
-// another talker ID than the receiver's (GN: the receiver is GP) and a message the device does
-// not produce (GBS) get nothing.
+// Standard polls: $EIGNQ,RMC*24 (ZED-F9P description 4.2.9, "GNQ: poll a standard message
+// (if the current talker ID is GN)") is answered with the RMC the port sends at that epoch; a
+// sentence the port does not send (ZDA) is answered too; a poll naming another talker ID than
+// the receiver's (GP: the receiver of several systems is GN) and a message the device does not
+// produce (GBS) get nothing.
 TEST_F(UbxDeviceTest, StandardPollsAnswerWithTheSentence) {
   UbxDevice d(f9p_, ReceiverMode::kStandalone, empty_nav());
   const std::string epoch = epoch_output(d, 0);
-  const std::string rmc = send_nmea(d, "$EIGPQ,RMC*3A\r\n");
-  ASSERT_TRUE(rmc.starts_with("$GPRMC,130000.00,A,3218.00000,N,09054.00000,W,")) << rmc;
+  const std::string rmc = send_nmea(d, "$EIGNQ,RMC*24\r\n");
+  ASSERT_TRUE(rmc.starts_with("$GNRMC,130000.00,A,3218.00000,N,09054.00000,W,")) << rmc;
   EXPECT_NE(epoch.find(rmc), std::string::npos) << "the epoch's own RMC";
   EXPECT_EQ(std::count(rmc.begin(), rmc.end(), '\n'), 1);
-  const std::string zda = send_nmea(d, "$EIGPQ,ZDA*39\r\n");
-  EXPECT_TRUE(zda.starts_with("$GPZDA,130000.00,17,11,2010,")) << zda;
+  const std::string zda = send_nmea(d, "$EIGNQ,ZDA*27\r\n");
+  EXPECT_TRUE(zda.starts_with("$GNZDA,130000.00,17,11,2010,")) << zda;
   EXPECT_EQ(nmea::check(zda).status, nmea::Checked::kOk);
-  EXPECT_EQ(send_nmea(d, "$EIGNQ,RMC*24\r\n"), "");
-  EXPECT_EQ(send_nmea(d, "$EIGPQ,GBS*30\r\n"), "");
+  EXPECT_EQ(send_nmea(d, "$EIGPQ,RMC*3A\r\n"), "");
+  EXPECT_EQ(send_nmea(d, "$EIGNQ,GBS*2E\r\n"), "");
   EXPECT_EQ(d.counters().nmea_commands, 2u);
   EXPECT_EQ(d.counters().nmea_ignored, 2u);
 }
@@ -2030,7 +2031,7 @@ TEST_F(UbxDeviceTest, MalformedNmeaInputIsIgnoredAndCounted) {
   EXPECT_EQ(replies.find('$'), std::string::npos) << replies;
   EXPECT_EQ(of_type(frames_of(replies), ubx::kMonVer).size(), 1u);
   EXPECT_EQ(d.take_baud_change(ReceiverPort::kUart1), std::nullopt);
-  EXPECT_NE(epoch_output(d, 1).find("$GPGGA"), std::string::npos);
+  EXPECT_NE(epoch_output(d, 1).find("$GNGGA"), std::string::npos);
   EXPECT_EQ(d.counters().nmea_commands, 0u);
   EXPECT_EQ(d.counters().nmea_ignored, 4u);
 
@@ -2047,8 +2048,8 @@ TEST_F(UbxDeviceTest, MalformedNmeaInputIsIgnoredAndCounted) {
 // INF-WARNING where CFG-INFMSG says so; nothing where the warning bit is off.
 TEST_F(UbxDeviceTest, OtherMakersSentencesGetAnInvalidFormatWarning) {
   UbxDevice m8(m8_, ReceiverMode::kStandalone, empty_nav());
-  EXPECT_EQ(send_nmea(m8, "$PMTK605*31\r\n"), "$GPTXT,01,01,01,PMTK inv format*3E\r\n");
-  EXPECT_EQ(send_nmea(m8, "$PASHQ,RID*28\r\n"), "$GPTXT,01,01,01,PASH inv format*36\r\n");
+  EXPECT_EQ(send_nmea(m8, "$PMTK605*31\r\n"), "$GNTXT,01,01,01,PMTK inv format*20\r\n");
+  EXPECT_EQ(send_nmea(m8, "$PASHQ,RID*28\r\n"), "$GNTXT,01,01,01,PASH inv format*28\r\n");
   EXPECT_EQ(m8.counters().nmea_commands, 0u);
   EXPECT_EQ(m8.counters().polls, 0u);
 
@@ -2080,11 +2081,13 @@ TEST_F(UbxDeviceTest, NmeaVersionAndTalkerFollowTheirItems) {
   };
   std::vector<std::string> rmc = sentence("RMC");
   ASSERT_EQ(rmc.size(), 14u);
-  EXPECT_EQ(rmc[0], "GPRMC");
+  EXPECT_EQ(rmc[0], "GNRMC") << "main talker 0 (auto): GN for several systems";
   EXPECT_EQ(sentence("GSA").size(), 19u) << "NMEA 4.10: the system ID";
 
-  set_items(d, {{"CFG-NMEA-PROTVER", 23}});
-  EXPECT_EQ(sentence("RMC").size(), 13u);
+  set_items(d, {{"CFG-NMEA-PROTVER", 23}, {"CFG-NMEA-MAINTALKERID", 1}});
+  rmc = sentence("RMC");
+  EXPECT_EQ(rmc.size(), 13u);
+  EXPECT_EQ(rmc[0], "GPRMC");
   EXPECT_EQ(sentence("GSA").size(), 18u);
   set_items(d, {{"CFG-NMEA-PROTVER", 21}, {"CFG-NMEA-MAINTALKERID", 3}});
   rmc = sentence("RMC");
