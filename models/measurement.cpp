@@ -181,6 +181,7 @@ struct MeasurementGenerator::State {
   };
   SatTable<FlightTime> flight_time;
   SatTable<double> below_horizon_until_s;  // no orbit evaluation before then
+  SatTable<GlonassArc> glonass_arcs;  // each GLONASS satellite's record in use, integrated once
   Vec3 below_horizon_from = Vec3::Zero();  // the receiver's place when those were decided
   std::optional<GpsTime> last;
   std::optional<GpsTime> event_origin;  // the events' times count from here
@@ -488,8 +489,14 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     const auto* glonass = std::get_if<const GlonassEphemeris*>(&record);
     const int glonass_channel = glonass ? (*glonass)->frequency_channel : 0;
     State::FlightTime& flight = st.flight_time.try_emplace(sat, State::FlightTime{t_s, 0.075, 0.0}).first;
+    const GlonassArc* glonass_arc = nullptr;
+    if (glonass != nullptr) {
+      GlonassArc& a = st.glonass_arcs.try_emplace(sat).first;
+      if (!a.of(**glonass)) a = GlonassArc(**glonass);
+      glonass_arc = &a;
+    }
     const SatGeometry g =
-        sat_geometry(record, t_signal, rx, flight.tau_s + flight.rate * (t_s - flight.t_s));
+        sat_geometry(record, t_signal, rx, flight.tau_s + flight.rate * (t_s - flight.t_s), glonass_arc);
     flight = {t_s, g.flight_time_s, g.range_rate_mps / c};
     if (g.dir.el_rad < kFarBelow_rad) st.below_horizon_until_s.try_emplace(sat).first = t_s + kFarBelowSkip_s;
     // The scene: blocked, reflected, attenuated signals (open sky without one).

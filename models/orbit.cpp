@@ -261,22 +261,17 @@ double glonass_sat_clock_s(const GlonassEphemeris& eph, GpsTime t) {
   return -eph.tau_n_s + eph.gamma_n * seconds_between(t, eph.tb);
 }
 
-SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t) {
-  // Fourth-order Runge-Kutta from tb to t (A.3.1.2) in steps of at most 60 s.
-  constexpr double kMaxStep_s = 60.0;
-  const double span_s = seconds_between(t, eph.tb);
-  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(span_s) / kMaxStep_s)));
-  const double h = span_s / steps;
-  GloState s{eph.p_pz90_m, eph.v_pz90_mps};
+namespace {
+// One fourth-order Runge-Kutta step of h seconds (A.3.1.2).
+GloState glonass_step(const GloState& s, const Vec3& a_ls, double h) {
   const auto add = [](const GloState& a, const GloState& d, double k) { return GloState{a.p + k * d.p, a.v + k * d.v}; };
-  for (int i = 0; i < steps; ++i) {
-    const GloState k1 = glonass_derivative(s, eph.a_pz90_mps2);
-    const GloState k2 = glonass_derivative(add(s, k1, h / 2.0), eph.a_pz90_mps2);
-    const GloState k3 = glonass_derivative(add(s, k2, h / 2.0), eph.a_pz90_mps2);
-    const GloState k4 = glonass_derivative(add(s, k3, h), eph.a_pz90_mps2);
-    s.p += h / 6.0 * (k1.p + 2.0 * k2.p + 2.0 * k3.p + k4.p);
-    s.v += h / 6.0 * (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v);
-  }
+  const GloState k1 = glonass_derivative(s, a_ls);
+  const GloState k2 = glonass_derivative(add(s, k1, h / 2.0), a_ls);
+  const GloState k3 = glonass_derivative(add(s, k2, h / 2.0), a_ls);
+  const GloState k4 = glonass_derivative(add(s, k3, h), a_ls);
+  return {s.p + h / 6.0 * (k1.p + 2.0 * k2.p + 2.0 * k3.p + k4.p), s.v + h / 6.0 * (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v)};
+}
+SatState glonass_output(const GlonassEphemeris& eph, const GloState& s, GpsTime t) {
   SatState out;
   out.p_ecef_m = s.p;
   out.v_ecef_mps = s.v;
@@ -285,6 +280,42 @@ SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t) {
   out.clock_bias_s = glonass_sat_clock_s(eph, t);
   out.clock_drift_sps = eph.gamma_n;
   return out;
+}
+}  // namespace
+
+SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t) {
+  // Fourth-order Runge-Kutta from tb to t (A.3.1.2) in steps of at most 60 s.
+  constexpr double kMaxStep_s = 60.0;
+  const double span_s = seconds_between(t, eph.tb);
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(span_s) / kMaxStep_s)));
+  const double h = span_s / steps;
+  GloState s{eph.p_pz90_m, eph.v_pz90_mps};
+  for (int i = 0; i < steps; ++i) s = glonass_step(s, eph.a_pz90_mps2, h);
+  return glonass_output(eph, s, t);
+}
+
+GlonassArc::GlonassArc(const GlonassEphemeris& eph) : eph_(&eph), tb_(eph.tb), a_ls_(eph.a_pz90_mps2) {
+  p_[kHalfNodes] = eph.p_pz90_m;
+  v_[kHalfNodes] = eph.v_pz90_mps;
+  for (const double dir : {1.0, -1.0}) {
+    GloState s{eph.p_pz90_m, eph.v_pz90_mps};
+    for (int k = 1; k <= kHalfNodes; ++k) {
+      s = glonass_step(s, eph.a_pz90_mps2, dir * kNodeStep_s);
+      const auto i = static_cast<std::size_t>(kHalfNodes + static_cast<int>(dir) * k);
+      p_[i] = s.p;
+      v_[i] = s.v;
+    }
+  }
+}
+
+SatState GlonassArc::state(GpsTime t) const {
+  const double span_s = seconds_between(t, eph_->tb);
+  const double node = std::round(span_s / kNodeStep_s);
+  if (std::abs(node) > kHalfNodes) return glonass_sat_state(*eph_, t);
+  const auto i = static_cast<std::size_t>(kHalfNodes + static_cast<int>(node));
+  const double h = span_s - node * kNodeStep_s;
+  const GloState at_node{p_[i], v_[i]};
+  return glonass_output(*eph_, h == 0.0 ? at_node : glonass_step(at_node, eph_->a_pz90_mps2, h), t);
 }
 
 GlonassEphemeris reuploaded(const GlonassEphemeris& eph, GpsTime tb) {
@@ -327,7 +358,7 @@ SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const R
 }
 
 SatGeometry sat_geometry(const BroadcastRecord& r, GpsTime t_receive, const ReceiverPlace& rx,
-                         double tau_guess_s) {
+                         double tau_guess_s, const GlonassArc* arc) {
   // Light-time equation, solved by fixed-point iteration on the flight time tau (the error
   // shrinks by |v_sat| / c ~ 1e-5 per step). Once a step changes tau by less than 1e-14 s
   // (the satellite moves 40 nm in that time) the state just evaluated is the answer.
@@ -342,7 +373,7 @@ SatGeometry sat_geometry(const BroadcastRecord& r, GpsTime t_receive, const Rece
   for (int i = 0; i < 10; ++i) {
     const GpsTime t_tx = t_receive.plus_s(-tau_s);
     if (t_tx != evaluated_at) {
-      s = record_sat_state(r, t_tx);
+      s = arc != nullptr ? arc->state(t_tx) : record_sat_state(r, t_tx);
       evaluated_at = t_tx;
     }
     const double next = (rotate_earth(s.p_ecef_m, tau_s) - rx.p_ecef_m).norm() / kSpeedOfLight_mps;

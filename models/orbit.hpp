@@ -2,6 +2,8 @@
 // Satellite position, velocity and clock from a GPS broadcast ephemeris
 // (IS-GPS-200 20.3.3.4.3, Table 20-IV; satellite clock 20.3.3.3.3.1).
 
+#include <array>
+
 #include "models/ephemeris.hpp"
 #include "models/geodesy.hpp"
 #include "core/time.hpp"
@@ -45,6 +47,32 @@ SatState broadcast_sat_state(const KeplerEphemeris& eph, GpsTime t);
 SatState glonass_sat_state(const GlonassEphemeris& eph, GpsTime t);
 // That clock alone, -tau_n + gamma_n (t - tb) (to turn the satellite's time into GPS time).
 double glonass_sat_clock_s(const GlonassEphemeris& eph, GpsTime t);
+
+// One GLONASS record's states on a 60 s grid from tb - 16 min to tb + 16 min, each the Runge-Kutta
+// integration from tb in 60 s steps (A.3.1.2), computed once: a state at t is then one step
+// from the nearest node (|t - node| <= 30 s) instead of up to 16 from tb, within 0.2 mm of
+// glonass_sat_state (tests/models/test_orbit_multi_gnss.cpp). Beyond the grid: glonass_sat_state.
+// For a receiver that evaluates the same record at every epoch; no allocation.
+class GlonassArc {
+ public:
+  GlonassArc() = default;
+  explicit GlonassArc(const GlonassEphemeris& eph);
+  // Whether the arc was made for this record (at this address, with these data: storage that
+  // is reused for another record does not pass).
+  bool of(const GlonassEphemeris& eph) const {
+    return eph_ == &eph && tb_ == eph.tb && p_[kHalfNodes] == eph.p_pz90_m && v_[kHalfNodes] == eph.v_pz90_mps &&
+           a_ls_ == eph.a_pz90_mps2;
+  }
+  SatState state(GpsTime t) const;
+
+ private:
+  static constexpr int kHalfNodes = 16;
+  static constexpr double kNodeStep_s = 60.0;
+  const GlonassEphemeris* eph_ = nullptr;
+  GpsTime tb_;
+  Vec3 a_ls_ = Vec3::Zero();
+  std::array<Vec3, 2 * kHalfNodes + 1> p_{}, v_{};
+};
 
 // Satellite clock polynomial only (no relativistic term), used to turn the satellite's own
 // time into GPS system time (IS-GPS-200 20.3.3.3.3.1).
@@ -93,10 +121,10 @@ ReceiverPlace receiver_place(const Vec3& p_rx_ecef_m, const Vec3& v_rx_ecef_mps 
 SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const ReceiverPlace& rx,
                              double tau_guess_s = 0.075);
 // The same for a record of any system (broadcast_sat_state, glonass_sat_state); `r` must hold
-// a record.
+// a record. `arc`: the GLONASS record's arc when the caller keeps one (GlonassArc).
 SatState record_sat_state(const BroadcastRecord& r, GpsTime t);
 SatGeometry sat_geometry(const BroadcastRecord& r, GpsTime t_receive, const ReceiverPlace& rx,
-                         double tau_guess_s = 0.075);
+                         double tau_guess_s = 0.075, const GlonassArc* arc = nullptr);
 SatGeometry gps_sat_geometry(const GpsEphemeris& eph, GpsTime t_receive, const Vec3& p_rx_ecef_m,
                              const Vec3& v_rx_ecef_mps = Vec3::Zero());
 
