@@ -170,10 +170,11 @@ constexpr std::array<GeoSlot, 5> kBeidouGeo{{{1, 140.0}, {2, 80.0}, {3, 110.5}, 
 constexpr double kBeidouIgsoNodeLonDeg = 118.0;  // where the IGSO ground tracks cross the equator
 
 // GLONASS: 24 slots in 3 planes 120 deg apart, 8 per plane 45 deg apart, plane 2 15 deg ahead of
-// plane 1 and plane 3 15 deg ahead of plane 2 (GLONASS ICD 5.1, 3.1: 19 100 km, 64.8 deg, period
-// 11 h 15 min 44 s), slots 1-8, 9-16, 17-24. Antipodal slots (n, n + 4 of a plane) share a
-// frequency channel (ICD 3.3.1.1), as the IAC constellation table lists them.
-constexpr double kGlonassA_m = 25'510'000.0;
+// plane 1 and plane 3 15 deg ahead of plane 2 (GLONASS ICD 5.1, 3.1: 64.8 deg, period 11 h 15 min
+// 44 s, so a = (mu (T / 2 pi)^2)^(1/3) = 25 508 km), slots 1-8, 9-16, 17-24. Antipodal slots
+// (n, n + 4 of a plane) share a frequency channel (ICD 3.3.1.1), as the IAC constellation table
+// lists them.
+constexpr double kGlonassA_m = 25'508'000.0;
 constexpr std::array<int, 24> kGlonassChannels{1, -4, 5, 6, 1, -4, 5, 6, -2, -7, 0, -1,
                                                -2, -7, 0, -1, 4, -3, 3, 2, 4, -3, 3, 2};
 
