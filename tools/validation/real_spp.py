@@ -126,7 +126,7 @@ def main():
           "Configuration: `tools/real-vs-synthetic` (imported), `navemu obs --nav <the station's "
           f"nav file> --receiver geodetic --sisre 0.6` (GEONET 2005) / `--sisre 0.4` (ESBC 2020) "
           f"`--interval 30`, seeds 1..{seeds}{' (quick mode; the full run uses 30)' if a.quick else ''}; "
-          "`navemu spp --mask 15 --iono klobuchar --tropo saastamoinen`. Metres.", "",
+          "`navemu spp --mask 15 --iono klobuchar --tropo saastamoinen --systems G`. Metres.", "",
           "| station | figure | real | navemu (median) | navemu seed range | ratio | band 1/1.5..1.5 |",
           "|---|---|---|---|---|---|---|"] + table + [""]
     if png:

@@ -49,7 +49,7 @@ CAPTURES = [
      "standard-precision part, has no time mode (the F9P profiles have it)"),
     ("gpsd/ublox-glo.log", "M10 (GLONASS)", "u-blox M10, PROTVER 34.10", "ublox-m8", False,
      "GLONASS-only capture with 3-4 satellites (2D and 3D fixes, pDOP up to 99.99): a degraded, "
-     "single-constellation sky that navemu's open-sky GPS constellation does not reproduce "
+     "single-constellation sky that navemu's open multi-GNSS sky does not reproduce "
      "(no M10 profile either; ublox-m8 is used)"),
     ("gpsd/ublox-zed-f9p-sfrbx.log", "ZED-F9P", "u-blox ZED-F9P, HPG 1.12", "ublox-f9p", True, ""),
     ("gpsd/ublox-zed-f9t-ubx_nmea_l5.log", "ZED-F9T (L5)", "u-blox ZED-F9T-20B, TIM 2.25",
@@ -257,8 +257,10 @@ def main():
           "the matching u-blox profile with NAV-PVT enabled, stationary at the capture's mean "
           "NAV-PVT position, starting at its first NAV-PVT time (UTC) and running as long as the "
           f"capture{f' (quick mode: at most {QUICK_MAX_S} s, seed 1)' if a.quick else ''}; navemu "
-          f"figures pool seeds 1..{seeds}. navemu uses its built-in 24-slot GPS constellation (no "
-          "broadcast file of those days is in ../shared). Band: navemu's median hAcc and vAcc "
+          f"figures pool seeds 1..{seeds}. navemu uses its built-in constellations of the systems "
+          "the profile tracks at power-up (ublox-m8: GPS, GLONASS, QZSS; ublox-f9p: GPS, GLONASS, "
+          "Galileo, BeiDou, QZSS; no broadcast file of those days is in ../shared). Band: navemu's "
+          "median hAcc and vAcc "
           "within a factor 2 of the real receiver's (ratio navemu / real).", "",
           "| capture | receiver | profile | start (UTC) | s | real epochs | navemu epochs | "
           "quantity | real median | real 95 % | navemu median | navemu 95 % | band |",
