@@ -10,6 +10,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/satellite.hpp"
@@ -115,6 +116,24 @@ struct KlobucharCoefficients {
   std::array<double, 4> beta{};   // s, s/semicircle, s/semicircle^2, s/semicircle^3
 };
 
+// A broadcast offset between two time scales (RINEX 3.05 navigation header TIME SYSTEM CORR;
+// RINEX 4.00 "> STO" record): offset(t) = a0 + a1 (t - t_ref) + a2 (t - t_ref)^2, seconds.
+// `type` names the pair as RINEX does, the first scale minus the second: GAGP = GST - GPST
+// (the Galileo GGTO, OS SIS ICD 2.0 5.1.8), GPUT = GPST - UTC(USNO), GAUT = GST - UTC,
+// BDUT = BDT - UTC, QZGP = QZSST - GPST, GLGP = GLONASST - GPST (tau_GPS, the fractional part),
+// GLUT = GLONASST - UTC(SU) (= -tau_c), leap seconds excluded throughout.
+struct TimeSystemOffset {
+  std::string type;  // four letters, e.g. "GAGP"
+  double a0_s = 0.0, a1_sps = 0.0, a2_sps2 = 0.0;
+  GpsTime t_ref;       // reference time of the polynomial, as GPS time
+  std::string source;  // "file.rnx:7"
+
+  double at_s(GpsTime t) const {
+    const double dt_s = seconds_between(t, t_ref);
+    return a0_s + (a1_sps + a2_sps2 * dt_s) * dt_s;
+  }
+};
+
 struct NavData {
   double rinex_version = 0.0;
   // The records per system, every one in file order (several may share an issue of data).
@@ -125,6 +144,21 @@ struct NavData {
   std::vector<GlonassEphemeris> glonass;
   std::optional<KlobucharCoefficients> klobuchar;
   std::optional<int> leap_seconds;  // GPS - UTC from the header, if given
+  // System time offsets in file order (a type may recur with newer reference times).
+  std::vector<TimeSystemOffset> time_offsets;
+  // The offset of `type` that applies at t: the latest reference time not after t, else the
+  // earliest one given; null when the file has none of that type.
+  const TimeSystemOffset* time_offset(std::string_view type, GpsTime t) const {
+    const TimeSystemOffset* best = nullptr;
+    for (const TimeSystemOffset& o : time_offsets) {
+      if (o.type != type) continue;
+      const bool applies = o.t_ref <= t, best_applies = best != nullptr && best->t_ref <= t;
+      if (best == nullptr || (applies && (!best_applies || o.t_ref > best->t_ref)) ||
+          (!applies && !best_applies && o.t_ref < best->t_ref))
+        best = &o;
+    }
+    return best;
+  }
   int skipped_records = 0;          // records of the systems not read (parsed past)
   std::string source;               // file name
   // Navigation data that never run out: the built-in constellation's satellites get a new data

@@ -69,9 +69,12 @@ int leap_seconds_at_gps(GpsTime t, std::optional<int> after_table_s = {});
 GpsTime gps_from_utc(const CalendarTime& utc, std::optional<int> after_table_s = {});
 
 // The other systems' time scales, in whole seconds from GPS time or UTC:
-// BDT = GPST - 14 s (BDS-SIS-ICD-B1I 3.0, 5.1.3.2); GLONASS time = UTC(SU) + 3 h (GLONASS ICD
-// 5.1, 3.3.3); GST runs with GPST (Galileo OS SIS ICD 2.1, 5.1.2; the GGTO aside).
+// BDT = GPST - 14 s (BDS-SIS-ICD-B1I 3.0, 3.3); GLONASS time = UTC(SU) + 3 h (GLONASS ICD
+// 5.1, 3.3.3); GST runs with GPST (Galileo OS SIS ICD 2.1, 5.1.2; the GGTO aside). Week 0 of
+// BDT began at GPS week 1356 (2006-01-01), week 0 of GST at GPS week 1024 (1999-08-22).
 inline constexpr int kGpsMinusBdt_s = 14;
+inline constexpr int kBdtWeek0InGpsWeeks = 1356;
+inline constexpr int kGstWeek0InGpsWeeks = 1024;
 inline constexpr int kGlonassMinusUtc_s = 3 * 3600;
 CalendarTime utc_from_gps(GpsTime t, std::optional<int> after_table_s = {});
 // Unix time (nanoseconds since 1970-01-01 UTC, leap seconds excluded, as CLOCK_REALTIME) to GPS

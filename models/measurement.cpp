@@ -453,6 +453,15 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     st.below_horizon_from = p_rx;
   }
   if (out.t_true >= st.renew_at) st.renew(out.t_true);  // renewing data (the built-in sky)
+  // Galileo and QZSS satellites keep their systems' time: GST = GPST + GGTO (Galileo OS SIS ICD
+  // 2.0 5.1.8; the navigation data's GAGP), QZSST = GPST + QZGP. Against the receiver's GPS time
+  // their pseudoranges come short by c times that offset, which the receiver's inter-system
+  // bias takes up (models/solver.hpp). Zero where the data give none (the built-in sky).
+  const auto offset_s = [&](std::string_view type) {
+    const TimeSystemOffset* o = nav_.time_offset(type, out.t_true);
+    return o != nullptr ? o->at_s(out.t_true) : 0.0;
+  };
+  const double gst_minus_gpst_s = offset_s("GAGP"), qzsst_minus_gpst_s = offset_s("QZGP");
   for (SatId sat : st.sat_ids) {
     if (!(active_systems_ & system_bit(sat.system()))) {  // switched off: not tracked
       st.receivable_since.erase(sat);
@@ -610,8 +619,11 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     const double l1_delay_s = group_delay_s(record, Band::kL1, carrier_frequency_hz(l1.id, glonass_channel));
     m.sat_clock_m = c * (g.sat.clock_bias_s - l1_delay_s);
     const double rx_clock_m = c * out.rx_clock_bias_s;
-    const double common_m = m.range_m + rx_clock_m - c * g.sat.clock_bias_s + m.tropo_hydro_m +
-                            m.tropo_wet_m + m.sat_error_m;
+    const double system_time_s = sat.system() == GnssSystem::kGalileo ? gst_minus_gpst_s
+                                 : sat.system() == GnssSystem::kQzss  ? qzsst_minus_gpst_s
+                                                                      : 0.0;
+    const double common_m = m.range_m + rx_clock_m - c * (g.sat.clock_bias_s + system_time_s) +
+                             m.tropo_hydro_m + m.tropo_wet_m + m.sat_error_m;
     const double rate_mps = m.range_rate_mps + c * (out.rx_clock_drift_sps - g.sat.clock_drift_sps);
 
     const int n_bands = cfg_.dual_frequency_signals ? 3 : 1;

@@ -82,8 +82,6 @@ bool may_be_blank(std::string_view field) { return field == "spare" || field == 
 
 constexpr int kOrbitLines = 7;
 constexpr double kHalfWeek_s = 302400.0;
-// BDT's week 0 began at GPS week 1356 (2006-01-01 00:00:00 UTC; BDS-SIS-ICD-B1I 3.0 3.3).
-constexpr int kBdtWeek0InGpsWeeks = 1356;
 
 // A continuation (BROADCAST ORBIT) line: the first `indent` columns are blank and something
 // follows (3X in RINEX 2, 4X in RINEX 3 and 4).
@@ -435,6 +433,66 @@ std::array<double, 4> read_four(const Lines& lines, int n, std::size_t col, cons
   return out;
 }
 
+// The reference time of a system time offset given as seconds and week of its first scale
+// (RINEX 3.05 TIME SYSTEM CORR: T "seconds into GPS/GAL/BDS/IRN week", W "GPS/GAL/IRN/BDS
+// week, continuous number"): BDS weeks count from 2006 and BDT is 14 s behind GPS time (BDS
+// ICD 3.0 section 4.2); Galileo and QZSS share GPS's numbering in RINEX. GLONASS corrections
+// carry W = 0 and T = 0: the GPS epoch then, harmless as their a1 is 0.
+GpsTime offset_reference(std::string_view type, int week, double sow_s) {
+  if (week == 0 && sow_s == 0.0) return GpsTime{};
+  if (type.substr(0, 2) == "BD") return from_week_tow(week + kBdtWeek0InGpsWeeks, sow_s + kGpsMinusBdt_s);
+  return from_week_tow(week, sow_s);
+}
+
+// RINEX 3.05 navigation header "TIME SYSTEM CORR": A4,1X,D17.10,D16.9,1X,I6,1X,I4,1X,A5,1X,I2
+// (type, a0, a1, T, W, SBAS/UTC provider, UTC id); T and W may be blank for GLONASS.
+TimeSystemOffset read_time_system_corr(const Lines& lines, int n) {
+  const Where w{lines.source(), n};
+  const std::string_view line = lines.line(n);
+  TimeSystemOffset o;
+  o.type = std::string(rinex::trim(column(line, 0, 4)));
+  if (o.type.size() != 4)
+    fail(lines.source(), n, "TIME SYSTEM CORR type", fmt::format("expected a four-letter correction type such as GAGP or GPUT, got '{}'", o.type));
+  o.a0_s = req_double(w, line, 5, 17, "TIME SYSTEM CORR a0");
+  o.a1_sps = req_double(w, line, 22, 16, "TIME SYSTEM CORR a1");
+  const double sow_s = rinex::opt_double(w, line, 38, 7, "TIME SYSTEM CORR T").value_or(0.0);
+  const double week = rinex::opt_double(w, line, 45, 5, "TIME SYSTEM CORR W").value_or(0.0);
+  if (!(sow_s >= 0.0 && sow_s < 604800.0))
+    fail(lines.source(), n, "TIME SYSTEM CORR T", fmt::format("reference time {} s is not a second of the week (0-604799)", sow_s));
+  const int wk = rinex::integral(w, week, "TIME SYSTEM CORR W");
+  if (wk < 0) fail(lines.source(), n, "TIME SYSTEM CORR W", fmt::format("negative week {}", wk));
+  o.t_ref = offset_reference(o.type, wk, sow_s);
+  o.source = fmt::format("{}:{}", lines.source(), n);
+  return o;
+}
+
+// RINEX 4.00 "> STO SNN MSG" record: line 1 the reference epoch (4X,I4,5(1X,I2.2)) in the
+// satellite system's time and the correction type (1X,A18: GAGP, GPUT, ...), line 2 the
+// transmission time, a0, a1, a2 (4X,4D19.12).
+TimeSystemOffset read_sto(const Lines& lines, int sto_line, char system_letter, const NavData& nav) {
+  const int n1 = sto_line + 1, n2 = sto_line + 2;
+  if (n2 > lines.size() || !is_continuation(lines.line(n1), 4) || !is_continuation(lines.line(n2), 4))
+    fail(lines.source(), std::min(n2, lines.size()), "STO", "STO record truncated: expected 2 lines after '> STO'");
+  const Where w1{lines.source(), n1}, w2{lines.source(), n2};
+  const std::string_view l1 = lines.line(n1), l2 = lines.line(n2);
+  TimeSystemOffset o;
+  const std::string_view rest = rinex::trim(l1.substr(std::min<std::size_t>(l1.size(), 23)));
+  o.type = std::string(rest.substr(0, rest.find(' ')));
+  if (o.type.size() != 4)
+    fail(lines.source(), n1, "STO type", fmt::format("expected a four-letter correction type such as GAGP or GPUT, got '{}'", o.type));
+  const CalendarTime c = read_v3_epoch(w1, l1);
+  const GpsTime epoch = rinex::epoch_to_gps(w1, c, "STO epoch");
+  // Epochs are in the system's time: BDT 14 s behind GPS time, GLONASS records in UTC.
+  o.t_ref = system_letter == 'C'   ? epoch.plus_s(kGpsMinusBdt_s)
+            : system_letter == 'R' ? gps_from_utc(c, nav.leap_seconds)
+                                   : epoch;
+  o.a0_s = rinex::req_full_double(w2, l2, 23, 19, "STO a0");
+  o.a1_sps = rinex::req_full_double(w2, l2, 42, 19, "STO a1");
+  o.a2_sps2 = rinex::opt_full_double(w2, l2, 61, 19, "STO a2").value_or(0.0);
+  o.source = fmt::format("{}:{}", lines.source(), sto_line);
+  return o;
+}
+
 // RINEX 4.00 "> ION Gnn LNAV" record (GPS Klobuchar): line 1 epoch (4X,I4,5(1X,I2.2)) and
 // alpha0..alpha2 (3D19.12), line 2 alpha3 beta0..beta2 (4X,4D19.12), line 3 beta3 (4X,D19.12).
 KlobucharCoefficients read_ion_klobuchar(const Lines& lines, int ion_line) {
@@ -488,6 +546,7 @@ NavData parse_nav_text(std::string text, const std::string& source) {
   // Header (RINEX 2.11 Table A3; RINEX 3.05 and 4.00 navigation header descriptions).
   std::optional<std::array<double, 4>> alpha;
   std::optional<std::array<double, 4>> beta;
+  std::optional<std::size_t> delta_utc;  // index of the RINEX 2 DELTA-UTC offset
   int n = 2;
   bool end_of_header = false;
   for (; n <= lines.size(); ++n) {
@@ -507,6 +566,29 @@ NavData parse_nav_text(std::string text, const std::string& source) {
       const std::string_view kind = rinex::trim(column(line, 0, 4));
       if (kind == "GPSA" && !alpha) alpha = read_four(lines, n, 5, "IONOSPHERIC CORR GPSA");
       if (kind == "GPSB" && !beta) beta = read_four(lines, n, 5, "IONOSPHERIC CORR GPSB");
+    } else if (format != NavFormat::v2 && label == "TIME SYSTEM CORR") {
+      nav.time_offsets.push_back(read_time_system_corr(lines, n));
+    } else if (format == NavFormat::v2 && !glonass_v2 && label == "DELTA-UTC: A0,A1,T,W") {
+      // 3X,2D19.12,2I9 (RINEX 2.11 Table A3): GPS - UTC.
+      const Where w{source, n};
+      TimeSystemOffset o{"GPUT", req_double(w, line, 3, 19, "DELTA-UTC A0"), req_double(w, line, 22, 19, "DELTA-UTC A1"),
+                         0.0, {}, fmt::format("{}:{}", source, n)};
+      const int t = req_int(w, line, 41, 9, "DELTA-UTC T"), week = req_int(w, line, 50, 9, "DELTA-UTC W");
+      if (t < 0 || t >= 604800 || week < 0)
+        fail(source, n, "DELTA-UTC T", fmt::format("reference time {} s of week {} is not a time of week", t, week));
+      o.t_ref = from_week_tow(week, t);
+      delta_utc = nav.time_offsets.size();
+      nav.time_offsets.push_back(o);
+    } else if (glonass_v2 && label == "CORR TO SYSTEM TIME") {
+      // 3I6,3X,D19.12 (RINEX 2.11 Table A10): reference date and -TauC (GLONASST - UTC(SU)).
+      const Where w{source, n};
+      CalendarTime c;
+      c.year = req_int(w, line, 0, 6, "CORR TO SYSTEM TIME year");
+      c.month = req_int(w, line, 6, 6, "CORR TO SYSTEM TIME month");
+      c.day = req_int(w, line, 12, 6, "CORR TO SYSTEM TIME day");
+      const GpsTime t = rinex::epoch_to_gps(w, c, "CORR TO SYSTEM TIME date");
+      nav.time_offsets.push_back(
+          TimeSystemOffset{"GLUT", req_double(w, line, 21, 19, "CORR TO SYSTEM TIME -TauC"), 0.0, 0.0, t, fmt::format("{}:{}", source, n)});
     } else if (label == "LEAP SECONDS") {
       nav.leap_seconds = req_int(Where{source, n}, line, 0, 6, "LEAP SECONDS");  // I6
     }
@@ -599,8 +681,13 @@ NavData parse_nav_text(std::string text, const std::string& source) {
           if (tok[0] == "ION" && count == 3 && tok[1].size() == 3 && tok[1][0] == 'G' &&
               tok[2] == "LNAV" && !nav.klobuchar)
             nav.klobuchar = read_ion_klobuchar(lines, n);
-          // SBAS, NavIC, the CNAV messages (GPS and QZSS CNAV/CNV2, BDS CNV1-3), STO,
-          // EOP and other ION records.
+          if (tok[0] == "STO" && count == 3 && !tok[1].empty()) {
+            nav.time_offsets.push_back(read_sto(lines, n, tok[1][0], nav));
+            n += 3;
+            break;
+          }
+          // SBAS, NavIC, the CNAV messages (GPS and QZSS CNAV/CNV2, BDS CNV1-3), EOP and
+          // other ION records.
           ++nav.skipped_records;
           ++n;
           while (n <= lines.size() && column(lines.line(n), 0, 1) != ">") ++n;
@@ -608,6 +695,17 @@ NavData parse_nav_text(std::string text, const std::string& source) {
         break;
       }
     }
+  }
+  // RINEX 2 files carry W as written by the converter: continuous, modulo 1024, or the
+  // broadcast 8-bit WNt expanded against the wrong week (07590920.05n: 1061 in GPS week 1316).
+  // Only its low 8 bits are broadcast (IS-GPS-200 20.3.3.5.2.4): the week is taken as the one
+  // with those bits nearest to the first record's.
+  if (delta_utc && !nav.gps.empty()) {
+    TimeSystemOffset& o = nav.time_offsets[*delta_utc];
+    const WeekTow ref = to_week_tow(o.t_ref);
+    const int near = to_week_tow(nav.gps.front().toe).week;
+    const int week = near + ((ref.week - near) % 256 + 384) % 256 - 128;
+    o.t_ref = from_week_tow(week, ref.tow_s);
   }
   return nav;
 }

@@ -44,6 +44,36 @@ TEST(Measurement, ErrorFreePseudorangesAreRangeMinusBroadcastClock) {
   EXPECT_LT((s.p_ecef_m - p).norm(), 1e-3);
 }
 
+// Galileo satellites keep GST: a receiver on GPS time measures their pseudoranges short by c
+// times the broadcast GST - GPST (the GGTO, RINEX GAGP; Galileo OS SIS ICD 2.0 5.1.8), at the
+// epoch's time; GPS is untouched, and the solver's inter-system bias takes the offset up.
+TEST(Measurement, GalileoPseudorangesCarryTheGstGpsTimeOffset) {
+  const unsigned systems = system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kGalileo);
+  const NavData plain = nominal_constellation(kStart, systems);
+  NavData with = plain;
+  with.time_offsets.push_back(TimeSystemOffset{"GAGP", 20e-9, 1e-12, 0.0, kStart.plus_s(-1000.0), "test"});
+  MeasurementConfig cfg = all_off();
+  cfg.systems = systems;
+  MeasurementGenerator a(plain, cfg), b(with, cfg);
+  const Vec3 p = ecef_from_geodetic(kSite);
+  const EpochMeasurements ea = a.generate(kStart, p), eb = b.generate(kStart, p);
+  ASSERT_EQ(ea.sats.size(), eb.sats.size());
+  const double expected_m = -kSpeedOfLight_mps * (20e-9 + 1e-12 * 1000.0);  // -6.3 m
+  int galileo = 0;
+  for (std::size_t i = 0; i < ea.sats.size(); ++i) {
+    const bool gal = ea.sats[i].sat.system() == GnssSystem::kGalileo;
+    galileo += gal ? 1 : 0;
+    EXPECT_NEAR(eb.sats[i].signals[0]->pseudorange_m - ea.sats[i].signals[0]->pseudorange_m, gal ? expected_m : 0.0, 1e-6)
+        << ea.sats[i].sat.rinex();
+  }
+  EXPECT_GE(galileo, 4);
+  SolverOptions o;
+  o.elevation_mask_deg = 0.0;
+  const Solution s = solve(b.solver_input(eb), eb.t_receiver, o);
+  ASSERT_EQ(s.fix, FixType::k3D);
+  EXPECT_LT((s.p_ecef_m - p).norm(), 1e-3);
+}
+
 TEST(Measurement, PseudorangeIsTheSumOfItsTermsAndCarrierAndDopplerAgree) {
   NavData nav = nominal_constellation(kStart);
   MeasurementConfig c;

@@ -58,6 +58,11 @@ TEST(RinexNav, Geonet0759Rinex210) {
   EXPECT_EQ(nav.source, file.string());
   ASSERT_EQ(nav.gps.size(), 162u);
   EXPECT_EQ(nav.skipped_records, 0);
+  // DELTA-UTC gives W = 1061 in GPS week 1316: the broadcast 8 bits (37) of week 1317.
+  ASSERT_EQ(nav.time_offsets.size(), 1u);
+  EXPECT_EQ(nav.time_offsets[0].type, "GPUT");
+  EXPECT_DOUBLE_EQ(nav.time_offsets[0].a0_s, -2.793967723850E-09);
+  EXPECT_EQ(nav.time_offsets[0].t_ref, from_week_tow(1317, 61440.0));
   ASSERT_TRUE(nav.leap_seconds.has_value());
   EXPECT_EQ(*nav.leap_seconds, 13);
 
@@ -138,6 +143,13 @@ TEST(RinexNav, EsbcMixedRinex305) {
   ASSERT_EQ(nav.qzss.size(), 15u);
   ASSERT_EQ(nav.glonass.size(), 510u);
   EXPECT_EQ(nav.skipped_records, 2130);  // SBAS
+  // The header's GAGP, GAUT and GPUT.
+  ASSERT_EQ(nav.time_offsets.size(), 3u);
+  const TimeSystemOffset* ggto = nav.time_offset("GAGP", from_week_tow(2111, 345600.0));
+  ASSERT_NE(ggto, nullptr);
+  EXPECT_DOUBLE_EQ(ggto->a0_s, 2.3574102670E-09);
+  EXPECT_DOUBLE_EQ(ggto->a1_sps, 3.996802889E-15);
+  EXPECT_EQ(ggto->t_ref, from_week_tow(2111, 345600.0));
   EXPECT_EQ(nav.leap_seconds, 18);
   ASSERT_TRUE(nav.klobuchar.has_value());
   EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[0], 4.6566e-09);
@@ -380,7 +392,15 @@ TEST(RinexNav, Rinex4SnippetParses) {
   EXPECT_EQ(nav.galileo[0].source, "v4.rnx:13");  // its "> EPH E11 INAV" line
   EXPECT_EQ(nav.galileo[0].iod_nav, 12);
   EXPECT_EQ(nav.galileo[0].data_sources, 517);
-  EXPECT_EQ(nav.skipped_records, 3);  // STO, ION, G03 CNAV
+  EXPECT_EQ(nav.skipped_records, 2);  // ION, G03 CNAV
+  // The STO record: GPS - UTC(USNO) referred to its epoch (GPS time for a GPS satellite).
+  ASSERT_EQ(nav.time_offsets.size(), 1u);
+  const TimeSystemOffset& sto = nav.time_offsets[0];
+  EXPECT_EQ(sto.type, "GPUT");
+  EXPECT_DOUBLE_EQ(sto.a0_s, 5.587935447693E-09);
+  EXPECT_EQ(sto.t_ref, gps(2023, 1, 8, 9, 59, 42.0));
+  EXPECT_EQ(nav.time_offset("GPUT", sto.t_ref), &sto);
+  EXPECT_EQ(nav.time_offset("GAGP", sto.t_ref), nullptr);
   // The GPS LNAV ION record carries the Klobuchar coefficients.
   ASSERT_TRUE(nav.klobuchar.has_value());
   EXPECT_DOUBLE_EQ(nav.klobuchar->alpha[0], 2.421438694000E-08);
@@ -396,6 +416,7 @@ TEST(RinexNav, Rinex4SnippetParses) {
 // seconds, km to m, -TauN, frequency number).
 TEST(RinexNav, Rinex211GlonassFile) {
   const std::string v2 = hdr("     2.11           G: GLONASS NAV DATA", "RINEX VERSION / TYPE") +
+                         hdr("  2020     6    24   -1.862645149231D-09", "CORR TO SYSTEM TIME") +
                          hdr("    18", "LEAP SECONDS") + hdr("", "END OF HEADER") +
                          " 1 20  6 24 23 15  0.0 6.355904042721D-05 0.000000000000D+00 3.420000000000D+05\n"
                          "    1.090894238281D+04 1.407806396484D+00-1.862645149231D-09 0.000000000000D+00\n"
@@ -411,6 +432,11 @@ TEST(RinexNav, Rinex211GlonassFile) {
   const NavData a = nav_from(v2, "esbc.20g"), b = nav_from(v3, "esbc.rnx");
   ASSERT_EQ(a.glonass.size(), 1u);
   ASSERT_EQ(b.glonass.size(), 1u);
+  // CORR TO SYSTEM TIME: -TauC, i.e. GLONASST - UTC(SU), from the reference date.
+  ASSERT_EQ(a.time_offsets.size(), 1u);
+  EXPECT_EQ(a.time_offsets[0].type, "GLUT");
+  EXPECT_DOUBLE_EQ(a.time_offsets[0].a0_s, -1.862645149231E-09);
+  EXPECT_EQ(a.time_offsets[0].t_ref, gps(2020, 6, 24, 0, 0, 0.0));
   const GlonassEphemeris &x = a.glonass[0], &y = b.glonass[0];
   EXPECT_TRUE(x.sat == y.sat);
   EXPECT_EQ(x.tb, gps(2020, 6, 24, 23, 15, 18.0));
@@ -421,7 +447,7 @@ TEST(RinexNav, Rinex211GlonassFile) {
   EXPECT_EQ(x.v_pz90_mps, y.v_pz90_mps);
   EXPECT_EQ(x.a_pz90_mps2, y.a_pz90_mps2);
   EXPECT_EQ(x.frequency_channel, 1);
-  EXPECT_EQ(x.source, "esbc.20g:4");
+  EXPECT_EQ(x.source, "esbc.20g:5");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -601,6 +627,49 @@ TEST(RinexNavErrors, Rinex4Problems) {
                               "     2.621440000000E+05\n");
       },
       5, "beta1");
+  // An STO record cut after its epoch line, and one with a non-numeric a0.
+  expect_input_error([&] { (void)nav_from(head + "> STO G01 LNAV\n    2023 01 08 09 59 42 GPUT        UTC(USNO)\n"); },
+                     4, "STO");
+  expect_input_error(
+      [&] {
+        (void)nav_from(head + "> STO G01 LNAV\n    2023 01 08 09 59 42 GPUT        UTC(USNO)\n"
+                              "     3.600000000000E+04 5.58793544769xE-09 0.000000000000E+00 0.000000000000E+00\n");
+      },
+      5, "STO a0");
+}
+
+// System time offsets of the navigation header (RINEX 3.05 TIME SYSTEM CORR), with their
+// reference times in GPS time: BDS weeks and seconds are BDT's.
+TEST(RinexNav, TimeSystemCorrections) {
+  const std::string text = hdr("     3.05           N: GNSS NAV DATA    M: MIXED", "RINEX VERSION / TYPE") +
+                           hdr("GAGP  2.3574102670E-09 3.996802889E-15 345600 2111", "TIME SYSTEM CORR") +
+                           hdr("BDUT -2.7939677238E-09 0.000000000E+00     14  755", "TIME SYSTEM CORR") +
+                           hdr("GLUT  1.8626451492E-09 0.000000000E+00      0    0", "TIME SYSTEM CORR") +
+                           hdr("", "END OF HEADER");
+  const NavData nav = nav_from(text, "h.rnx");
+  ASSERT_EQ(nav.time_offsets.size(), 3u);
+  const TimeSystemOffset& gagp = nav.time_offsets[0];
+  EXPECT_EQ(gagp.type, "GAGP");
+  EXPECT_EQ(gagp.source, "h.rnx:2");
+  EXPECT_EQ(gagp.t_ref, from_week_tow(2111, 345600.0));
+  EXPECT_DOUBLE_EQ(gagp.at_s(gagp.t_ref.plus_s(1000.0)), 2.3574102670E-09 + 1000.0 * 3.996802889E-15);
+  EXPECT_EQ(nav.time_offsets[1].t_ref, from_week_tow(755 + 1356, 28.0));  // BDT 14 s = GPST 28 s
+  EXPECT_EQ(nav.time_offsets[2].t_ref, GpsTime{});
+  // The latest reference time not after t applies, else the earliest.
+  NavData two = nav;
+  two.time_offsets.push_back(gagp);
+  two.time_offsets.back().t_ref = gagp.t_ref.plus_s(86400.0);
+  EXPECT_EQ(two.time_offset("GAGP", gagp.t_ref.plus_s(-1.0)), &two.time_offsets[0]);
+  EXPECT_EQ(two.time_offset("GAGP", gagp.t_ref.plus_s(86399.0)), &two.time_offsets[0]);
+  EXPECT_EQ(two.time_offset("GAGP", gagp.t_ref.plus_s(86400.0)), &two.time_offsets[3]);
+
+  const auto with = [](const std::string& corr) {
+    return hdr("     3.05           N: GNSS NAV DATA    M: MIXED", "RINEX VERSION / TYPE") + hdr(corr, "TIME SYSTEM CORR") +
+           hdr("", "END OF HEADER");
+  };
+  expect_input_error([&] { (void)nav_from(with("GA    2.3574102670E-09 3.996802889E-15 345600 2111")); }, 2, "TIME SYSTEM CORR type");
+  expect_input_error([&] { (void)nav_from(with("GAGP  2.35741026x0E-09 3.996802889E-15 345600 2111")); }, 2, "TIME SYSTEM CORR a0");
+  expect_input_error([&] { (void)nav_from(with("GAGP  2.3574102670E-09 3.996802889E-15 604800 2111")); }, 2, "TIME SYSTEM CORR T");
 }
 
 // ---------------------------------------------------------------------------------------------
