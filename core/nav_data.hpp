@@ -143,6 +143,9 @@ struct NavData {
   std::vector<BeidouEphemeris> beidou;
   std::vector<GlonassEphemeris> glonass;
   std::optional<KlobucharCoefficients> klobuchar;
+  // Galileo NeQuick G effective ionisation level coefficients ai0 (sfu), ai1 (sfu/deg), ai2
+  // (sfu/deg^2) (Galileo OS SIS ICD 2.0 5.1.6; RINEX 3.05 IONOSPHERIC CORR "GAL").
+  std::optional<std::array<double, 3>> nequick_g;
   std::optional<int> leap_seconds;  // GPS - UTC from the header, if given
   // System time offsets in file order (a type may recur with newer reference times).
   std::vector<TimeSystemOffset> time_offsets;

@@ -9,6 +9,9 @@
 #include "core/signal.hpp"
 #include "models/geodesy.hpp"
 #include "models/reuse.hpp"
+#include "protocols/beidou_nav.hpp"
+#include "protocols/galileo_inav.hpp"
+#include "protocols/glonass_nav.hpp"
 #include "protocols/gps_lnav.hpp"
 
 namespace navemu {
@@ -386,27 +389,145 @@ void emit_rxm_rawx(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
+// What the Galileo pages carry besides the satellite's ephemeris (Galileo OS SIS ICD 2.0 5.1.6-
+// 5.1.8: words 5, 6, 10): the file's NeQuick G coefficients, GST - UTC from its GAUT (else
+// the whole leap seconds), the GGTO from its GAGP; no leap second announced (as LNAV's).
+inav::InavSystemData galileo_system_data(const NavData& nav, GpsTime t, int leap_s) {
+  inav::InavSystemData d;
+  if (nav.nequick_g) {
+    d.ai0_sfu = (*nav.nequick_g)[0];
+    d.ai1_sfu_per_deg = (*nav.nequick_g)[1];
+    d.ai2_sfu_per_deg2 = (*nav.nequick_g)[2];
+  }
+  const int gst_week = to_week_tow(t).week - kGstWeek0InGpsWeeks;
+  d.dt_ls_s = d.dt_lsf_s = leap_s;
+  d.wnot = d.wn_lsf = gst_week;
+  d.dn = 1;
+  if (const TimeSystemOffset* o = nav.time_offset("GAUT", t)) {
+    const WeekTow ref = to_week_tow(o->t_ref);
+    d.a0_s = o->a0_s;
+    d.a1_sps = o->a1_sps;
+    d.tot_s = ref.tow_s;
+    d.wnot = ref.week - kGstWeek0InGpsWeeks;
+  }
+  if (const TimeSystemOffset* o = nav.time_offset("GAGP", t)) {
+    const WeekTow ref = to_week_tow(o->t_ref);
+    d.a0g_s = o->a0_s;
+    d.a1g_sps = o->a1_sps;
+    d.t0g_s = ref.tow_s;
+    d.wn0g = ref.week - kGstWeek0InGpsWeeks;
+  }
+  return d;
+}
+
+// What GLONASS string 5 carries (GLONASS ICD 5.1, 4.5): the day of the almanac (today), the
+// four-year interval, tau_c = -(the file's GLUT) (3.3.3); tau_GPS 0.
+gnav::GnavSystemData glonass_system_data(const NavData& nav, GpsTime t, int leap_s) {
+  gnav::GnavSystemData d;
+  const gnav::GnavDay day = gnav::glonass_day(t, leap_s);
+  d.n_a = day.day;
+  d.n4 = day.n4;
+  if (const TimeSystemOffset* o = nav.time_offset("GLUT", t)) d.tau_c_s = -o->at_s(t);
+  return d;
+}
+
+// What the BeiDou subframes carry besides the satellite's ephemeris (BDS-SIS-ICD-B1I 3.0
+// 5.2.4): the file's Klobuchar set (navemu's data have GPS's), BDT - UTC from its BDUT, leap
+// seconds BDT's (GPS's - 14 s), no leap second announced, no almanac.
+bdnav::BdsBroadcast beidou_broadcast(const NavData& nav, GpsTime t, int leap_s) {
+  bdnav::BdsBroadcast b;
+  if (nav.klobuchar) b.iono = *nav.klobuchar;
+  b.utc.dt_ls_s = b.utc.dt_lsf_s = leap_s - kGpsMinusBdt_s;
+  b.utc.wn_lsf = bdnav::bdt_from_gps(t).week;
+  if (const TimeSystemOffset* o = nav.time_offset("BDUT", t)) {
+    b.utc.a0_utc_s = o->a0_s;
+    b.utc.a1_utc_sps = o->a1_sps;
+  }
+  return b;
+}
+
+// RXM-SFRBX: each tracked satellite's navigation message unit that has just been received,
+// regenerated from the ephemeris in use, on the whole seconds of GPS time at which one ends
+// (epochs between whole seconds send none):
+//   GPS, QZSS  LNAV subframes of 6 s from the start of the GPS week (IS-GPS-200 20.3.2);
+//   Galileo    E1-B page pairs of 2 s starting at odd GST seconds (OS SIS ICD 2.0 4.3.2), in
+//              9 words as the ZED-F9P sends them (the 9th undocumented, 0 here; RTKLIB's
+//              decoder requires it) on sigId 1, E1-B;
+//   GLONASS    strings of 2 s from the start of the GLONASS day (ICD 5.1, 4.3);
+//   BeiDou     D1 subframes of 6 s from the start of the BDT week; D2 (GEO) subframes of
+//              0.6 s, those that ended within the last second (BDS-SIS-ICD-B1I 3.0 5.2.2, 5.3.1).
+// The channel is the satellite's place among the tracked ones.
 void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
-  // A subframe is complete every 6 s of GPS time (IS-GPS-200 20.3.2): at such an epoch, each
-  // tracked satellite's subframe that just ended, regenerated from the ephemeris in use.
   const auto tow_ms = static_cast<std::int64_t>(std::llround(e.wt.tow_s * 1000.0));
-  if (tow_ms % 6000 != 0) return;
-  const auto tow_count_next = static_cast<std::uint32_t>(tow_ms / 6000) % lnav::kTowCountsPerWeek;
-  const std::uint32_t tow_count_this = (tow_count_next + lnav::kTowCountsPerWeek - 1) % lnav::kTowCountsPerWeek;
-  const int sf_id = static_cast<int>(tow_count_this % 5) + 1;
-  const int page = static_cast<int>((tow_count_this / 5) % 25) + 1;
-  const lnav::LnavIonoUtc iono = broadcast_iono_utc(e.nav, e.wt.week, e.leap_s);
-  std::uint8_t chn = 0;
-  for (const SatMeasurement& s : e.meas.sats) {
-    if (s.eph == nullptr) continue;
+  if (tow_ms % 1000 != 0) return;
+  const std::int64_t tow_s = tow_ms / 1000;
+  const GpsTime t = from_week_tow(e.wt.week, static_cast<double>(tow_s));
+  const auto ends_on = [&](std::int64_t period_s, std::int64_t offset_s) {
+    return ((tow_s - offset_s) % period_s + period_s) % period_s == 0;
+  };
+  const bool lnav_due = ends_on(6, 0), inav_due = ends_on(2, 1), gnav_due = ends_on(2, e.leap_s),
+             d1_due = ends_on(6, kGpsMinusBdt_s);
+  const auto send = [&](const SatMeasurement& s, std::uint8_t sig_id, std::uint8_t chn,
+                        std::span<const std::uint32_t> words) {
     RxmSfrbx& m = reset_keeping_storage(e.lists.sfrbx, &RxmSfrbx::words);
     m.gnss_id = s.sat.ubx_gnss_id();
     m.sv_id = s.sat.ubx_sv_id();
-    m.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, s.signals[0]->signal).value_or(0));
-    m.chn = chn++;
-    const lnav::LnavSubframe w = lnav::lnav_subframe(sf_id, tow_count_next, to_lnav(*s.eph), iono, page);
-    m.words.assign(w.begin(), w.end());
+    m.sig_id = sig_id;
+    m.freq_id = s.sat.system() == GnssSystem::kGlonass ? static_cast<std::uint8_t>(ubx_freq_id(s.glonass_channel)) : 0;
+    m.chn = chn;
+    m.words.assign(words.begin(), words.end());
     append(m, out);
+  };
+  std::optional<lnav::LnavIonoUtc> iono;
+  std::optional<inav::InavSystemData> galileo;
+  std::optional<gnav::GnavSystemData> glonass;
+  std::optional<bdnav::BdsBroadcast> beidou;
+  std::uint8_t chn = 0;
+  for (const SatMeasurement& s : e.meas.sats) {
+    const std::uint8_t ch = chn++;
+    const auto sig = static_cast<std::uint8_t>(s.signals[0] ? ubx_sig_id(s.sat, s.signals[0]->signal).value_or(0) : 0);
+    if (s.eph != nullptr && lnav_due) {
+      const auto count_next = static_cast<std::uint32_t>(tow_s / 6) % lnav::kTowCountsPerWeek;
+      const std::uint32_t count_this = (count_next + lnav::kTowCountsPerWeek - 1) % lnav::kTowCountsPerWeek;
+      if (!iono) iono = broadcast_iono_utc(e.nav, e.wt.week, e.leap_s);
+      send(s, sig, ch,
+           lnav::lnav_subframe(static_cast<int>(count_this % 5) + 1, count_next, to_lnav(*s.eph), *iono,
+                               static_cast<int>((count_this / 5) % 25) + 1));
+    } else if (const auto* gal = std::get_if<const GalileoEphemeris*>(&s.record); gal != nullptr && inav_due) {
+      if (!galileo) galileo = galileo_system_data(e.nav, t, e.leap_s);
+      const WeekTow start = to_week_tow(t.plus_s(-2.0));
+      const inav::InavPage page = inav::inav_page(inav::inav_word_type_for(start.tow_s), start.week - kGstWeek0InGpsWeeks,
+                                                  start.tow_s, **gal, *galileo);
+      send(s, 1, ch, page);
+    } else if (const auto* glo = std::get_if<const GlonassEphemeris*>(&s.record); glo != nullptr && gnav_due) {
+      if (!glonass) glonass = glonass_system_data(e.nav, t, e.leap_s);
+      const gnav::GnavSlot slot = gnav::glonass_slot(t.plus_s(-gnav::kString_s), e.leap_s);
+      gnav::GnavImmediateFlags flags;
+      flags.frame_time_s = slot.frame_time_s;
+      flags.l_n = (*glo)->health != 0 ? 1 : 0;
+      send(s, sig, ch, gnav::glonass_string(slot.frame, slot.string, **glo, flags, e.leap_s, *glonass, {}, slot.superframe));
+    } else if (const auto* bds = std::get_if<const BeidouEphemeris*>(&s.record); bds != nullptr) {
+      // A subframe that started `ago_s` before t, at its BDT week and second.
+      const auto send_bds = [&](double ago_s, bool d1) {
+        const WeekTow start = to_week_tow(t.plus_s(-ago_s - kGpsMinusBdt_s));
+        const bdnav::BdsSlot slot = d1 ? bdnav::d1_slot_at(start.tow_s) : bdnav::d2_slot_at(start.tow_s);
+        const bdnav::BdtWeekSow at{start.week - kBdtWeek0InGpsWeeks, slot.sow_s};
+        if (!beidou) beidou = beidou_broadcast(e.nav, t, e.leap_s);
+        send(s, sig, ch,
+             d1 ? bdnav::d1_subframe(slot.fra_id, slot.page, at, **bds, *beidou)
+                : bdnav::d2_subframe(slot.fra_id, slot.page, at, **bds, *beidou));
+      };
+      if (bdnav::nav_type_for_prn(s.sat.number()) == bdnav::NavType::kD1) {
+        if (d1_due) send_bds(6.0, true);
+      } else {
+        // D2 subframes of 0.6 s on a grid from the week's start (6 048 000 tenths of a second
+        // hold whole subframes): those ending in (t - 1 s, t], oldest first.
+        const std::int64_t now_ds = ((tow_s - kGpsMinusBdt_s) * 10 % 6'048'000 + 6'048'000) % 6'048'000;
+        const std::int64_t last_end_ds = now_ds - now_ds % 6;
+        for (std::int64_t end_ds = last_end_ds - 6; end_ds <= last_end_ds; end_ds += 6)
+          if (end_ds > now_ds - 10) send_bds(static_cast<double>(now_ds - end_ds + 6) / 10.0, false);
+      }
+    }
   }
 }
 

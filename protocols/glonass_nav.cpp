@@ -128,32 +128,32 @@ std::uint32_t tb_field(GpsTime tb, int leap_seconds) {
   return field_u(std::llround(static_cast<double>(tod_ns) * 1e-9 / 900.0), 7);
 }
 
-void put_axis(GnavString& w, const GnavEphemeris& e, Eigen::Index axis) {
+void put_axis(GnavString& w, const GlonassEphemeris& e, Eigen::Index axis) {
   // x' 64..41 (24 bits, 2^-20 km/s), x'' 40..36 (5 bits, 2^-30 km/s^2), x 35..9 (27 bits,
   // 2^-11 km), Table 4.5; likewise y (string 2), z (string 3).
-  put(w, 64, 24, q_sm(e.eph.v_pz90_mps[axis], p2(-20) * kKm, 24));
-  put(w, 40, 5, q_sm(e.eph.a_pz90_mps2[axis], p2(-30) * kKm, 5));
-  put(w, 35, 27, q_sm(e.eph.p_pz90_m[axis], p2(-11) * kKm, 27));
+  put(w, 64, 24, q_sm(e.v_pz90_mps[axis], p2(-20) * kKm, 24));
+  put(w, 40, 5, q_sm(e.a_pz90_mps2[axis], p2(-30) * kKm, 5));
+  put(w, 35, 27, q_sm(e.p_pz90_m[axis], p2(-11) * kKm, 27));
 }
 
-void put_immediate(GnavString& w, int string, const GnavEphemeris& e, int leap_seconds) {
-  const GnavImmediateFlags& f = e.flags;
-  const std::uint32_t tb = tb_field(e.eph.tb, leap_seconds);
+void put_immediate(GnavString& w, int string, const GlonassEphemeris& e, const GnavImmediateFlags& f,
+                   int leap_seconds) {
+  const std::uint32_t tb = tb_field(e.tb, leap_seconds);
   switch (string) {
     case 1:  // bits 80..79 reserved; P1 78..77; tk 76..65
       put(w, 78, 2, field_u(f.p1, 2));
-      put(w, 76, 12, tk_field(e.eph.frame_time_s));
+      put(w, 76, 12, tk_field(f.frame_time_s.value_or(e.frame_time_s)));
       put_axis(w, e, 0);
       break;
     case 2:  // B_n 80..78; P2 77; tb 76..70; bits 69..65 reserved
-      put(w, 80, 3, ((e.eph.health != 0 ? 4u : 0u) | field_u(f.b_n_lsbs, 2)));
+      put(w, 80, 3, ((e.health != 0 ? 4u : 0u) | field_u(f.b_n_lsbs, 2)));
       put(w, 77, 1, f.p2 ? field_u(*f.p2, 1) : (tb & 1u));
       put(w, 76, 7, tb);
       put_axis(w, e, 1);
       break;
     case 3:  // P3 80; gamma_n 79..69 (11 bits, 2^-40); bit 68 reserved; P 67..66; l_n 65
       put(w, 80, 1, field_u(f.p3, 1));
-      put(w, 79, 11, q_sm(e.eph.gamma_n, p2(-40), 11));
+      put(w, 79, 11, q_sm(e.gamma_n, p2(-40), 11));
       put(w, 67, 2, field_u(f.p, 2));
       put(w, 65, 1, field_u(f.l_n, 1));
       put_axis(w, e, 2);
@@ -161,17 +161,17 @@ void put_immediate(GnavString& w, int string, const GnavEphemeris& e, int leap_s
     default: {  // 4: tau_n 80..59 (22 bits, 2^-30 s); delta tau_n 58..54 (5 bits, 2^-30 s);
                 // E_n 53..49; reserved 48..35; P4 34; F_T 33..30; reserved 29..27;
                 // N_T 26..16; n 15..11; M 10..9
-      const std::int64_t g = glonass_ns(e.eph.tb, leap_seconds);
+      const std::int64_t g = glonass_ns(e.tb, leap_seconds);
       const std::int64_t d96 = floor_div(g, kDay_ns) - kDays1996;
       const std::int64_t nt = d96 - floor_div(d96, 1461) * 1461 + 1;
-      put(w, 80, 22, q_sm(e.eph.tau_n_s, p2(-30), 22));
+      put(w, 80, 22, q_sm(e.tau_n_s, p2(-30), 22));
       put(w, 58, 5, q_sm(f.delta_tau_n_s, p2(-30), 5));
-      put(w, 53, 5, q_u(e.eph.age_days, 1.0, 5));
+      put(w, 53, 5, q_u(e.age_days, 1.0, 5));
       put(w, 48, 14, f.reserved_s4 & 0x3FFFu);
       put(w, 34, 1, field_u(f.p4, 1));
       put(w, 33, 4, field_u(f.f_t, 4));
       put(w, 26, 11, field_u(nt, 11));
-      put(w, 15, 5, field_u(e.eph.sat.number(), 5));
+      put(w, 15, 5, field_u(e.sat.number(), 5));
       put(w, 10, 2, field_u(f.m, 2));
       break;
     }
@@ -257,17 +257,17 @@ std::uint32_t ublox_word4(int superframe, int frame) {
 
 // ---- encoder ------------------------------------------------------------------------------
 
-GnavString glonass_string(int frame, int string, const GnavEphemeris& eph, int leap_seconds,
-                          const GnavSystemData& sys, std::span<const GnavAlmanacEntry> almanac,
+GnavString glonass_string(int frame, int string, const GlonassEphemeris& eph, const GnavImmediateFlags& flags,
+                          int leap_seconds, const GnavSystemData& sys, std::span<const GnavAlmanacEntry> almanac,
                           int superframe) {
   frame = std::clamp(frame, 1, kFramesPerSuperframe);
   string = std::clamp(string, 1, kStringsPerFrame);
   GnavString w{};
   put(w, 84, 4, static_cast<std::uint32_t>(string));  // bit 85, the idle chip, stays 0
   if (string <= 4) {
-    put_immediate(w, string, eph, leap_seconds);
+    put_immediate(w, string, eph, flags, leap_seconds);
   } else if (string == 5) {
-    put_system(w, sys, eph.flags.l_n);
+    put_system(w, sys, flags.l_n);
   } else if (frame == 5 && string == 14) {
     // B1 80..70 (11 bits, 2^-10 s); B2 69..60 (10 bits, 2^-16 s/day); KP 59..58; 57..9 reserved.
     put(w, 80, 11, q_sm(sys.b1_s, p2(-10), 11));
@@ -279,7 +279,7 @@ GnavString glonass_string(int frame, int string, const GnavEphemeris& eph, int l
     put(w, 80, 7, sys.reserved_f5s15[0] & 0x7Fu);
     put(w, 73, 32, sys.reserved_f5s15[1]);
     put(w, 41, 32, sys.reserved_f5s15[2]);
-    put(w, 9, 1, field_u(eph.flags.l_n, 1));
+    put(w, 9, 1, field_u(flags.l_n, 1));
   } else {
     const int slot = 5 * (frame - 1) + (string - 4) / 2;
     const GnavAlmanacEntry* a = find_slot(almanac, slot);
@@ -290,11 +290,17 @@ GnavString glonass_string(int frame, int string, const GnavEphemeris& eph, int l
       else
         put_almanac_first(w, *a);
     }
-    if (odd_string) put(w, 9, 1, field_u(eph.flags.l_n, 1));
+    if (odd_string) put(w, 9, 1, field_u(flags.l_n, 1));
   }
   put_hamming(w);
   w[3] = ublox_word4(superframe, frame);
   return w;
+}
+
+GnavString glonass_string(int frame, int string, const GnavEphemeris& eph, int leap_seconds,
+                          const GnavSystemData& sys, std::span<const GnavAlmanacEntry> almanac,
+                          int superframe) {
+  return glonass_string(frame, string, eph.eph, eph.flags, leap_seconds, sys, almanac, superframe);
 }
 
 // ---- Hamming check (4.7) ------------------------------------------------------------------

@@ -74,6 +74,9 @@ struct GnavImmediateFlags {
   int m = 1;                  // 2 bits: satellite type, 01 = GLONASS-M
   double delta_tau_n_s = 0.0;  // 5 bits sign-magnitude, 2^-30 s: L2 - L1 time difference
   std::uint32_t reserved_s4 = 0;  // bits 48..35 of string 4 (14 bits), sent as given
+  // The frame start string 1 sends as tk (UTC seconds of week, GlonassEphemeris form); empty:
+  // the ephemeris's frame_time_s. An emulator sets it to the frame being sent (GnavSlot).
+  std::optional<double> frame_time_s;
 };
 
 // A GLONASS ephemeris with the flags, as strings 1-4 carry it. In `eph`: tb (on the 15 min
@@ -147,6 +150,10 @@ std::uint32_t ublox_word4(int superframe, int frame);
 // satellite), as the ICD leaves the content of an unused slot to the control segment; odd
 // strings end with l_n of eph.flags. Strings 14-15 of frame 5 come from `sys`. N_T in
 // string 4 is the GLONASS day of eph.tb. Word 4 is ublox_word4(superframe, frame).
+GnavString glonass_string(int frame, int string, const GlonassEphemeris& eph, const GnavImmediateFlags& flags,
+                          int leap_seconds, const GnavSystemData& sys, std::span<const GnavAlmanacEntry> almanac,
+                          int superframe);
+// The same with a decoded ephemeris and its flags.
 GnavString glonass_string(int frame, int string, const GnavEphemeris& eph, int leap_seconds,
                           const GnavSystemData& sys, std::span<const GnavAlmanacEntry> almanac,
                           int superframe);

@@ -566,6 +566,12 @@ NavData parse_nav_text(std::string text, const std::string& source) {
       const std::string_view kind = rinex::trim(column(line, 0, 4));
       if (kind == "GPSA" && !alpha) alpha = read_four(lines, n, 5, "IONOSPHERIC CORR GPSA");
       if (kind == "GPSB" && !beta) beta = read_four(lines, n, 5, "IONOSPHERIC CORR GPSB");
+      if (kind == "GAL" && !nav.nequick_g) {  // ai0, ai1, ai2 and a blank fourth field
+        const Where w{source, n};
+        nav.nequick_g = std::array<double, 3>{req_double(w, line, 5, 12, "IONOSPHERIC CORR GAL ai0"),
+                                              req_double(w, line, 17, 12, "IONOSPHERIC CORR GAL ai1"),
+                                              req_double(w, line, 29, 12, "IONOSPHERIC CORR GAL ai2")};
+      }
     } else if (format != NavFormat::v2 && label == "TIME SYSTEM CORR") {
       nav.time_offsets.push_back(read_time_system_corr(lines, n));
     } else if (format == NavFormat::v2 && !glonass_v2 && label == "DELTA-UTC: A0,A1,T,W") {

@@ -16,6 +16,7 @@
 #include "models/event_window.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/nmea.hpp"
+#include "tests/rinex_data.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
 #include "tests/can_capture.hpp"
@@ -650,6 +651,17 @@ TEST(Simulate, UbloxScenariosDriveForeverAndWriteUbxIntoUbxBin) {
     EXPECT_GE(epochs, 590u) << c.out;
     EXPECT_NE(nav.find("END OF HEADER"), std::string::npos);
     EXPECT_GT(nav.size(), 2000u) << "no ephemerides decoded from RXM-SFRBX";
+    // Every system the part tracks by default has its ephemerides rebuilt from the RXM-SFRBX
+    // it sends: LNAV subframes, GLONASS strings, and on the F9P Galileo I/NAV pages and
+    // BeiDou D1/D2 subframes (no QZSS above this site in 2010).
+    const NavData records = test::rinex_nav_file(out / "ubx.nav");
+    EXPECT_GE(records.gps.size(), 6u);
+    EXPECT_GE(records.glonass.size(), 4u);
+    const bool f9p = std::string(scenario) == "ublox-f9p";
+    EXPECT_GE(records.galileo.size(), f9p ? 4u : 0u);
+    EXPECT_GE(records.beidou.size(), f9p ? 4u : 0u);
+    std::printf("%s: RTKLIB rebuilt %zu GPS, %zu GLONASS, %zu Galileo, %zu BeiDou ephemerides from RXM-SFRBX\n",
+                scenario, records.gps.size(), records.glonass.size(), records.galileo.size(), records.beidou.size());
   }
 }
 

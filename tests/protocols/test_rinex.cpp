@@ -143,7 +143,10 @@ TEST(RinexNav, EsbcMixedRinex305) {
   ASSERT_EQ(nav.qzss.size(), 15u);
   ASSERT_EQ(nav.glonass.size(), 510u);
   EXPECT_EQ(nav.skipped_records, 2130);  // SBAS
-  // The header's GAGP, GAUT and GPUT.
+  // The header's NeQuick G coefficients and its GAGP, GAUT and GPUT.
+  ASSERT_TRUE(nav.nequick_g.has_value());
+  EXPECT_DOUBLE_EQ((*nav.nequick_g)[0], 2.8250e+01);
+  EXPECT_DOUBLE_EQ((*nav.nequick_g)[2], 1.0071e-02);
   ASSERT_EQ(nav.time_offsets.size(), 3u);
   const TimeSystemOffset* ggto = nav.time_offset("GAGP", from_week_tow(2111, 345600.0));
   ASSERT_NE(ggto, nullptr);
