@@ -19,6 +19,9 @@
 #include "models/constellation.hpp"
 #include "models/geodesy.hpp"
 #include "emulator/rinex_files.hpp"
+#include "protocols/beidou_nav.hpp"
+#include "protocols/galileo_inav.hpp"
+#include "protocols/glonass_nav.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
@@ -664,8 +667,106 @@ TEST(UbxTool, GalileoSwitchedOffAndOnChangesNavSat) {
 
 // ---- RTKLIB ----------------------------------------------------------------------------------
 
-// str2str captures RXM-RAWX + RXM-SFRBX (1 Hz) from the pty, convbin makes RINEX 3.04, and
-// rnx2rtkp's single-point solutions (-p 0 -sys G -e, broadcast ionosphere and Saastamoinen
+// The satellites tracked from the capture's start (its first RXM-RAWX): they have had the
+// whole capture to send their ephemerides (one acquired later may not have had a frame's).
+std::set<SatId> tracked_from_start(const std::vector<ubx::RxmRawx>& rawx) {
+  std::set<SatId> out;
+  if (rawx.empty()) return out;
+  for (const auto& m : rawx.front().meas)
+    if (const std::optional<SatId> sat = SatId::from_ubx(m.gnss_id, m.sv_id)) out.insert(*sat);
+  return out;
+}
+
+// RTKLIB end to end: str2str captures what navemu sends on its pty for `capture_s` seconds
+// (RTKLIB prefixes /dev/ to a serial path, TESTING.md) and convbin makes RINEX 3.04
+// observation and navigation files of it; the frames captured are checked as RTKLIB needs
+// them (TESTING.md): RAWX week != 0 and lock times never decreasing.
+struct RtklibCapture {
+  fs::path obs, nav;
+  std::vector<UbxFrame> frames;
+  std::vector<ubx::RxmRawx> rawx;
+  std::vector<ubx::RxmSfrbx> sfrbx;
+};
+void capture_and_convert(const TempDir& dir, const fs::path& profile, WeekTow start, double capture_s, RtklibCapture& out) {
+  const std::string str2str = test::find_program("str2str"), convbin = test::find_program("convbin");
+  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
+  NavemuRun nav(dir, "navemu", ubx_config(profile, link, log, fmt::format("{}:{:.0f}", start.week, start.tow_s)),
+                capture_s + 30.0);
+  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
+  const fs::path capture = dir / "capture.ubx";
+  const std::string serial = "serial://.." + link.string() + ":115200#ubx";
+  Child s2s({str2str, "-in", serial, "-out", "file://" + capture.string()}, dir / "str2str.out", dir / "str2str.err");
+  sleep_s(capture_s);
+  s2s.signal(SIGINT);
+  const auto s2s_status = s2s.wait_exit(5.0);
+  s2s.stop();
+  nav.stop();
+  EXPECT_TRUE(s2s_status.has_value()) << "str2str ignored SIGINT";
+  ASSERT_TRUE(fs::exists(capture) && fs::file_size(capture) > 0) << slurp(dir / "str2str.err") << nav.diagnostics();
+
+  ubx::Parser::Counters pc;
+  out.frames = parse_frames(slurp(capture), &pc);
+  EXPECT_EQ(pc.checksum_errors, 0u);
+  out.rawx = decode_all<ubx::RxmRawx>(out.frames, ubx::kRxmRawx);
+  out.sfrbx = decode_all<ubx::RxmSfrbx>(out.frames, ubx::kRxmSfrbx);
+  EXPECT_GE(out.rawx.size(), static_cast<std::size_t>(capture_s - 5.0));
+  std::map<std::pair<int, int>, std::uint16_t> lock;  // by (gnssId, svId)
+  for (const auto& r : out.rawx) {
+    EXPECT_NE(r.week, 0);
+    for (const auto& m : r.meas) {
+      const std::pair<int, int> sat{m.gnss_id, m.sv_id};
+      EXPECT_GE(m.locktime_ms, lock[sat]) << "lock time of gnssId " << sat.first << " svId " << sat.second << " went back";
+      lock[sat] = m.locktime_ms;
+    }
+  }
+  out.obs = dir / "out.obs";
+  out.nav = dir / "out.nav";
+  Child cb({convbin, "-r", "ubx", "-v", "3.04", "-od", "-os", "-o", out.obs.string(), "-n", out.nav.string(), capture.string()},
+           dir / "convbin.out", dir / "convbin.err");
+  const auto cb_status = cb.wait_exit(60.0);
+  ASSERT_TRUE(cb_status && WIFEXITED(*cb_status) && WEXITSTATUS(*cb_status) == 0)
+      << describe_status(cb_status) << tail(slurp(dir / "convbin.err"));
+  ASSERT_TRUE(fs::exists(out.obs) && fs::exists(out.nav));
+}
+
+// rnx2rtkp's single-point solutions (-p 0, ECEF output) of the capture's files with the
+// options of `conf_text`. rnx2rtkp's own defaults apply no atmospheric model: a single-point
+// user turns on the broadcast Klobuchar model and Saastamoinen (pos1-ionoopt, pos1-tropopt).
+// The systems are chosen with pos1-navsys (1 GPS, 4 GLONASS, 8 Galileo, 32 BeiDou): its -sys
+// option adds to the configured ones rather than replacing them.
+std::vector<RtklibFix> rtklib_spp(const TempDir& dir, const RtklibCapture& c, const std::string& name,
+                                  const std::string& conf_text) {
+  const fs::path conf = dir / (name + ".conf"), pos = dir / (name + ".pos");
+  std::ofstream(conf) << conf_text;
+  std::vector<std::string> argv{test::find_program("rnx2rtkp"), "-k", conf.string(), "-p", "0",
+                                "-e", "-o", pos.string(), c.obs.string(), c.nav.string()};
+  Child rk(argv, dir / (name + ".out"), dir / (name + ".err"));
+  const auto rk_status = rk.wait_exit(60.0);
+  EXPECT_TRUE(rk_status && WIFEXITED(*rk_status)) << describe_status(rk_status);
+  return read_rtklib_ecef_pos(pos);
+}
+
+// 3D, horizontal and up errors of RTKLIB's solutions against the emulator's fixed site.
+struct FixErrors {
+  std::vector<double> d3, h, up;
+};
+FixErrors errors_of(const std::vector<RtklibFix>& fixes) {
+  FixErrors e;
+  const Vec3 truth = ecef_from_geodetic(kUbxSite);
+  for (const RtklibFix& f : fixes) {
+    e.d3.push_back((f.p_ecef_m - truth).norm());
+    const Vec3 enu = enu_from_ecef(f.p_ecef_m, kUbxSite);
+    e.h.push_back(std::hypot(enu.x(), enu.y()));
+    e.up.push_back(enu.z());
+  }
+  return e;
+}
+
+const std::string kRtklibSppOptions = "pos1-ionoopt       =brdc\npos1-tropopt       =saas\n";
+const std::string kRtklibGpsOnly = "pos1-navsys        =1\n";
+
+// The M8 (GPS, GLONASS, QZSS): RXM-RAWX + RXM-SFRBX (1 Hz) through str2str and convbin, and
+// rnx2rtkp's single-point solutions (GPS, broadcast ionosphere and Saastamoinen
 // troposphere) must lie within 5 m (mean 3D) of the truth; the broadcast
 // ephemerides RTKLIB rebuilt from the subframes are navemu's (IODE, toe, sqrt(A), e, i0 to
 // their LNAV quantisation).
@@ -687,112 +788,57 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
   const double capture_s = env != nullptr ? std::max(30.0, std::atof(env)) : 45.0;
 
   TempDir dir("ubx-rtklib");
-  const fs::path link = dir / "gnss", log = dir / "gnss.ubx";
   const fs::path profile = write_profile(dir, "ublox-m8", "NAV-PVT: 1, RXM-RAWX: 1, RXM-SFRBX: 1");
   // A fixed scenario date (the paper's, 2010-11-17 about 13:00 UTC) rather than now, so that
   // the sky and with it RTKLIB's error are the same on every run: 10 s before a frame boundary.
   const WeekTow wt{1610, 306020.0};
-  const double tow = wt.tow_s;
-  const GpsTime start = from_week_tow(wt.week, tow);
-  NavemuRun nav(dir, "navemu", ubx_config(profile, link, log, fmt::format("{}:{:.0f}", wt.week, tow)),
-                capture_s + 30.0);
-  ASSERT_TRUE(nav.wait_for_pty(link, 5.0)) << nav.diagnostics();
-
-  // RTKLIB prefixes /dev/ to a serial path (TESTING.md).
-  const fs::path capture = dir / "capture.ubx";
-  const std::string serial = "serial://.." + link.string() + ":115200#ubx";
-  Child s2s({str2str, "-in", serial, "-out", "file://" + capture.string()}, dir / "str2str.out",
-            dir / "str2str.err");
-  sleep_s(capture_s);
-  s2s.signal(SIGINT);
-  const auto s2s_status = s2s.wait_exit(5.0);
-  s2s.stop();
-  nav.stop();
-  EXPECT_TRUE(s2s_status.has_value()) << "str2str ignored SIGINT";
-  ASSERT_TRUE(fs::exists(capture) && fs::file_size(capture) > 0)
-      << slurp(dir / "str2str.err") << nav.diagnostics();
-
-  // What was captured, checked as RTKLIB needs it (TESTING.md): RAWX week != 0 and lock time
-  // never decreasing, SFRBX with 10 words passing the parity check.
-  ubx::Parser::Counters pc;
-  const std::vector<UbxFrame> frames = parse_frames(slurp(capture), &pc);
-  EXPECT_EQ(pc.checksum_errors, 0u);
-  const auto rawx = decode_all<ubx::RxmRawx>(frames, ubx::kRxmRawx);
-  const auto sfrbx = decode_all<ubx::RxmSfrbx>(frames, ubx::kRxmSfrbx);
-  EXPECT_GE(rawx.size(), static_cast<std::size_t>(capture_s - 5.0));
-  std::map<std::pair<int, int>, std::uint16_t> lock;  // by (gnssId, svId)
-  for (const auto& r : rawx) {
-    EXPECT_NE(r.week, 0);
-    for (const auto& m : r.meas) {
-      const std::pair<int, int> sat{m.gnss_id, m.sv_id};
-      EXPECT_GE(m.locktime_ms, lock[sat]) << "lock time of gnssId " << sat.first << " svId " << sat.second << " went back";
-      lock[sat] = m.locktime_ms;
-    }
-  }
-  // LNAV subframes of GPS (gnssId 0) and QZSS (5), by satellite.
+  const GpsTime start = from_week_tow(wt.week, wt.tow_s);
+  RtklibCapture cap;
+  capture_and_convert(dir, profile, wt, capture_s, cap);
+  if (HasFatalFailure()) return;
+  const auto& rawx = cap.rawx;
+  const auto& sfrbx = cap.sfrbx;
+  // LNAV subframes of GPS (gnssId 0) and QZSS (5), by satellite, with 10 words passing the
+  // parity check; the GLONASS strings are counted.
   std::map<SatId, std::vector<lnav::LnavSubframe>> subs;
+  std::size_t glonass_strings = 0;
   for (const auto& s : sfrbx) {
+    const std::optional<SatId> sat = SatId::from_ubx(s.gnss_id, s.sv_id);
+    ASSERT_TRUE(sat.has_value());
+    if (sat->system() == GnssSystem::kGlonass) {
+      ++glonass_strings;
+      continue;
+    }
+    ASSERT_TRUE(sat->system() == GnssSystem::kGps || sat->system() == GnssSystem::kQzss);
     ASSERT_EQ(s.words.size(), 10u);
     lnav::LnavSubframe w{};
     std::copy(s.words.begin(), s.words.end(), w.begin());
     EXPECT_TRUE(lnav::lnav_parity_ok(w));
-    const std::optional<SatId> sat = SatId::from_ubx(s.gnss_id, s.sv_id);
-    ASSERT_TRUE(sat && (sat->system() == GnssSystem::kGps || sat->system() == GnssSystem::kQzss));
     subs[*sat].push_back(w);
   }
+  EXPECT_GT(glonass_strings, 0u);
 
-  // convbin, then rnx2rtkp (single point, GPS, ECEF output).
-  const fs::path obs = dir / "out.obs", navf = dir / "out.nav", pos = dir / "out.pos";
-  Child cb({convbin, "-r", "ubx", "-v", "3.04", "-od", "-os", "-o", obs.string(), "-n", navf.string(),
-            capture.string()},
-           dir / "convbin.out", dir / "convbin.err");
-  const auto cb_status = cb.wait_exit(60.0);
-  ASSERT_TRUE(cb_status && WIFEXITED(*cb_status) && WEXITSTATUS(*cb_status) == 0)
-      << describe_status(cb_status) << tail(slurp(dir / "convbin.err"));
-  ASSERT_TRUE(fs::exists(obs) && fs::exists(navf));
-  // rnx2rtkp's built-in defaults apply no atmospheric model (pos1-ionoopt and pos1-tropopt
-  // off): a single-point user turns on the broadcast Klobuchar model and Saastamoinen, here
-  // with -k. Without them the ionosphere and troposphere go straight into the solution (mean
-  // up error +13.6 m measured on such a capture): that run is made too and reported.
-  const fs::path conf = dir / "spp.conf";
-  std::ofstream(conf) << "pos1-ionoopt       =brdc\npos1-tropopt       =saas\n";
-  const auto solve = [&](const fs::path& out, bool corrections) {
-    std::vector<std::string> argv{rnx2rtkp};
-    if (corrections) argv.insert(argv.end(), {"-k", conf.string()});
-    argv.insert(argv.end(), {"-p", "0", "-sys", "G", "-e", "-o", out.string(), obs.string(), navf.string()});
-    Child rk(argv, dir / "rnx2rtkp.out", dir / "rnx2rtkp.err");
-    const auto rk_status = rk.wait_exit(60.0);
-    EXPECT_TRUE(rk_status && WIFEXITED(*rk_status)) << describe_status(rk_status);
-    return read_rtklib_ecef_pos(out);
-  };
-  const std::vector<RtklibFix> fixes = solve(pos, true);
-  const std::vector<RtklibFix> plain = solve(dir / "out-no-atmosphere.pos", false);
-  ASSERT_GE(fixes.size(), static_cast<std::size_t>(capture_s - 10.0))
-      << "solutions in " << pos << "\n" << tail(slurp(dir / "rnx2rtkp.err"));
-  const Vec3 truth = ecef_from_geodetic(kUbxSite);
-  std::vector<double> err3d, err_h, err_up;
-  for (const RtklibFix& f : fixes) {
-    err3d.push_back((f.p_ecef_m - truth).norm());
-    const Vec3 e = enu_from_ecef(f.p_ecef_m, kUbxSite);
-    err_h.push_back(std::hypot(e.x(), e.y()));
-    err_up.push_back(e.z());
-  }
-  const double mean3d = mean(err3d);
-  std::vector<double> plain3d;
-  for (const RtklibFix& f : plain) plain3d.push_back((f.p_ecef_m - truth).norm());
+  // Without the atmospheric models the ionosphere and troposphere go straight into the
+  // solution (mean up error +13.6 m measured on such a capture): that run is made too and
+  // reported.
+  const std::vector<RtklibFix> fixes = rtklib_spp(dir, cap, "spp", kRtklibSppOptions + kRtklibGpsOnly);
+  const std::vector<RtklibFix> plain = rtklib_spp(dir, cap, "no-atmosphere", kRtklibGpsOnly);
+  ASSERT_GE(fixes.size(), static_cast<std::size_t>(capture_s - 10.0)) << "solutions of " << cap.obs;
+  const FixErrors err = errors_of(fixes);
+  const double mean3d = mean(err.d3);
   RecordProperty("rtklib_epochs", static_cast<int>(fixes.size()));
   RecordProperty("rtklib_mean_3d_error_m", fmt::format("{:.2f}", mean3d));
   std::printf("RTKLIB: %.0f s capture, %zu RAWX, %zu SFRBX, %zu solutions: mean 3D error %.2f m "
               "(mean horizontal %.2f m, mean up %+.2f m, max 3D %.2f m); without atmospheric "
               "models %.2f m\n",
-              capture_s, rawx.size(), sfrbx.size(), fixes.size(), mean3d, mean(err_h), mean(err_up),
-              *std::max_element(err3d.begin(), err3d.end()), mean(plain3d));
+              capture_s, rawx.size(), sfrbx.size(), fixes.size(), mean3d, mean(err.h), mean(err.up),
+              *std::max_element(err.d3.begin(), err.d3.end()), mean(errors_of(plain).d3));
   EXPECT_LE(mean3d, 5.0) << "mean 3D error of rnx2rtkp's single-point solutions vs the truth";
 
   // The ephemerides in the navigation file are navemu's: the built-in constellation at the
   // scenario's start (IODE and toe identify the record; sqrt(A), e, i0 to their LNAV LSBs), for
   // GPS and QZSS, whose LNAV subframes navemu sends.
-  const NavData rinex = read_rinex_nav(navf);
+  const NavData rinex = read_rinex_nav(cap.nav);
   const NavData truth_nav = nominal_constellation(start, system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kQzss));
   std::set<SatId> sats_in_file;
   for (const auto* records : {&rinex.gps, &rinex.qzss})
@@ -819,20 +865,137 @@ TEST(UbxRtklib, CaptureConvertAndSinglePointSolution) {
         break;
       }
     }
-  // Every tracked GPS and QZSS satellite has its ephemeris in the file; GLONASS ones are counted
-  // (navemu does not send GLONASS strings in RXM-SFRBX yet, so RTKLIB has no record of them).
-  std::set<SatId> tracked;
-  std::size_t glonass = 0;
-  for (const auto& r : rawx)
-    for (const auto& m : r.meas)
-      if (const std::optional<SatId> sat = SatId::from_ubx(m.gnss_id, m.sv_id)) {
-        if (sat->system() == GnssSystem::kGlonass) ++glonass;
-        else tracked.insert(*sat);
-      }
+  // Every satellite tracked from the start has its ephemeris in the file, GLONASS's rebuilt
+  // from the strings.
+  const std::set<SatId> tracked = tracked_from_start(rawx);
+  for (const GlonassEphemeris& r : rinex.glonass) sats_in_file.insert(r.sat);
   for (SatId sat : tracked) EXPECT_TRUE(sats_in_file.count(sat)) << "no ephemeris for tracked " << sat.rinex();
-  std::printf("RTKLIB: %zu GPS and %zu QZSS ephemerides in the navigation file for %zu tracked satellites "
-              "(and %zu GLONASS measurements)\n",
-              rinex.gps.size(), rinex.qzss.size(), tracked.size(), glonass);
+  std::printf("RTKLIB: %zu GPS, %zu QZSS and %zu GLONASS ephemerides in the navigation file for %zu "
+              "satellites tracked from the start (%zu GLONASS strings)\n",
+              rinex.gps.size(), rinex.qzss.size(), rinex.glonass.size(), tracked.size(), glonass_strings);
+}
+
+// The F9P with GPS, GLONASS, Galileo and BeiDou (its default configuration; no QZSS above the
+// site in 2010): RXM-SFRBX of every system through str2str and convbin (Galileo I/NAV pages
+// with their CRC, GLONASS strings with their Hamming code, BeiDou D1/D2 subframes with their
+// BCH codes), a RINEX 3 mixed navigation file whose records are navemu's ephemerides to the
+// messages' quantisation, and rnx2rtkp's single-point solutions with all four systems within
+// 3 m (mean 3D) of the truth (the GPS-only ones are reported beside them).
+//
+// The start (tow 306018, 28 s into a 30 s period) puts the first frame starts after str2str
+// has attached (16 s, as above) at +16 s (BDT's), +17 s (GLONASS's), +32 s (GPS's) and +33 s
+// (Galileo's sub-frame): the last ephemeris set, Galileo's word 5, is complete 59 s into the
+// run. Capture length NAVEMU_UBX_CAPTURE_S seconds if above 65, else 65.
+TEST(UbxRtklib, FourSystemsCaptureConvertAndSinglePointSolution) {
+  NAVEMU_REQUIRE_TOOL(str2str, "str2str", "rtklib");
+  NAVEMU_REQUIRE_TOOL(convbin, "convbin", "rtklib");
+  NAVEMU_REQUIRE_TOOL(rnx2rtkp, "rnx2rtkp", "rtklib");
+  const char* env = std::getenv("NAVEMU_UBX_CAPTURE_S");
+  const double capture_s = std::max(65.0, env != nullptr ? std::atof(env) : 0.0);
+
+  TempDir dir("ubx-rtklib-gnss");
+  const fs::path profile = write_profile(dir, "ublox-f9p", "NAV-PVT: 1, RXM-RAWX: 1, RXM-SFRBX: 1");
+  const WeekTow wt{1610, 306018.0};
+  const GpsTime start = from_week_tow(wt.week, wt.tow_s);
+  RtklibCapture cap;
+  capture_and_convert(dir, profile, wt, capture_s, cap);
+  if (HasFatalFailure()) return;
+
+  // Each message passes its own check.
+  std::map<GnssSystem, std::size_t> units;
+  for (const auto& m : cap.sfrbx) {
+    const std::optional<SatId> sat = SatId::from_ubx(m.gnss_id, m.sv_id);
+    ASSERT_TRUE(sat.has_value());
+    ++units[sat->system()];
+    const std::span<const std::uint32_t> w(m.words);
+    switch (sat->system()) {
+      case GnssSystem::kGps: {
+        ASSERT_EQ(w.size(), 10u);
+        lnav::LnavSubframe sf{};
+        std::copy(w.begin(), w.end(), sf.begin());
+        EXPECT_TRUE(lnav::lnav_parity_ok(sf)) << sat->rinex();
+        break;
+      }
+      case GnssSystem::kGalileo: EXPECT_TRUE(inav::decode_inav_page(w).has_value()) << sat->rinex(); break;
+      case GnssSystem::kGlonass: {
+        ASSERT_EQ(w.size(), 4u);
+        EXPECT_TRUE(gnav::glonass_hamming_ok({w[0], w[1], w[2], w[3]})) << sat->rinex();
+        break;
+      }
+      case GnssSystem::kBeidou: {
+        const auto sf = bdnav::subframe_from_words(w);
+        ASSERT_TRUE(sf.has_value());
+        EXPECT_TRUE(bdnav::bch_ok(*sf)) << sat->rinex();
+        break;
+      }
+      default: ADD_FAILURE() << "unexpected " << sat->rinex();
+    }
+  }
+
+  // The navigation file's records are the built-in constellation's (the record of the same
+  // satellite and reference time), to the LSBs of each message.
+  const NavData rinex = read_rinex_nav(cap.nav);
+  const NavData made = nominal_constellation(start, system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kGlonass) |
+                                                        system_bit(GnssSystem::kGalileo) | system_bit(GnssSystem::kBeidou));
+  std::set<SatId> in_file;
+  const double semicircle_lsb_31 = std::ldexp(lnav::kGpsPi, -31) * 1.01;
+  const auto same_kepler = [&](const KeplerEphemeris& r, const KeplerEphemeris& e) {
+    EXPECT_NEAR(r.sqrt_a_sqrtm, e.sqrt_a_sqrtm, std::ldexp(1.0, -19));
+    EXPECT_NEAR(r.e, e.e, std::ldexp(1.0, -33));
+    EXPECT_NEAR(r.i0_rad, e.i0_rad, semicircle_lsb_31);
+    EXPECT_NEAR(r.m0_rad, std::remainder(e.m0_rad, 2 * lnav::kGpsPi), semicircle_lsb_31);
+  };
+  const auto find_kepler = [](const auto& records, const KeplerEphemeris& r) {
+    for (const auto& e : records)
+      if (e.sat == r.sat && std::abs(seconds_between(e.toe, r.toe)) < 16.0) return &e;
+    return static_cast<decltype(&records.front())>(nullptr);
+  };
+  for (const GpsEphemeris& r : rinex.gps) {
+    in_file.insert(r.sat);
+    const GpsEphemeris* e = find_kepler(made.gps, r);
+    ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
+    EXPECT_EQ(e->iode & 0xFF, r.iode);
+    same_kepler(r, *e);
+  }
+  for (const GalileoEphemeris& r : rinex.galileo) {
+    in_file.insert(r.sat);
+    const GalileoEphemeris* e = find_kepler(made.galileo, r);
+    ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
+    EXPECT_EQ(e->iod_nav & 0x3FF, r.iod_nav);
+    same_kepler(r, *e);
+  }
+  for (const BeidouEphemeris& r : rinex.beidou) {
+    in_file.insert(r.sat);
+    const BeidouEphemeris* e = find_kepler(made.beidou, r);
+    ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
+    same_kepler(r, *e);
+  }
+  for (const GlonassEphemeris& r : rinex.glonass) {
+    in_file.insert(r.sat);
+    const GlonassEphemeris* e = nullptr;
+    for (const GlonassEphemeris& m : made.glonass)
+      if (m.sat == r.sat && m.tb == r.tb) e = &m;
+    ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
+    EXPECT_LE((r.p_pz90_m - e->p_pz90_m).cwiseAbs().maxCoeff(), std::ldexp(1000.0, -11));  // 2^-11 km
+    EXPECT_LE((r.v_pz90_mps - e->v_pz90_mps).cwiseAbs().maxCoeff(), std::ldexp(1000.0, -20));
+    EXPECT_EQ(r.frequency_channel, e->frequency_channel);
+  }
+  const std::set<SatId> tracked = tracked_from_start(cap.rawx);
+  for (SatId sat : tracked) EXPECT_TRUE(in_file.count(sat)) << "no ephemeris for tracked " << sat.rinex();
+
+  const std::vector<RtklibFix> all = rtklib_spp(dir, cap, "grec", kRtklibSppOptions + "pos1-navsys        =45\n");
+  const std::vector<RtklibFix> gps = rtklib_spp(dir, cap, "g", kRtklibSppOptions + kRtklibGpsOnly);
+  ASSERT_GE(all.size(), static_cast<std::size_t>(capture_s - 10.0)) << "solutions of " << cap.obs;
+  const FixErrors err = errors_of(all);
+  std::printf("RTKLIB four systems: %.0f s capture, RXM-SFRBX GPS %zu, GLONASS %zu, Galileo %zu, BeiDou %zu; "
+              "records GPS %zu, GLONASS %zu, Galileo %zu, BeiDou %zu for %zu satellites tracked from the start; %zu solutions: "
+              "mean 3D error %.2f m (horizontal %.2f m, up %+.2f m, max 3D %.2f m); GPS alone %.2f m\n",
+              capture_s, units[GnssSystem::kGps], units[GnssSystem::kGlonass], units[GnssSystem::kGalileo],
+              units[GnssSystem::kBeidou], rinex.gps.size(), rinex.glonass.size(), rinex.galileo.size(),
+              rinex.beidou.size(), tracked.size(), all.size(), mean(err.d3), mean(err.h), mean(err.up),
+              *std::max_element(err.d3.begin(), err.d3.end()), mean(errors_of(gps).d3));
+  RecordProperty("rtklib_four_systems_mean_3d_error_m", fmt::format("{:.2f}", mean(err.d3)));
+  EXPECT_LE(mean(err.d3), 3.0) << "mean 3D error of rnx2rtkp's four-system single-point solutions vs the truth";
 }
 
 // RTKLIB's stock u-blox command files (../shared/clients/rtklib-ubx-cmd, RTKLIB 2.4.3's
