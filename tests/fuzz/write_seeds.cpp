@@ -2,8 +2,9 @@
 // `navemu-fuzz-seeds DIR` fills DIR/ubx_device (the configuration handshake gpsd, ubxtool and
 // u-center send: polls, CFG-PRT/MSG/RATE/NAV5/GNSS/CFG/RST, CFG-VALSET/VALGET/VALDEL, NMEA
 // in between), DIR/slcan (python-can's opening sequence, every command letter, frames of each
-// kind), DIR/truth_datagram (binary and JSON truth datagrams of every form) and DIR/scene (a
-// building on a ground sheet, since the mission city is generated, not kept). The other text
+// kind), DIR/truth_datagram (binary and JSON truth datagrams of every form), DIR/scene (a
+// building on a ground sheet, since the mission city is generated, not kept) and
+// DIR/nav_messages (every unit of the GPS, Galileo, GLONASS and BeiDou navigation messages). The other text
 // targets' seeds are files of the project and of ../shared (tools/fuzz).
 
 #include <cstdio>
@@ -13,6 +14,10 @@
 #include <string_view>
 #include <vector>
 
+#include "protocols/beidou_nav.hpp"
+#include "protocols/galileo_inav.hpp"
+#include "protocols/glonass_nav.hpp"
+#include "protocols/gps_lnav.hpp"
 #include "protocols/truth_datagram.hpp"
 #include "protocols/ubx.hpp"
 #include "protocols/ubx_messages.hpp"
@@ -285,6 +290,102 @@ void scene_seeds(const fs::path& dir) {
         "usemtl glass\nf 9 10 11 12\nf 5 8 7 6\n");
 }
 
+// nav_messages records (tests/fuzz/fuzz_nav_messages.cpp): gnssId, number of words, words.
+void record(std::vector<std::uint8_t>& out, int gnss_id, std::span<const std::uint32_t> words) {
+  out.push_back(static_cast<std::uint8_t>(gnss_id));
+  out.push_back(static_cast<std::uint8_t>(words.size()));
+  for (const std::uint32_t w : words)
+    for (int b = 0; b < 4; ++b) out.push_back(static_cast<std::uint8_t>(w >> (8 * b)));
+}
+
+// Plausible broadcast values (a medium Earth orbit), the same shape for every system.
+template <typename Eph>
+Eph kepler(navemu::SatId sat, navemu::GpsTime toe) {
+  Eph e;
+  e.sat = sat;
+  e.toe = e.toc = toe;
+  e.sqrt_a_sqrtm = 5440.6;
+  e.e = 0.0003;
+  e.i0_rad = 0.98;
+  e.omega0_rad = -1.2;
+  e.omega_rad = 0.4;
+  e.m0_rad = 2.1;
+  e.delta_n_radps = 3e-9;
+  e.omega_dot_radps = -5.6e-9;
+  e.af0_s = -4.1e-4;
+  e.af1_sps = -7e-12;
+  return e;
+}
+
+void nav_message_seeds(const fs::path& dir) {
+  using namespace navemu;
+  const GpsTime toe = from_week_tow(2111, 345600.0);
+  const int leap_s = 18;
+
+  std::vector<std::uint8_t> gps;
+  lnav::LnavEphemeris l;
+  l.sv_id = 5;
+  l.week = 2111;
+  l.iodc = l.iode = 33;
+  l.toc_s = l.toe_s = 345600.0;
+  l.sqrt_a_sqrtm = 5153.6;
+  l.e = 0.01;
+  l.i0_rad = 0.96;
+  const lnav::LnavIonoUtc iono;
+  for (std::uint32_t count = 57600; count < 57600 + 50; ++count) {  // 10 frames of pages
+    const int sf = lnav::lnav_subframe_id_for(count);
+    record(gps, 0, lnav::lnav_subframe(sf, count, l, iono, lnav::lnav_page_for(count)));
+  }
+  write(dir, "gps-lnav", gps);
+
+  std::vector<std::uint8_t> gal;
+  auto e = kepler<GalileoEphemeris>(SatId(GnssSystem::kGalileo, 11), toe);
+  e.iod_nav = 61;
+  e.sisa_m = 3.12;
+  inav::InavSystemData sys;
+  sys.ai0_sfu = 28.25;
+  sys.dt_ls_s = sys.dt_lsf_s = leap_s;
+  sys.a0g_s = 2.36e-9;
+  for (double tow = 345601.0; tow < 345601.0 + 60.0; tow += 2.0)
+    record(gal, 2, inav::inav_page(inav::inav_word_type_for(tow), 2111 - kGstWeek0InGpsWeeks, tow, e, sys));
+  write(dir, "galileo-inav", gal);
+
+  std::vector<std::uint8_t> glo;
+  GlonassEphemeris g;
+  g.sat = SatId(GnssSystem::kGlonass, 1);
+  g.tb = toe.plus_s(900.0);
+  g.p_pz90_m = Vec3(10908942.4, -2885726.1, 22883539.6);
+  g.v_pz90_mps = Vec3(1407.8, 2795.9, -317.0);
+  g.tau_n_s = -6.4e-5;
+  g.frequency_channel = 1;
+  gnav::GnavSystemData gs;
+  gs.n_a = 1271;
+  gs.n4 = 7;
+  const std::array<gnav::GnavAlmanacEntry, 1> almanac{gnav::GnavAlmanacEntry{.slot = 2, .h_a = -4}};
+  for (double t = 0.0; t < 150.0; t += 2.0) {
+    const gnav::GnavSlot slot = gnav::glonass_slot(toe.plus_s(t), leap_s);
+    gnav::GnavImmediateFlags flags;
+    flags.frame_time_s = slot.frame_time_s;
+    record(glo, 6, gnav::glonass_string(slot.frame, slot.string, g, flags, leap_s, gs, almanac, slot.superframe));
+  }
+  write(dir, "glonass-strings", glo);
+
+  std::vector<std::uint8_t> d1, d2;
+  auto b = kepler<BeidouEphemeris>(SatId(GnssSystem::kBeidou, 11), toe);
+  const bdnav::BdsBroadcast bc;
+  for (double sow = 345600.0; sow < 345600.0 + 60.0; sow += 6.0) {
+    const bdnav::BdsSlot slot = bdnav::d1_slot_at(sow);
+    record(d1, 3, bdnav::d1_subframe(slot.fra_id, slot.page, {2111 - kBdtWeek0InGpsWeeks, slot.sow_s}, b, bc));
+  }
+  write(dir, "beidou-d1", d1);
+  b.sat = SatId(GnssSystem::kBeidou, 1);
+  for (double sow = 345600.0; sow < 345600.0 + 31.0; sow += 0.6) {
+    const bdnav::BdsSlot slot = bdnav::d2_slot_at(sow);
+    record(d2, 3, bdnav::d2_subframe(slot.fra_id, slot.page, {2111 - kBdtWeek0InGpsWeeks, slot.sow_s}, b, bc));
+  }
+  write(dir, "beidou-d2", d2);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -297,6 +398,7 @@ int main(int argc, char** argv) {
   slcan_seeds(dir / "slcan");
   truth_seeds(dir / "truth_datagram");
   scene_seeds(dir / "scene");
+  nav_message_seeds(dir / "nav_messages");
   std::printf("seeds written to %s\n", dir.c_str());
   return 0;
 }
