@@ -82,13 +82,15 @@ int resolve_week(std::uint64_t truncated, int modulus, int reference_week) {
 }
 
 // ---- bit access on MSB-first byte and word buffers -----------------------------------------
+// A value of more than 64 bits is written zero-extended (the almanac words' empty fields);
+// get_bits keeps the last 64 of what it reads.
 
 template <std::size_t N>
 void set_bits(std::array<std::uint8_t, N>& buf, int pos, std::uint64_t v, int bits) {
   for (int i = bits - 1; i >= 0; --i, ++pos) {
     const auto byte = static_cast<std::size_t>(pos / 8);
     const auto bit = static_cast<std::uint8_t>(0x80u >> (pos % 8));
-    if (((v >> i) & 1u) != 0) {
+    if (i < 64 && ((v >> i) & 1u) != 0) {
       buf[byte] = static_cast<std::uint8_t>(buf[byte] | bit);
     } else {
       buf[byte] = static_cast<std::uint8_t>(buf[byte] & ~bit);
@@ -431,10 +433,8 @@ std::optional<InavDecodedPage> decode_inav_page(std::span<const std::uint32_t> w
   std::array<std::uint32_t, 4> spare{};
   std::array<std::uint8_t, 16> spare_bytes{};
   int n = 0;
-  for (const SpareField f : spare_fields(d.word_type)) {
-    set_bits(spare_bytes, n, get_bits(d.word, f.start, f.bits), f.bits);
-    n += f.bits;
-  }
+  for (const SpareField f : spare_fields(d.word_type))  // up to 122 bits: bit by bit
+    for (int i = 0; i < f.bits; ++i, ++n) set_bits(spare_bytes, n, get_bits(d.word, f.start + i, 1), 1);
   for (std::size_t k = 0; k < 4; ++k)
     spare[k] = static_cast<std::uint32_t>(get_bits(spare_bytes, static_cast<int>(32 * k), 32));
   d.extras.word_spare = spare;

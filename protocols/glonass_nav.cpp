@@ -311,8 +311,10 @@ GnavHammingResult glonass_hamming(const GnavString& words) {
   std::uint32_t sigma = 0;
   for (int b = 1; b <= 85; ++b) sigma ^= get_bit(words, b);
   const int ones = std::popcount(syn);
-  if (sigma == 0) return {syn == 0 ? GnavHamming::kOk : GnavHamming::kBad, 0};
-  if (ones == 0) return {GnavHamming::kCheckBitError, 8};
+  // 4.7: correct when every checksum is 0, or one of C1..C7 and C_sigma are 1 (a check bit);
+  // two or more of C1..C7 with C_sigma 1 locate a data bit; anything else (C1..C7 with
+  // C_sigma 0, or C_sigma alone, as after a flipped beta8) is two or more errors.
+  if (sigma == 0 || ones == 0) return {syn == 0 && sigma == 0 ? GnavHamming::kOk : GnavHamming::kBad, 0};
   if (ones == 1) return {GnavHamming::kCheckBitError, std::countr_zero(syn) + 1};
   // Hamming position syn is ICD bit syn + 8 - (the number of powers of two up to syn), the
   // bit that 4.7 b) names for correction.

@@ -162,9 +162,10 @@ GnavString glonass_string(int frame, int string, const GnavEphemeris& eph, int l
 // overall parity C_sigma of bits 1..85.
 enum class GnavHamming {
   kOk,            // all checksums zero
-  kCheckBitError, // one check bit wrong (C_sigma = 1 and at most one of C1..C7), data good
+  kCheckBitError, // one of beta1..beta7 wrong (C_sigma = 1 and exactly one of C1..C7), data good
   kCorrectable,   // one data bit wrong (C_sigma = 1, two or more of C1..C7): `bit` is it
-  kBad,           // C_sigma = 0 with a nonzero syndrome: two or more errors
+  kBad,           // C_sigma = 0 with a nonzero syndrome, or C_sigma = 1 alone (which a flipped
+                  // beta8 also gives): two or more errors by 4.7 c)
 };
 struct GnavHammingResult {
   GnavHamming status = GnavHamming::kBad;

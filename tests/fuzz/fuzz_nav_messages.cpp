@@ -76,12 +76,8 @@ void gnav_record(std::span<const std::uint32_t> w, std::deque<gnav::GnavString>&
   if (w.size() != 4) return;
   const gnav::GnavString s{w[0], w[1], w[2], w[3]};
   (void)gnav::glonass_hamming(s);
-  if (const std::optional<gnav::GnavString> fixed = gnav::glonass_correct(s)) {
-    // A repaired string has no error left (the idle chip aside, which the code does not cover).
-    gnav::GnavString chip_clear = *fixed;
-    chip_clear[0] &= 0x7FFFFFFFu;
-    if (!gnav::glonass_hamming_ok(chip_clear)) std::abort();
-  }
+  if (const std::optional<gnav::GnavString> fixed = gnav::glonass_correct(s))
+    if (gnav::glonass_hamming(*fixed).status != gnav::GnavHamming::kOk) std::abort();  // no error left
   (void)gnav::glonass_string_number(s);
   (void)gnav::decode_ublox_tag(s);
   (void)gnav::decode_l_n(s);

@@ -23,29 +23,18 @@
 #include <vector>
 
 #include "protocols/glonass_nav.hpp"
+#include "tests/protocols/sfrbx_capture.hpp"
 
 namespace navemu::gnav {
 namespace {
 
-// ---- reference data (as tests/protocols/test_lnav.cpp) ---------------------------------------
-std::filesystem::path shared_file(const std::string& relative) {
-  const char* env = std::getenv("NAVEMU_SHARED");
-  const std::filesystem::path shared = env != nullptr ? env : NAVEMU_SHARED_DEFAULT;
-  return shared / "data" / relative;
-}
-
-#define REQUIRE_SHARED_FILE(rel)                                                     \
-  do {                                                                               \
-    if (!std::filesystem::is_regular_file(shared_file(rel)))                         \
-      GTEST_SKIP() << shared_file(rel) << " not found (set NAVEMU_SHARED): skipped"; \
-  } while (0)
+using test::shared_file;
 
 const std::string kM10Log = "receiver_logs/gpsd/ublox-glo.log";
 const std::string kF9pLog = "receiver_logs/gpsd/ublox-zed-f9p-sfrbx.log";
 constexpr int kLeap = 18;  // GPS - UTC at both captures (2020, 2023)
 
-// ---- a minimal UBX scanner: GLONASS RXM-SFRBX with the time of the last NAV-TIMEGPS ---------
-
+// The GLONASS strings of a capture (tests/protocols/sfrbx_capture.hpp) as GnavStrings.
 struct Sfrbx {
   int sv_id = 0;
   int freq_id = 0;
@@ -55,51 +44,9 @@ struct Sfrbx {
 };
 
 std::vector<Sfrbx> read_glonass_sfrbx(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<std::uint8_t> b((std::istreambuf_iterator<char>(in)),
-                                    std::istreambuf_iterator<char>());
-  auto u4 = [&](std::size_t at) {
-    return static_cast<std::uint32_t>(b[at]) | (static_cast<std::uint32_t>(b[at + 1]) << 8) |
-           (static_cast<std::uint32_t>(b[at + 2]) << 16) |
-           (static_cast<std::uint32_t>(b[at + 3]) << 24);
-  };
   std::vector<Sfrbx> out;
-  std::optional<GpsTime> now;
-  std::size_t i = 0;
-  while (i + 8 <= b.size()) {
-    if (b[i] != 0xB5 || b[i + 1] != 0x62) {
-      ++i;
-      continue;
-    }
-    const std::size_t len =
-        static_cast<std::size_t>(b[i + 4]) | (static_cast<std::size_t>(b[i + 5]) << 8);
-    if (i + 8 + len > b.size()) break;
-    std::uint8_t ck_a = 0;
-    std::uint8_t ck_b = 0;
-    for (std::size_t k = i + 2; k < i + 6 + len; ++k) {
-      ck_a = static_cast<std::uint8_t>(ck_a + b[k]);
-      ck_b = static_cast<std::uint8_t>(ck_b + ck_a);
-    }
-    if (ck_a != b[i + 6 + len] || ck_b != b[i + 7 + len]) {
-      ++i;
-      continue;
-    }
-    const std::size_t p = i + 6;
-    if (b[i + 2] == 0x01 && b[i + 3] == 0x20 && len >= 16) {  // NAV-TIMEGPS: iTOW ms, week
-      const int week = static_cast<int>(b[p + 8]) | (static_cast<int>(b[p + 9]) << 8);
-      now = from_week_tow(week, static_cast<double>(u4(p)) * 1e-3);
-    }
-    if (b[i + 2] == 0x02 && b[i + 3] == 0x13 && len >= 8 + 16 && b[p] == 6) {  // RXM-SFRBX
-      Sfrbx s;
-      s.sv_id = b[p + 1];
-      s.freq_id = b[p + 3];
-      s.num_words = b[p + 4];
-      for (std::size_t w = 0; w < 4; ++w) s.words[w] = u4(p + 8 + 4 * w);
-      s.time = now;
-      out.push_back(s);
-    }
-    i += 8 + len;
-  }
+  for (const test::Sfrbx& s : test::read_sfrbx(path, 6))
+    if (s.words.size() == 4) out.push_back({s.sv_id, s.freq_id, s.num_words, {s.words[0], s.words[1], s.words[2], s.words[3]}, s.time});
   return out;
 }
 
@@ -450,7 +397,12 @@ TEST(GnavHamming, EverySingleBitErrorIsDetectedAndLocated) {
       bad[static_cast<std::size_t>(pos / 32)] ^= 1u << (31 - pos % 32);
       EXPECT_FALSE(glonass_hamming_ok(bad)) << "bit " << bit;
       const GnavHammingResult r = glonass_hamming(bad);
-      EXPECT_EQ(r.status, bit <= 8 ? GnavHamming::kCheckBitError : GnavHamming::kCorrectable)
+      if (bit == 8) {  // C_sigma alone: 4.7 c) counts it as two or more errors
+        EXPECT_EQ(r.status, GnavHamming::kBad);
+        EXPECT_FALSE(glonass_correct(bad).has_value());
+        continue;
+      }
+      EXPECT_EQ(r.status, bit < 8 ? GnavHamming::kCheckBitError : GnavHamming::kCorrectable)
           << "bit " << bit;
       EXPECT_EQ(r.bit, bit);
       EXPECT_EQ(glonass_correct(bad), good) << "bit " << bit;
