@@ -22,75 +22,17 @@
 #include <vector>
 
 #include "protocols/beidou_nav.hpp"
+#include "tests/protocols/sfrbx_capture.hpp"
 
 namespace navemu::bdnav {
 namespace {
 
-// ---- reference data (as tests/protocols/test_lnav.cpp) ---------------------------------------
-std::filesystem::path shared_file(const std::string& relative) {
-  const char* env = std::getenv("NAVEMU_SHARED");
-  const std::filesystem::path shared = env != nullptr ? env : NAVEMU_SHARED_DEFAULT;
-  return shared / "data" / relative;
-}
-
-#define REQUIRE_SHARED_FILE(rel)                                                     \
-  do {                                                                               \
-    if (!std::filesystem::is_regular_file(shared_file(rel)))                         \
-      GTEST_SKIP() << shared_file(rel) << " not found (set NAVEMU_SHARED): skipped"; \
-  } while (0)
+using test::read_sfrbx;
+using test::Sfrbx;
+using test::shared_file;
 
 const std::string kF9pLog = "receiver_logs/gpsd/ublox-zed-f9p-sfrbx.log";
 
-struct Sfrbx {
-  int gnss_id = 0;
-  int sv_id = 0;
-  int num_words = 0;
-  std::vector<std::uint32_t> words;
-};
-
-std::vector<Sfrbx> read_sfrbx(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<std::uint8_t> b((std::istreambuf_iterator<char>(in)),
-                                    std::istreambuf_iterator<char>());
-  auto u4 = [&](std::size_t at) {
-    return static_cast<std::uint32_t>(b[at]) | (static_cast<std::uint32_t>(b[at + 1]) << 8) |
-           (static_cast<std::uint32_t>(b[at + 2]) << 16) |
-           (static_cast<std::uint32_t>(b[at + 3]) << 24);
-  };
-  std::vector<Sfrbx> out;
-  std::size_t i = 0;
-  while (i + 8 <= b.size()) {
-    if (b[i] != 0xB5 || b[i + 1] != 0x62) {
-      ++i;
-      continue;
-    }
-    const std::size_t len =
-        static_cast<std::size_t>(b[i + 4]) | (static_cast<std::size_t>(b[i + 5]) << 8);
-    if (i + 8 + len > b.size()) break;
-    std::uint8_t ck_a = 0;
-    std::uint8_t ck_b = 0;
-    for (std::size_t k = i + 2; k < i + 6 + len; ++k) {
-      ck_a = static_cast<std::uint8_t>(ck_a + b[k]);
-      ck_b = static_cast<std::uint8_t>(ck_b + ck_a);
-    }
-    if (ck_a != b[i + 6 + len] || ck_b != b[i + 7 + len]) {
-      ++i;
-      continue;
-    }
-    const std::size_t p = i + 6;
-    if (b[i + 2] == 0x02 && b[i + 3] == 0x13 && len >= 8) {  // RXM-SFRBX
-      Sfrbx s;
-      s.gnss_id = b[p];
-      s.sv_id = b[p + 1];
-      s.num_words = b[p + 4];
-      for (int w = 0; w < s.num_words && 8 + 4 * static_cast<std::size_t>(w) + 4 <= len; ++w)
-        s.words.push_back(u4(p + 8 + 4 * static_cast<std::size_t>(w)));
-      out.push_back(s);
-    }
-    i += 8 + len;
-  }
-  return out;
-}
 
 std::vector<Sfrbx> beidou_subframes() {
   std::vector<Sfrbx> bds;
