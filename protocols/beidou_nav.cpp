@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "protocols/nav_fields.hpp"
+
 namespace navemu::bdnav {
 namespace {
 
@@ -47,10 +49,10 @@ BdsSubframe with_parity(BdsSubframe w) {
 
 class BitWriter {
  public:
-  void put(std::uint32_t v, int bits) {
+  void put(std::uint64_t v, int bits) {
     for (int i = bits - 1; i >= 0 && pos_ < kInfoBits; --i, ++pos_) {
       const BitPos p = bit_pos(pos_);
-      w_[p.word] |= ((v >> i) & 1u) << p.bit;
+      w_[p.word] |= static_cast<std::uint32_t>((v >> i) & 1u) << p.bit;
     }
   }
   void zeros(int bits) { pos_ = std::min(kInfoBits, pos_ + bits); }
@@ -79,62 +81,23 @@ class BitReader {
   int pos_;
 };
 
-// ---- quantisation (as navemu::lnav) -------------------------------------------------------------
+// ---- quantisation (protocols/nav_fields.hpp) ---------------------------------------------------
 
-std::uint32_t mask(int bits) { return bits >= 32 ? 0xFFFFFFFFu : ((1u << bits) - 1u); }
-std::uint32_t field_u(long long v, int bits) {
-  return static_cast<std::uint32_t>(std::clamp(v, 0LL, static_cast<long long>(mask(bits))));
-}
-std::uint32_t low_bits(long long v, int bits) {
-  const long long m = 1LL << bits;
-  return static_cast<std::uint32_t>(((v % m) + m) % m);
-}
-// x / lsb rounded, clamped to `bits` (two's complement when is_signed), NaN -> 0.
-std::uint32_t quantise(double x, double lsb, int bits, bool is_signed) {
-  const double lo = is_signed ? -std::ldexp(1.0, bits - 1) : 0.0;
-  const double hi = is_signed ? std::ldexp(1.0, bits - 1) - 1.0 : std::ldexp(1.0, bits) - 1.0;
-  double q = std::nearbyint(x / lsb);
-  if (std::isnan(q)) q = 0.0;
-  q = std::clamp(q, lo, hi);
-  return static_cast<std::uint32_t>(static_cast<unsigned long long>(static_cast<long long>(q))) &
-         mask(bits);
-}
-std::uint32_t q_s(double x, int lsb_exp, int bits) {
-  return quantise(x, std::ldexp(1.0, lsb_exp), bits, true);
-}
-std::uint32_t q_u(double x, int lsb_exp, int bits) {
-  return quantise(x, std::ldexp(1.0, lsb_exp), bits, false);
-}
-std::uint32_t q_sc(double rad, int lsb_exp, int bits) { return q_s(rad / kBdsPi, lsb_exp, bits); }
-// A full angle reduced to [-1, 1) semicircles (+pi is -pi).
-std::uint32_t q_angle(double rad, int lsb_exp, int bits) {
-  double sc = rad / kBdsPi;
-  if (!std::isfinite(sc)) sc = 0.0;
-  sc -= 2.0 * std::floor((sc + 1.0) / 2.0);
-  const long long full = 1LL << bits;
-  long long q = std::llround(std::ldexp(sc, -lsb_exp));
-  if (q >= full / 2) q -= full;
-  if (q < -full / 2) q += full;
-  return static_cast<std::uint32_t>(static_cast<unsigned long long>(q)) & mask(bits);
-}
-// A BDT time of week in units of 2^lsb_exp s within [0, 604800).
-std::uint32_t q_time(double t_s, int lsb_exp, int bits) {
-  const double max_units = std::ceil(604800.0 / std::ldexp(1.0, lsb_exp)) - 1.0;
-  double q = std::nearbyint(std::ldexp(t_s, -lsb_exp));
-  if (std::isnan(q)) q = 0.0;
-  return static_cast<std::uint32_t>(std::clamp(q, 0.0, std::min(max_units, std::ldexp(1.0, bits) - 1.0)));
-}
-
-long long sext(std::uint32_t v, int bits) {
-  const long long x = v & mask(bits);
-  return (x >> (bits - 1)) != 0 ? x - (1LL << bits) : x;
-}
-double d_s(std::uint32_t v, int bits, int lsb_exp) {
-  return std::ldexp(static_cast<double>(sext(v, bits)), lsb_exp);
-}
-double d_u(std::uint32_t v, int lsb_exp) { return std::ldexp(static_cast<double>(v), lsb_exp); }
-double d_sc(std::uint32_t v, int bits, int lsb_exp) { return d_s(v, bits, lsb_exp) * kBdsPi; }
-double d_01ns(std::uint32_t v, int bits) { return static_cast<double>(sext(v, bits)) * 1e-10; }
+using navfield::d_sc;
+using navfield::d_signed;
+using navfield::d_unsigned;
+using navfield::field_u;
+using navfield::low_bits;
+using navfield::mask;
+using navfield::q_angle;
+using navfield::q_sc;
+using navfield::q_signed;
+using navfield::q_time;
+using navfield::q_unsigned;
+using navfield::quantise_lsb;
+using navfield::sign_extend;
+// BeiDou's time offsets and group delays count in 0.1 ns (5.2.4.10, 5.2.4.19).
+double d_01ns(std::uint64_t v, int bits) { return static_cast<double>(sign_extend(v, bits)) * 1e-10; }
 
 // BDT second of week of a GPS time.
 double bdt_tow(GpsTime t) { return to_week_tow(t.plus_s(-kGpsMinusBdt_s)).tow_s; }
@@ -142,18 +105,18 @@ double bdt_tow(GpsTime t) { return to_week_tow(t.plus_s(-kGpsMinusBdt_s)).tow_s;
 // ---- the clock/ephemeris/ionosphere fields as raw integers, shared by D1 and D2 --------------
 
 struct Raw {
-  std::uint32_t sath1, aodc, urai, wn, toc, tgd1, tgd2, a0, a1, a2, aode;
-  std::uint32_t alpha0, alpha1, alpha2, alpha3, beta0, beta1, beta2, beta3;
-  std::uint32_t dn, cuc, m0, e, cus, crc, crs, sqrta, toe, i0, cic, omegadot, cis, idot, omega0,
+  std::uint64_t sath1, aodc, urai, wn, toc, tgd1, tgd2, a0, a1, a2, aode;
+  std::uint64_t alpha0, alpha1, alpha2, alpha3, beta0, beta1, beta2, beta3;
+  std::uint64_t dn, cuc, m0, e, cus, crc, crs, sqrta, toe, i0, cic, omegadot, cis, idot, omega0,
       omega;
 };
 
 // Bits hi..lo of a field (the ICD splits some over words or D2 pages); field nullptr: reserved.
 struct Slot {
-  std::uint32_t Raw::*field;
+  std::uint64_t Raw::*field;
   int hi, lo;
 };
-constexpr Slot full(std::uint32_t Raw::*f, int bits) { return {f, bits - 1, 0}; }
+constexpr Slot full(std::uint64_t Raw::*f, int bits) { return {f, bits - 1, 0}; }
 constexpr Slot reserved(int bits) { return {nullptr, bits - 1, 0}; }
 
 // Field widths and scale factors: 5.2.4 (D1 subframes 1-3), the same in D2 (5.3.3).
@@ -164,33 +127,33 @@ Raw to_raw(const BeidouEphemeris& eph, const KlobucharCoefficients& iono, int we
   r.urai = static_cast<std::uint32_t>(bds_ura_index(eph.ura_m));
   r.wn = low_bits(week, 13);
   r.toc = q_time(bdt_tow(eph.toc), 3, 17);
-  r.tgd1 = quantise(eph.tgd1_s, 1e-10, 10, true);  // 0.1 ns
-  r.tgd2 = quantise(eph.tgd2_s, 1e-10, 10, true);
-  r.alpha0 = q_s(iono.alpha[0], -30, 8);
-  r.alpha1 = q_s(iono.alpha[1], -27, 8);
-  r.alpha2 = q_s(iono.alpha[2], -24, 8);
-  r.alpha3 = q_s(iono.alpha[3], -24, 8);
-  r.beta0 = q_s(iono.beta[0], 11, 8);
-  r.beta1 = q_s(iono.beta[1], 14, 8);
-  r.beta2 = q_s(iono.beta[2], 16, 8);
-  r.beta3 = q_s(iono.beta[3], 16, 8);
-  r.a2 = q_s(eph.af2_sps2, -66, 11);
-  r.a0 = q_s(eph.af0_s, -33, 24);
-  r.a1 = q_s(eph.af1_sps, -50, 22);
+  r.tgd1 = quantise_lsb(eph.tgd1_s, 1e-10, 10, true);  // 0.1 ns
+  r.tgd2 = quantise_lsb(eph.tgd2_s, 1e-10, 10, true);
+  r.alpha0 = q_signed(iono.alpha[0], -30, 8);
+  r.alpha1 = q_signed(iono.alpha[1], -27, 8);
+  r.alpha2 = q_signed(iono.alpha[2], -24, 8);
+  r.alpha3 = q_signed(iono.alpha[3], -24, 8);
+  r.beta0 = q_signed(iono.beta[0], 11, 8);
+  r.beta1 = q_signed(iono.beta[1], 14, 8);
+  r.beta2 = q_signed(iono.beta[2], 16, 8);
+  r.beta3 = q_signed(iono.beta[3], 16, 8);
+  r.a2 = q_signed(eph.af2_sps2, -66, 11);
+  r.a0 = q_signed(eph.af0_s, -33, 24);
+  r.a1 = q_signed(eph.af1_sps, -50, 22);
   r.aode = low_bits(eph.aode, 5);
   r.dn = q_sc(eph.delta_n_radps, -43, 16);
-  r.cuc = q_s(eph.cuc_rad, -31, 18);
+  r.cuc = q_signed(eph.cuc_rad, -31, 18);
   r.m0 = q_angle(eph.m0_rad, -31, 32);
-  r.e = q_u(eph.e, -33, 32);
-  r.cus = q_s(eph.cus_rad, -31, 18);
-  r.crc = q_s(eph.crc_m, -6, 18);
-  r.crs = q_s(eph.crs_m, -6, 18);
-  r.sqrta = q_u(eph.sqrt_a_sqrtm, -19, 32);
+  r.e = q_unsigned(eph.e, -33, 32);
+  r.cus = q_signed(eph.cus_rad, -31, 18);
+  r.crc = q_signed(eph.crc_m, -6, 18);
+  r.crs = q_signed(eph.crs_m, -6, 18);
+  r.sqrta = q_unsigned(eph.sqrt_a_sqrtm, -19, 32);
   r.toe = q_time(bdt_tow(eph.toe), 3, 17);
   r.i0 = q_angle(eph.i0_rad, -31, 32);
-  r.cic = q_s(eph.cic_rad, -31, 18);
+  r.cic = q_signed(eph.cic_rad, -31, 18);
   r.omegadot = q_sc(eph.omega_dot_radps, -43, 24);
-  r.cis = q_s(eph.cis_rad, -31, 18);
+  r.cis = q_signed(eph.cis_rad, -31, 18);
   r.idot = q_sc(eph.idot_radps, -43, 14);
   r.omega0 = q_angle(eph.omega0_rad, -31, 32);
   r.omega = q_angle(eph.omega_rad, -31, 32);
@@ -199,9 +162,9 @@ Raw to_raw(const BeidouEphemeris& eph, const KlobucharCoefficients& iono, int we
 
 KlobucharCoefficients iono_from_raw(const Raw& r) {
   KlobucharCoefficients k;
-  k.alpha = {d_s(r.alpha0, 8, -30), d_s(r.alpha1, 8, -27), d_s(r.alpha2, 8, -24),
-             d_s(r.alpha3, 8, -24)};
-  k.beta = {d_s(r.beta0, 8, 11), d_s(r.beta1, 8, 14), d_s(r.beta2, 8, 16), d_s(r.beta3, 8, 16)};
+  k.alpha = {d_signed(r.alpha0, 8, -30), d_signed(r.alpha1, 8, -27), d_signed(r.alpha2, 8, -24),
+             d_signed(r.alpha3, 8, -24)};
+  k.beta = {d_signed(r.beta0, 8, 11), d_signed(r.beta1, 8, 14), d_signed(r.beta2, 8, 16), d_signed(r.beta3, 8, 16)};
   return k;
 }
 
@@ -220,26 +183,26 @@ BeidouEphemeris eph_from_raw(const Raw& r, int prn, std::uint32_t sow_s) {
   e.health = static_cast<int>(r.sath1);
   e.aodc = static_cast<int>(r.aodc);
   e.ura_m = bds_ura_m(static_cast<int>(r.urai));
-  e.toc = resolve(week, sow_s, d_u(r.toc, 3));
+  e.toc = resolve(week, sow_s, d_unsigned(r.toc, 3));
   e.tgd1_s = d_01ns(r.tgd1, 10);
   e.tgd2_s = d_01ns(r.tgd2, 10);
-  e.af2_sps2 = d_s(r.a2, 11, -66);
-  e.af0_s = d_s(r.a0, 24, -33);
-  e.af1_sps = d_s(r.a1, 22, -50);
+  e.af2_sps2 = d_signed(r.a2, 11, -66);
+  e.af0_s = d_signed(r.a0, 24, -33);
+  e.af1_sps = d_signed(r.a1, 22, -50);
   e.aode = static_cast<int>(r.aode);
   e.delta_n_radps = d_sc(r.dn, 16, -43);
-  e.cuc_rad = d_s(r.cuc, 18, -31);
+  e.cuc_rad = d_signed(r.cuc, 18, -31);
   e.m0_rad = d_sc(r.m0, 32, -31);
-  e.e = d_u(r.e, -33);
-  e.cus_rad = d_s(r.cus, 18, -31);
-  e.crc_m = d_s(r.crc, 18, -6);
-  e.crs_m = d_s(r.crs, 18, -6);
-  e.sqrt_a_sqrtm = d_u(r.sqrta, -19);
-  e.toe = resolve(week, sow_s, d_u(r.toe, 3));
+  e.e = d_unsigned(r.e, -33);
+  e.cus_rad = d_signed(r.cus, 18, -31);
+  e.crc_m = d_signed(r.crc, 18, -6);
+  e.crs_m = d_signed(r.crs, 18, -6);
+  e.sqrt_a_sqrtm = d_unsigned(r.sqrta, -19);
+  e.toe = resolve(week, sow_s, d_unsigned(r.toe, 3));
   e.i0_rad = d_sc(r.i0, 32, -31);
-  e.cic_rad = d_s(r.cic, 18, -31);
+  e.cic_rad = d_signed(r.cic, 18, -31);
   e.omega_dot_radps = d_sc(r.omegadot, 24, -43);
-  e.cis_rad = d_s(r.cis, 18, -31);
+  e.cis_rad = d_signed(r.cis, 18, -31);
   e.idot_radps = d_sc(r.idot, 14, -43);
   e.omega0_rad = d_sc(r.omega0, 32, -31);
   e.omega_rad = d_sc(r.omega, 32, -31);
@@ -320,11 +283,11 @@ void put_almanac(BitWriter& w, const BdsAlmanac& alm, int prn) {
   if (a == nullptr) {
     w.zeros(176);  // every parameter zero: no almanac for this satellite
   } else {
-    w.put(q_u(a->sqrt_a_sqrtm, -11, 24), 24);
-    w.put(q_s(a->af1_sps, -38, 11), 11);
-    w.put(q_s(a->af0_s, -20, 11), 11);
+    w.put(q_unsigned(a->sqrt_a_sqrtm, -11, 24), 24);
+    w.put(q_signed(a->af1_sps, -38, 11), 11);
+    w.put(q_signed(a->af0_s, -20, 11), 11);
     w.put(q_angle(a->omega0_rad, -23, 24), 24);
-    w.put(q_u(a->e, -21, 17), 17);
+    w.put(q_unsigned(a->e, -21, 17), 17);
     w.put(q_sc(a->delta_i_rad, -19, 16), 16);
     w.put(q_time(a->toa_s, 12, 8), 8);
     w.put(q_sc(a->omega_dot_radps, -38, 17), 17);
@@ -349,19 +312,19 @@ void put_d1_page(BitWriter& w, int fra_id, int page, const BdsBroadcast& bc) {
   } else if (page == 9) {
     const BdsGnssTimeOffsets& t = bc.time_offsets;
     w.zeros(30);
-    w.put(quantise(t.a0_gps_s, 1e-10, 14, true), 14);
-    w.put(quantise(t.a1_gps_sps, 1e-10, 16, true), 16);
-    w.put(quantise(t.a0_gal_s, 1e-10, 14, true), 14);
-    w.put(quantise(t.a1_gal_sps, 1e-10, 16, true), 16);
-    w.put(quantise(t.a0_glo_s, 1e-10, 14, true), 14);
-    w.put(quantise(t.a1_glo_sps, 1e-10, 16, true), 16);
+    w.put(quantise_lsb(t.a0_gps_s, 1e-10, 14, true), 14);
+    w.put(quantise_lsb(t.a1_gps_sps, 1e-10, 16, true), 16);
+    w.put(quantise_lsb(t.a0_gal_s, 1e-10, 14, true), 14);
+    w.put(quantise_lsb(t.a1_gal_sps, 1e-10, 16, true), 16);
+    w.put(quantise_lsb(t.a0_glo_s, 1e-10, 14, true), 14);
+    w.put(quantise_lsb(t.a1_glo_sps, 1e-10, 16, true), 16);
   } else if (page == 10) {
     const BdsUtcParameters& u = bc.utc;
-    w.put(quantise(u.dt_ls_s, 1.0, 8, true), 8);
-    w.put(quantise(u.dt_lsf_s, 1.0, 8, true), 8);
+    w.put(quantise_lsb(u.dt_ls_s, 1.0, 8, true), 8);
+    w.put(quantise_lsb(u.dt_lsf_s, 1.0, 8, true), 8);
     w.put(low_bits(u.wn_lsf, 8), 8);
-    w.put(q_s(u.a0_utc_s, -30, 32), 32);
-    w.put(q_s(u.a1_utc_sps, -50, 24), 24);
+    w.put(q_signed(u.a0_utc_s, -30, 32), 32);
+    w.put(q_signed(u.a1_utc_sps, -50, 24), 24);
     w.put(field_u(u.dn, 8), 8);
   }
 }
@@ -574,11 +537,11 @@ std::optional<BdsUtcParameters> decode_d1_utc(const BdsSubframe& words) {
   if (!h || h->fra_id != 5 || h->page != 10) return std::nullopt;
   BitReader rd(words, kHeaderBits + 8);
   BdsUtcParameters u;
-  u.dt_ls_s = static_cast<int>(sext(rd.get(8), 8));
-  u.dt_lsf_s = static_cast<int>(sext(rd.get(8), 8));
+  u.dt_ls_s = static_cast<int>(sign_extend(rd.get(8), 8));
+  u.dt_lsf_s = static_cast<int>(sign_extend(rd.get(8), 8));
   u.wn_lsf = static_cast<int>(rd.get(8));
-  u.a0_utc_s = d_s(rd.get(32), 32, -30);
-  u.a1_utc_sps = d_s(rd.get(24), 24, -50);
+  u.a0_utc_s = d_signed(rd.get(32), 32, -30);
+  u.a1_utc_sps = d_signed(rd.get(24), 24, -50);
   u.dn = static_cast<int>(rd.get(8));
   return u;
 }
@@ -591,13 +554,13 @@ std::optional<BdsAlmanacPage> decode_d1_almanac(const BdsSubframe& words) {
   BdsAlmanacPage p;
   BdsAlmanacEntry& a = p.entry;
   a.prn = h->fra_id == 4 ? h->page : 24 + h->page;
-  a.sqrt_a_sqrtm = d_u(rd.get(24), -11);
-  a.af1_sps = d_s(rd.get(11), 11, -38);
-  a.af0_s = d_s(rd.get(11), 11, -20);
+  a.sqrt_a_sqrtm = d_unsigned(rd.get(24), -11);
+  a.af1_sps = d_signed(rd.get(11), 11, -38);
+  a.af0_s = d_signed(rd.get(11), 11, -20);
   a.omega0_rad = d_sc(rd.get(24), 24, -23);
-  a.e = d_u(rd.get(17), -21);
+  a.e = d_unsigned(rd.get(17), -21);
   a.delta_i_rad = d_sc(rd.get(16), 16, -19);
-  a.toa_s = d_u(rd.get(8), 12);
+  a.toa_s = d_unsigned(rd.get(8), 12);
   a.omega_dot_radps = d_sc(rd.get(17), 17, -38);
   a.omega_rad = d_sc(rd.get(24), 24, -23);
   a.m0_rad = d_sc(rd.get(24), 24, -23);
@@ -616,7 +579,7 @@ std::optional<BdsAlmanac> decode_d1_health(const BdsSubframe& words, const BdsAl
     a.health[static_cast<std::size_t>(prn - 1)] = static_cast<int>(rd.get(9));
   if (h->page == 8) {
     a.wna = static_cast<int>(rd.get(8));
-    a.toa_s = d_u(rd.get(8), 12);
+    a.toa_s = d_unsigned(rd.get(8), 12);
   }
   return a;
 }

@@ -6,73 +6,26 @@
 #include <cmath>
 
 #include "core/time.hpp"
+#include "protocols/nav_fields.hpp"
 
 namespace navemu::inav {
 namespace {
 
-// ---- field quantisation -------------------------------------------------------------------
+// ---- field quantisation (protocols/nav_fields.hpp) -----------------------------------------
 
-// Clamp an integer to an unsigned field of `bits`.
-std::uint64_t field_u(long long v, int bits) {
-  return static_cast<std::uint64_t>(std::clamp(v, 0LL, (1LL << bits) - 1));
-}
-
-// The low `bits` bits of a counter or identifier (weeks, IODnav): these wrap.
-std::uint64_t low_bits(long long v, int bits) {
-  const long long m = 1LL << bits;
-  return static_cast<std::uint64_t>(((v % m) + m) % m);
-}
-
-std::uint64_t mask(int bits) { return bits >= 64 ? ~0ULL : (1ULL << bits) - 1; }
-
-// x / 2^lsb_exp rounded, clamped to `bits` (two's complement when is_signed), NaN -> 0.
-std::uint64_t quantise(double x, int lsb_exp, int bits, bool is_signed) {
-  const double lo = is_signed ? -std::ldexp(1.0, bits - 1) : 0.0;
-  const double hi = is_signed ? std::ldexp(1.0, bits - 1) - 1.0 : std::ldexp(1.0, bits) - 1.0;
-  double q = std::ldexp(x, -lsb_exp);
-  if (std::isnan(q)) q = 0.0;
-  q = std::clamp(std::nearbyint(q), lo, hi);
-  return static_cast<std::uint64_t>(static_cast<long long>(q)) & mask(bits);
-}
-std::uint64_t q_signed(double x, int lsb_exp, int bits) { return quantise(x, lsb_exp, bits, true); }
-std::uint64_t q_unsigned(double x, int lsb_exp, int bits) {
-  return quantise(x, lsb_exp, bits, false);
-}
-// A rate or small angle in radians as semicircles.
-std::uint64_t q_sc(double rad, int lsb_exp, int bits) {
-  return q_signed(rad / kGalPi, lsb_exp, bits);
-}
-// A full angle in radians as semicircles, reduced to [-1, 1) semicircles first.
-std::uint64_t q_angle(double rad, int lsb_exp, int bits) {
-  double sc = rad / kGalPi;
-  if (!std::isfinite(sc)) sc = 0.0;
-  sc -= 2.0 * std::floor((sc + 1.0) / 2.0);
-  const long long full = 1LL << bits;
-  long long q = std::llround(std::ldexp(sc, -lsb_exp));
-  if (q >= full / 2) q -= full;  // rounding up to +1 semicircle wraps to -1
-  if (q < -full / 2) q += full;
-  return static_cast<std::uint64_t>(q) & mask(bits);
-}
-// A time of week in units of `unit_s`, within [0, 604800) and the field.
-std::uint64_t q_time(double t_s, double unit_s, int bits) {
-  const double max_units = std::ceil(604800.0 / unit_s) - 1.0;
-  double q = std::nearbyint(t_s / unit_s);
-  if (std::isnan(q)) q = 0.0;
-  q = std::clamp(q, 0.0, std::min(max_units, std::ldexp(1.0, bits) - 1.0));
-  return static_cast<std::uint64_t>(q);
-}
-
-std::int64_t sign_extend(std::uint64_t v, int bits) {
-  const auto x = static_cast<std::int64_t>(v);
-  return (x & (std::int64_t{1} << (bits - 1))) != 0 ? x - (std::int64_t{1} << bits) : x;
-}
-double d_signed(std::uint64_t v, int bits, int lsb_exp) {
-  return std::ldexp(static_cast<double>(sign_extend(v, bits)), lsb_exp);
-}
-double d_unsigned(std::uint64_t v, int lsb_exp) {
-  return std::ldexp(static_cast<double>(v), lsb_exp);
-}
-double d_sc(std::uint64_t v, int bits, int lsb_exp) { return d_signed(v, bits, lsb_exp) * kGalPi; }
+using navfield::d_sc;
+using navfield::d_signed;
+using navfield::d_unsigned;
+using navfield::field_u;
+using navfield::low_bits;
+using navfield::mask;
+using navfield::q_angle;
+using navfield::q_sc;
+using navfield::q_signed;
+using navfield::q_unsigned;
+using navfield::sign_extend;
+// Galileo's times of week come in units of 1 s, 60 s and 3600 s.
+std::uint64_t q_time(double t_s, double unit_s, int bits) { return navfield::q_time_units(t_s, unit_s, bits); }
 
 int resolve_week(std::uint64_t truncated, int modulus, int reference_week) {
   int diff = (static_cast<int>(truncated) - reference_week) % modulus;

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "protocols/nav_fields.hpp"
+
 namespace navemu::lnav {
 namespace {
 
@@ -72,72 +74,19 @@ LnavSubframe finish(std::array<std::uint32_t, 10> data) {
   return out;
 }
 
-// ---- field quantisation -------------------------------------------------------------------
+// ---- field quantisation (protocols/nav_fields.hpp) -----------------------------------------
 
-// Clamp an integer to an unsigned field of `bits`.
-std::uint32_t field_u(long long v, int bits) {
-  const long long hi = (1LL << bits) - 1;
-  return static_cast<std::uint32_t>(std::clamp(v, 0LL, hi));
-}
-
-// The low `bits` bits of an identifier (week numbers, issues of data): these count and wrap.
-std::uint32_t low_bits(long long v, int bits) {
-  const long long m = 1LL << bits;
-  return static_cast<std::uint32_t>(((v % m) + m) % m);
-}
-
-// x / 2^lsb_exp rounded, clamped to `bits` (two's complement when is_signed), NaN -> 0.
-std::uint32_t quantise(double x, int lsb_exp, int bits, bool is_signed) {
-  const double lo = is_signed ? -std::ldexp(1.0, bits - 1) : 0.0;
-  const double hi = is_signed ? std::ldexp(1.0, bits - 1) - 1.0 : std::ldexp(1.0, bits) - 1.0;
-  double q = std::ldexp(x, -lsb_exp);
-  if (std::isnan(q)) q = 0.0;
-  q = std::clamp(std::nearbyint(q), lo, hi);
-  const auto v = static_cast<long long>(q);
-  const std::uint32_t mask = bits >= 32 ? 0xFFFFFFFFu : ((1u << bits) - 1u);
-  return static_cast<std::uint32_t>(static_cast<unsigned long long>(v)) & mask;
-}
-std::uint32_t q_signed(double x, int lsb_exp, int bits) { return quantise(x, lsb_exp, bits, true); }
-std::uint32_t q_unsigned(double x, int lsb_exp, int bits) {
-  return quantise(x, lsb_exp, bits, false);
-}
-// A rate or small angle in radians as semicircles.
-std::uint32_t q_sc(double rad, int lsb_exp, int bits) {
-  return q_signed(rad / kGpsPi, lsb_exp, bits);
-}
-// A full angle in radians as semicircles, reduced to [-1, 1) semicircles first: an angle has
-// no range to clamp to, and +pi is -pi.
-std::uint32_t q_angle(double rad, int lsb_exp, int bits) {
-  double sc = rad / kGpsPi;
-  if (!std::isfinite(sc)) sc = 0.0;
-  sc -= 2.0 * std::floor((sc + 1.0) / 2.0);
-  const long long full = 1LL << bits;
-  long long q = std::llround(std::ldexp(sc, -lsb_exp));
-  if (q >= full / 2) q -= full;  // rounding up to +1 semicircle wraps to -1
-  if (q < -full / 2) q += full;
-  const std::uint32_t mask = bits >= 32 ? 0xFFFFFFFFu : ((1u << bits) - 1u);
-  return static_cast<std::uint32_t>(static_cast<unsigned long long>(q)) & mask;
-}
-// A time of week in units of 2^lsb_exp s, within [0, 604800).
-std::uint32_t q_time(double t_s, int lsb_exp, int bits) {
-  const double max_units = std::ceil(604800.0 / std::ldexp(1.0, lsb_exp)) - 1.0;
-  double q = std::nearbyint(std::ldexp(t_s, -lsb_exp));
-  if (std::isnan(q)) q = 0.0;
-  q = std::clamp(q, 0.0, std::min(max_units, std::ldexp(1.0, bits) - 1.0));
-  return static_cast<std::uint32_t>(q);
-}
-
-std::int64_t sign_extend(std::uint32_t v, int bits) {
-  const std::int64_t x = v;
-  return (x & (std::int64_t{1} << (bits - 1))) != 0 ? x - (std::int64_t{1} << bits) : x;
-}
-double d_signed(std::uint32_t v, int bits, int lsb_exp) {
-  return std::ldexp(static_cast<double>(sign_extend(v, bits)), lsb_exp);
-}
-double d_unsigned(std::uint32_t v, int lsb_exp) {
-  return std::ldexp(static_cast<double>(v), lsb_exp);
-}
-double d_sc(std::uint32_t v, int bits, int lsb_exp) { return d_signed(v, bits, lsb_exp) * kGpsPi; }
+using navfield::d_sc;
+using navfield::d_signed;
+using navfield::d_unsigned;
+using navfield::field_u;
+using navfield::low_bits;
+using navfield::q_angle;
+using navfield::q_sc;
+using navfield::q_signed;
+using navfield::q_time;
+using navfield::q_unsigned;
+using navfield::sign_extend;
 
 // ---- the data bits of a subframe as one bit stream ----------------------------------------
 
@@ -150,9 +99,9 @@ constexpr int kBodyEnd = 238;   // bit 23 of word 10 (the t bits)
 class BitWriter {
  public:
   explicit BitWriter(std::array<std::uint32_t, 10>& data) : data_(data) {}
-  void put(std::uint32_t v, int bits) {
+  void put(std::uint64_t v, int bits) {
     for (int i = bits - 1; i >= 0; --i) {
-      const std::uint32_t bit = (v >> i) & 1u;
+      const auto bit = static_cast<std::uint32_t>((v >> i) & 1u);
       const auto word = static_cast<std::size_t>(pos_ / 24);
       data_[word] |= bit << (23 - pos_ % 24);
       ++pos_;
@@ -200,17 +149,17 @@ class BitReader {
 
 void put_tlm_how(std::array<std::uint32_t, 10>& data, const LnavEphemeris& eph,
                  std::uint32_t tow_count_next, int subframe_id) {
-  data[0] = (kPreamble << 16) | (field_u(eph.tlm_message, 14) << 2) |
-            (field_u(eph.integrity_status_flag, 1) << 1);  // bit 24 reserved
-  data[1] = ((tow_count_next % kTowCountsPerWeek) << 7) | (field_u(eph.alert_flag, 1) << 6) |
-            (field_u(eph.anti_spoof_flag, 1) << 5) |
-            (field_u(subframe_id, 3) << 2);  // bits 23, 24: t, solved in finish()
+  data[0] = static_cast<std::uint32_t>((kPreamble << 16) | (field_u(eph.tlm_message, 14) << 2) |
+                                       (field_u(eph.integrity_status_flag, 1) << 1));  // bit 24 reserved
+  data[1] = static_cast<std::uint32_t>(((tow_count_next % kTowCountsPerWeek) << 7) |
+                                       (field_u(eph.alert_flag, 1) << 6) | (field_u(eph.anti_spoof_flag, 1) << 5) |
+                                       (field_u(subframe_id, 3) << 2));  // bits 23, 24: t, solved in finish()
 }
 
 // ---- subframes 1-3 (Figure 20-1 sheets 1-3; Tables 20-I, 20-III) -------------------------
 
 void put_subframe1(BitWriter& w, const LnavEphemeris& eph) {
-  const std::uint32_t iodc = low_bits(eph.iodc, 10);
+  const std::uint64_t iodc = low_bits(eph.iodc, 10);
   w.put(low_bits(eph.week, 10), 10);  // WN
   w.put(field_u(eph.codes_on_l2, 2), 2);
   w.put(field_u(eph.ura_index, 4), 4);
@@ -276,8 +225,8 @@ const LnavAlmanacEntry* find_entry(const LnavAlmanac& alm, int sv_id) {
 // signal health bits; 111111 for an SV without almanac.
 std::uint32_t six_bit_health(const LnavAlmanacEntry* e) {
   if (e == nullptr) return 0x3F;
-  const std::uint32_t h = field_u(e->health, 8);
-  return ((h >> 5) != 0 ? 0x20u : 0u) | (h & 0x1Fu);
+  const std::uint64_t h = field_u(e->health, 8);
+  return ((h >> 5) != 0 ? 0x20u : 0u) | static_cast<std::uint32_t>(h & 0x1Fu);
 }
 
 void put_almanac(BitWriter& w, const LnavAlmanacEntry& a) {
@@ -292,7 +241,7 @@ void put_almanac(BitWriter& w, const LnavAlmanacEntry& a) {
   w.put(q_angle(a.omega0_rad, -23, 24), 24);
   w.put(q_angle(a.omega_rad, -23, 24), 24);
   w.put(q_angle(a.m0_rad, -23, 24), 24);
-  const std::uint32_t af0 = q_signed(a.af0_s, -20, 11);
+  const std::uint64_t af0 = q_signed(a.af0_s, -20, 11);
   w.put(af0 >> 3, 8);  // af0, 8 MSBs
   w.put(q_signed(a.af1_sps, -38, 11), 11);
   w.put(af0 & 7u, 3);  // af0, 3 LSBs
@@ -346,7 +295,7 @@ void put_sf4_config(BitWriter& w, const LnavAlmanac& alm) {
   w.put(kSf4Config, 6);
   for (int sv_id = 1; sv_id <= 32; ++sv_id) {
     const LnavAlmanacEntry* e = find_entry(alm, sv_id);
-    const std::uint32_t v =
+    const std::uint64_t v =
         e == nullptr ? 0u : (field_u(e->anti_spoof_flag, 1) << 3) | field_u(e->sv_config, 3);
     w.put(v, 4);
   }
