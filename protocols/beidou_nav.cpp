@@ -83,19 +83,7 @@ class BitReader {
 
 // ---- quantisation (protocols/nav_fields.hpp) ---------------------------------------------------
 
-using navfield::d_sc;
-using navfield::d_signed;
-using navfield::d_unsigned;
-using navfield::field_u;
-using navfield::low_bits;
-using navfield::mask;
-using navfield::q_angle;
-using navfield::q_sc;
-using navfield::q_signed;
-using navfield::q_time;
-using navfield::q_unsigned;
-using navfield::quantise_lsb;
-using navfield::sign_extend;
+using namespace navfield;
 // BeiDou's time offsets and group delays count in 0.1 ns (5.2.4.10, 5.2.4.19).
 double d_01ns(std::uint64_t v, int bits) { return static_cast<double>(sign_extend(v, bits)) * 1e-10; }
 

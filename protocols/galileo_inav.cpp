@@ -13,19 +13,8 @@ namespace {
 
 // ---- field quantisation (protocols/nav_fields.hpp) -----------------------------------------
 
-using navfield::d_sc;
-using navfield::d_signed;
-using navfield::d_unsigned;
-using navfield::field_u;
-using navfield::low_bits;
-using navfield::mask;
-using navfield::q_angle;
-using navfield::q_sc;
-using navfield::q_signed;
-using navfield::q_unsigned;
-using navfield::sign_extend;
-// Galileo's times of week come in units of 1 s, 60 s and 3600 s.
-std::uint64_t q_time(double t_s, double unit_s, int bits) { return navfield::q_time_units(t_s, unit_s, bits); }
+using namespace navfield;
+// Galileo's times of week come in units of 1 s, 60 s and 3600 s: q_time_units.
 
 int resolve_week(std::uint64_t truncated, int modulus, int reference_week) {
   int diff = (static_cast<int>(truncated) - reference_week) % modulus;
@@ -143,12 +132,12 @@ void put_word0(BitWriter& w, SpareBits& s, int week, double tow, const InavPageE
   w.put(field_u(x.word0_time, 2), 2);  // Time field
   s.spare(w, 88);
   w.put(low_bits(week, 12), 12);  // WN
-  w.put(q_time(tow, 1.0, 20), 20);  // TOW
+  w.put(q_time_units(tow, 1.0, 20), 20);  // TOW
 }
 
 void put_word1(BitWriter& w, SpareBits& s, const GalileoEphemeris& e) {
   w.put(low_bits(e.iod_nav, 10), 10);
-  w.put(q_time(tow_of(e.toe), 60.0, 14), 14);  // toe, 60 s
+  w.put(q_time_units(tow_of(e.toe), 60.0, 14), 14);  // toe, 60 s
   w.put(q_angle(e.m0_rad, -31, 32), 32);
   w.put(q_unsigned(e.e, -33, 32), 32);
   w.put(q_unsigned(e.sqrt_a_sqrtm, -19, 32), 32);
@@ -180,7 +169,7 @@ void put_word4(BitWriter& w, SpareBits& s, const GalileoEphemeris& e) {
   w.put(field_u(e.sat.number(), 6), 6);  // SVID
   w.put(q_signed(e.cic_rad, -29, 16), 16);
   w.put(q_signed(e.cis_rad, -29, 16), 16);
-  w.put(q_time(tow_of(e.toc), 60.0, 14), 14);  // toc, 60 s
+  w.put(q_time_units(tow_of(e.toc), 60.0, 14), 14);  // toc, 60 s
   w.put(q_signed(e.af0_s, -34, 31), 31);
   w.put(q_signed(e.af1_sps, -46, 21), 21);
   w.put(q_signed(e.af2_sps2, -59, 6), 6);
@@ -200,7 +189,7 @@ void put_word5(BitWriter& w, SpareBits& s, const GalileoEphemeris& e, const Inav
   w.put(e5b_dvs(e.health), 1);
   w.put(e1b_dvs(e.health), 1);
   w.put(low_bits(week, 12), 12);
-  w.put(q_time(tow, 1.0, 20), 20);
+  w.put(q_time_units(tow, 1.0, 20), 20);
   s.spare(w, 23);
 }
 
@@ -208,12 +197,12 @@ void put_word6(BitWriter& w, SpareBits& s, const InavSystemData& sys, double tow
   w.put(q_signed(sys.a0_s, -30, 32), 32);
   w.put(q_signed(sys.a1_sps, -50, 24), 24);
   w.put(q_signed(sys.dt_ls_s, 0, 8), 8);
-  w.put(q_time(sys.tot_s, 3600.0, 8), 8);
+  w.put(q_time_units(sys.tot_s, 3600.0, 8), 8);
   w.put(low_bits(sys.wnot, 8), 8);
   w.put(low_bits(sys.wn_lsf, 8), 8);
   w.put(field_u(sys.dn, 3), 3);
   w.put(q_signed(sys.dt_lsf_s, 0, 8), 8);
-  w.put(q_time(tow, 1.0, 20), 20);
+  w.put(q_time_units(tow, 1.0, 20), 20);
   s.spare(w, 3);
 }
 
@@ -236,7 +225,7 @@ void put_word10(BitWriter& w, const InavSystemData& sys) {
   w.put(0, 4 + 16 + 11 + 16 + 16 + 13 + 2 + 2);
   w.put(q_signed(sys.a0g_s, -35, 16), 16);
   w.put(q_signed(sys.a1g_sps, -51, 12), 12);
-  w.put(q_time(sys.t0g_s, 3600.0, 8), 8);
+  w.put(q_time_units(sys.t0g_s, 3600.0, 8), 8);
   w.put(low_bits(sys.wn0g, 6), 6);
 }
 

@@ -76,17 +76,7 @@ LnavSubframe finish(std::array<std::uint32_t, 10> data) {
 
 // ---- field quantisation (protocols/nav_fields.hpp) -----------------------------------------
 
-using navfield::d_sc;
-using navfield::d_signed;
-using navfield::d_unsigned;
-using navfield::field_u;
-using navfield::low_bits;
-using navfield::q_angle;
-using navfield::q_sc;
-using navfield::q_signed;
-using navfield::q_time;
-using navfield::q_unsigned;
-using navfield::sign_extend;
+using namespace navfield;
 
 // ---- the data bits of a subframe as one bit stream ----------------------------------------
 

@@ -950,26 +950,19 @@ TEST(UbxRtklib, FourSystemsCaptureConvertAndSinglePointSolution) {
       if (e.sat == r.sat && std::abs(seconds_between(e.toe, r.toe)) < 16.0) return &e;
     return static_cast<decltype(&records.front())>(nullptr);
   };
-  for (const GpsEphemeris& r : rinex.gps) {
-    in_file.insert(r.sat);
-    const GpsEphemeris* e = find_kepler(made.gps, r);
-    ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
-    EXPECT_EQ(e->iode & 0xFF, r.iode);
-    same_kepler(r, *e);
-  }
-  for (const GalileoEphemeris& r : rinex.galileo) {
-    in_file.insert(r.sat);
-    const GalileoEphemeris* e = find_kepler(made.galileo, r);
-    ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
-    EXPECT_EQ(e->iod_nav & 0x3FF, r.iod_nav);
-    same_kepler(r, *e);
-  }
-  for (const BeidouEphemeris& r : rinex.beidou) {
-    in_file.insert(r.sat);
-    const BeidouEphemeris* e = find_kepler(made.beidou, r);
-    ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
-    same_kepler(r, *e);
-  }
+  const auto check_kepler = [&](const auto& records, const auto& made_records, auto&& same_issue) {
+    for (const auto& r : records) {
+      in_file.insert(r.sat);
+      const auto* e = find_kepler(made_records, r);
+      ASSERT_NE(e, nullptr) << r.sat.rinex() << " record not made by navemu";
+      same_issue(r, *e);
+      same_kepler(r, *e);
+    }
+  };
+  check_kepler(rinex.gps, made.gps, [](const GpsEphemeris& r, const GpsEphemeris& e) { EXPECT_EQ(e.iode & 0xFF, r.iode); });
+  check_kepler(rinex.galileo, made.galileo,
+               [](const GalileoEphemeris& r, const GalileoEphemeris& e) { EXPECT_EQ(e.iod_nav & 0x3FF, r.iod_nav); });
+  check_kepler(rinex.beidou, made.beidou, [](const BeidouEphemeris&, const BeidouEphemeris&) {});
   for (const GlonassEphemeris& r : rinex.glonass) {
     in_file.insert(r.sat);
     const GlonassEphemeris* e = nullptr;
