@@ -43,7 +43,7 @@ template <std::size_t N>
 std::uint64_t get_bits(const std::array<std::uint8_t, N>& buf, int pos, int bits) {
   std::uint64_t v = 0;
   for (int i = 0; i < bits; ++i, ++pos)
-    v = (v << 1) | ((buf[static_cast<std::size_t>(pos / 8)] >> (7 - pos % 8)) & 1u);
+    v = (v << 1) | ((static_cast<unsigned>(buf[static_cast<std::size_t>(pos / 8)]) >> (7 - pos % 8)) & 1u);
   return v;
 }
 
