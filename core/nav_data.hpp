@@ -120,8 +120,9 @@ struct KlobucharCoefficients {
 // RINEX 4.00 "> STO" record): offset(t) = a0 + a1 (t - t_ref) + a2 (t - t_ref)^2, seconds.
 // `type` names the pair as RINEX does, the first scale minus the second: GAGP = GST - GPST
 // (the Galileo GGTO, OS SIS ICD 2.0 5.1.8), GPUT = GPST - UTC(USNO), GAUT = GST - UTC,
-// BDUT = BDT - UTC, QZGP = QZSST - GPST, GLGP = GLONASST - GPST (tau_GPS, the fractional part),
-// GLUT = GLONASST - UTC(SU) (= -tau_c), leap seconds excluded throughout.
+// BDUT = BDT - UTC, QZGP = QZSST - GPST, GLUT = GLONASST - UTC(SU) (= -tau_c), leap seconds
+// excluded throughout; GLGP relates GLONASS time to GPS time (its sign convention is not
+// established here: read, not used).
 struct TimeSystemOffset {
   std::string type;  // four letters, e.g. "GAGP"
   double a0_s = 0.0, a1_sps = 0.0, a2_sps2 = 0.0;
@@ -161,6 +162,11 @@ struct NavData {
         best = &o;
     }
     return best;
+  }
+  // That offset's value at t, seconds; 0 when the file has none of that type.
+  double time_offset_s(std::string_view type, GpsTime t) const {
+    const TimeSystemOffset* o = time_offset(type, t);
+    return o != nullptr ? o->at_s(t) : 0.0;
   }
   int skipped_records = 0;          // records of the systems not read (parsed past)
   std::string source;               // file name

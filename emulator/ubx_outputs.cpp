@@ -831,13 +831,6 @@ SystemTow system_tow(GpsTime t, int week_offset) {
   return {wt.week - week_offset + r.carry, r.whole_s, r.frac_ns};
 }
 
-// A system's time at GPS time t: t + the broadcast offset `type` (e.g. GAGP = GST - GPST, the
-// GGTO) when the navigation data give one, else t itself.
-GpsTime in_system_time(const NavData& nav, std::string_view type, GpsTime t) {
-  const TimeSystemOffset* o = nav.time_offset(type, t);
-  return o != nullptr ? t.plus_s(o->at_s(t)) : t;
-}
-
 // NAV-TIMEBDS (M8 32.17.25, F9 5.14.18): BDT = GPST - 14 s, BDS week 0 = GPS week 1356 (BDS
 // ICD 2.0, 4.3.2 and 5.2.4.5); BDS - UTC = (GPS - UTC) - 14 s.
 void emit_nav_timebds(const EpochView& e, std::vector<std::uint8_t>& out) {
@@ -857,7 +850,7 @@ void emit_nav_timebds(const EpochView& e, std::vector<std::uint8_t>& out) {
 // give it (Galileo OS SIS ICD 2.0 5.1.8), Galileo week 0 = GPS week 1024 (5.1.2); Galileo - UTC =
 // GPS - UTC in whole seconds.
 void emit_nav_timegal(const EpochView& e, std::vector<std::uint8_t>& out) {
-  const SystemTow st = system_tow(in_system_time(e.nav, "GAGP", e.fix.t), kGstWeek0InGpsWeeks);
+  const SystemTow st = system_tow(e.fix.t.plus_s(e.nav.time_offset_s("GAGP", e.fix.t)), kGstWeek0InGpsWeeks);
   NavTimegal m;
   m.i_tow_ms = e.i_tow;
   m.gal_tow_s = st.tow_s;

@@ -457,11 +457,8 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   // 2.0 5.1.8; the navigation data's GAGP), QZSST = GPST + QZGP. Against the receiver's GPS time
   // their pseudoranges come short by c times that offset, which the receiver's inter-system
   // bias takes up (models/solver.hpp). Zero where the data give none (the built-in sky).
-  const auto offset_s = [&](std::string_view type) {
-    const TimeSystemOffset* o = nav_.time_offset(type, out.t_true);
-    return o != nullptr ? o->at_s(out.t_true) : 0.0;
-  };
-  const double gst_minus_gpst_s = offset_s("GAGP"), qzsst_minus_gpst_s = offset_s("QZGP");
+  const double gst_minus_gpst_s = nav_.time_offset_s("GAGP", out.t_true),
+               qzsst_minus_gpst_s = nav_.time_offset_s("QZGP", out.t_true);
   for (SatId sat : st.sat_ids) {
     if (!(active_systems_ & system_bit(sat.system()))) {  // switched off: not tracked
       st.receivable_since.erase(sat);
