@@ -725,7 +725,7 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
   out.clear();
   for (const SatMeasurement& m : e.sats)
     out.push_back(make_range_measurement(m.record, e.t_receiver, m.engine_pseudorange_m,
-                                         m.signals[0]->doppler_hz));
+                                         m.signals[0]->doppler_hz, state_->glonass_arcs.find(m.sat)));
 }
 
 }  // namespace navemu

@@ -133,11 +133,12 @@ RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_re
 }
 
 RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_receive,
-                                        double pseudorange_m, std::optional<double> doppler_l1_hz) {
+                                        double pseudorange_m, std::optional<double> doppler_l1_hz,
+                                        const GlonassArc* arc) {
   constexpr double kGlonassEphemerisSigma_m = 5.0;  // RTKLIB's ERREPH_GLO
   GpsTime t_tx = t_receive.plus_s(-pseudorange_m / kSpeedOfLight_mps);
   t_tx = t_tx.plus_s(-glonass_sat_clock_s(eph, t_tx));
-  const SatState s = glonass_sat_state(eph, t_tx);
+  const SatState s = arc != nullptr && arc->of(eph) ? arc->state(t_tx) : glonass_sat_state(eph, t_tx);
   RangeMeasurement m;
   m.sat = eph.sat;
   m.sat_p_ecef_m = s.p_ecef_m;
@@ -152,11 +153,15 @@ RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_r
 }
 
 RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_receive,
-                                        double pseudorange_m, std::optional<double> doppler_hz) {
+                                        double pseudorange_m, std::optional<double> doppler_hz,
+                                        const GlonassArc* glonass_arc) {
   return std::visit(
       [&](const auto& record) -> RangeMeasurement {
-        if constexpr (std::is_same_v<std::decay_t<decltype(record)>, std::monostate>)
+        using Record = std::decay_t<decltype(record)>;
+        if constexpr (std::is_same_v<Record, std::monostate>)
           return {};
+        else if constexpr (std::is_same_v<Record, const GlonassEphemeris*>)
+          return make_range_measurement(*record, t_receive, pseudorange_m, doppler_hz, glonass_arc);
         else
           return make_range_measurement(*record, t_receive, pseudorange_m, doppler_hz);
       },
@@ -214,27 +219,30 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
 
   // Iterated weighted least squares on the linearised pseudorange equations
   // P = |R(w tau) p_sat - p| + c dt_rx - c dt_sat + I + T  (RTKLIB pntpos / ESA GNSS Book I, 6.1).
-  // Directions and atmospheric corrections change by far less than a millimetre while the
-  // estimate moves less than kReuseCorrections_m (the troposphere by ~0.3 mm per metre of
-  // height), so they are recomputed only when it has moved further.
-  constexpr double kReuseCorrections_m = 1.0;
-  Vec3 corrections_at = Vec3::Zero();  // where they were computed; zero: not yet
+  // Directions and the ionosphere change by well under a millimetre while the estimate moves
+  // less than kReuseDirections_m (elevations by ~5e-7 rad, the pierce points as much); the
+  // troposphere by ~0.3 mm per metre of height at the zenith (~3 mm at 5 deg), so it is
+  // recomputed once the estimate has moved kReuseTropo_m.
+  constexpr double kReuseDirections_m = 10.0, kReuseTropo_m = 1.0;
+  Vec3 directions_at = Vec3::Zero(), tropo_at = Vec3::Zero();  // where computed; zero: not yet
   for (int iter = 0; iter < opt.max_iterations; ++iter) {
     n_sat_rows = 0;
     const bool known = position_known(p);
-    const bool recompute = !known || !position_known(corrections_at) ||
-                           (p - corrections_at).norm() > kReuseCorrections_m;
+    const bool new_directions = !known || !position_known(directions_at) ||
+                                (p - directions_at).norm() > kReuseDirections_m;
+    const bool new_tropo = new_directions || (p - tropo_at).norm() > kReuseTropo_m;
     Geodetic geo;
     Mat3 r_enu = Mat3::Identity();
     SaastamoinenZenith tropo_zenith;
-    if (known && recompute) {
+    if (known && new_tropo) {
       geo = geodetic_of(p);
-      r_enu = R_enu_from_ecef(geo);
+      if (new_directions) r_enu = R_enu_from_ecef(geo);
       if (opt.saastamoinen)
         tropo_zenith =
             saastamoinen_zenith(geo, standard_atmosphere(geo.h_m, opt.relative_humidity));
     }
-    if (recompute) corrections_at = known ? p : Vec3::Zero();
+    if (new_directions) directions_at = known ? p : Vec3::Zero();
+    if (new_tropo) tropo_at = known ? p : Vec3::Zero();
     for (std::size_t i = 0; i < meas.size(); ++i) {
       const RangeMeasurement& m = meas[i];
       SatResidual& out = sol.sats[i];
@@ -243,7 +251,7 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
       const Vec3 p_sat = rotate_earth(m.sat_p_ecef_m, tau_s);
       const Vec3 los = p_sat - p;
       const double range = los.norm();
-      if (recompute) {
+      if (new_directions) {
         out = SatResidual{};
         out.sat = m.sat;
         AzEl dir{0.0, kPi / 2.0};
@@ -256,10 +264,10 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
           out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, tow_s) *
                        l1_over_f * l1_over_f;
         }
-        if (known && opt.saastamoinen)
-          out.tropo_m = saastamoinen_delay(tropo_zenith, dir.el_rad).total_m();
         sin_el[i] = std::sin(out.el_deg * kDegToRad);
       }
+      if (new_tropo && known && opt.saastamoinen)
+        out.tropo_m = saastamoinen_delay(tropo_zenith, out.el_deg * kDegToRad).total_m();
       out.residual_m = 0.0;
       out.used = false;
       const double el_rad = out.el_deg * kDegToRad;

@@ -16,6 +16,8 @@
 
 namespace navemu {
 
+class GlonassArc;  // models/orbit.hpp
+
 // One satellite's measurement, with the satellite's state already evaluated at its
 // transmit time, in the ECEF frame of that transmit time (the solver applies the Earth
 // rotation during the signal's flight for the current position estimate).
@@ -125,12 +127,16 @@ RangeMeasurement make_range_measurement(const GalileoEphemeris& eph, GpsTime t_r
 RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
                                         std::optional<double> doppler_b1i_hz = {});
+//   `arc`: the record's integrated arc when the caller keeps one (GlonassArc; the same state
+//   to the integration's sub-millimetre differences, without integrating from tb again).
 RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
-                                        std::optional<double> doppler_l1_hz = {});
+                                        std::optional<double> doppler_l1_hz = {},
+                                        const GlonassArc* arc = nullptr);
 // The one of these for whichever record `r` holds (it must hold one).
 RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_receive,
-                                        double pseudorange_m, std::optional<double> doppler_hz = {});
+                                        double pseudorange_m, std::optional<double> doppler_hz = {},
+                                        const GlonassArc* glonass_arc = nullptr);
 
 // The solver's matrices live on the stack up to this many satellites (no allocation per epoch);
 // measurements beyond it are not used.

@@ -28,6 +28,7 @@
 #include <fmt/format.h>
 
 #include "models/orbit.hpp"
+#include "models/solver.hpp"
 #include "protocols/rinex.hpp"
 #include "tests/rinex_data.hpp"
 #include "tests/test_support.hpp"
@@ -207,6 +208,28 @@ TEST(OrbitGlonass, TheOnceIntegratedArcGivesTheSameStates) {
   EXPECT_LT(worst_p_m, 1e-3);
   EXPECT_LT(worst_v_mps, 1e-7);
   EXPECT_EQ(worst_clock_s, 0.0);
+}
+
+// The receiver's solver takes a GLONASS satellite's state from the arc it keeps: the same
+// measurement as integrating from tb to a millimetre (0.15 mm here); an arc made for another
+// record is not used (the solver integrates instead: identical to no arc).
+TEST(OrbitGlonass, TheSolversMeasurementFromTheArcEqualsTheIntegratedOne) {
+  NAVEMU_REQUIRE_SHARED();
+  const NavData& nav = esbc_nav();
+  ASSERT_GE(nav.glonass.size(), 2u);
+  const GlonassEphemeris& e = nav.glonass.front();
+  const GlonassEphemeris& other = nav.glonass.back();
+  const GlonassArc arc(e), other_arc(other);
+  for (double dt = -900.0; dt <= 900.0; dt += 113.0) {
+    const GpsTime t = e.tb.plus_s(dt);
+    const RangeMeasurement plain = make_range_measurement(e, t, 2.1e7, 1234.5);
+    const RangeMeasurement from_arc = make_range_measurement(e, t, 2.1e7, 1234.5, &arc);
+    const RangeMeasurement wrong_arc = make_range_measurement(e, t, 2.1e7, 1234.5, &other_arc);
+    EXPECT_LT((from_arc.sat_p_ecef_m - plain.sat_p_ecef_m).norm(), 1e-3) << dt;
+    EXPECT_LT((from_arc.sat_v_ecef_mps - plain.sat_v_ecef_mps).norm(), 1e-7) << dt;
+    EXPECT_EQ(from_arc.sat_clock_m, plain.sat_clock_m);
+    EXPECT_EQ(wrong_arc.sat_p_ecef_m, plain.sat_p_ecef_m);
+  }
 }
 
 TEST(OrbitBeidou, TheGeostationaryC05StaysOverItsSlot) {
