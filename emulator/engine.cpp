@@ -12,7 +12,9 @@
 #include <cstring>
 #include <memory>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "emulator/commands.hpp"
@@ -246,6 +248,14 @@ void install_stop_handlers() {
 
 bool stop_requested() { return g_stop.load(); }
 
+namespace {
+// A run's truth source, and the wrapper through which truth faults act on it (if any).
+struct TruthOfRun {
+  std::unique_ptr<TruthSource> source;
+  ImpairedTruth* impaired = nullptr;
+};
+}  // namespace
+
 EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOptions& opt, std::ostream& log) {
   EngineSummary sum;
   const bool offline = !opt.realtime;
@@ -257,24 +267,30 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   // corresponds to the host's "now" at start (read before setting up, which takes a while).
   const GpsTime host_offset{start.ns - gps_now().ns};
   RunPlan plan = resolve_run(cfg, opt, log);
-  std::unique_ptr<TruthSource> truth = make_truth_source(cfg.truth, start, host_offset);
-  // Truth faults (`events:`, live control) act on it through ImpairedTruth (the lockstep
-  // clock's reference below is to the wrapper, which passes the stream through).
-  ImpairedTruth* impaired = nullptr;
-  if (!cfg.truth_faults.empty() || (cfg.control && !offline)) {
-    auto wrapped = std::make_unique<ImpairedTruth>(std::move(truth));
-    impaired = wrapped.get();
-    truth = std::move(wrapped);
-  }
+  // Truth faults (`events:`, live control) act on the truth through ImpairedTruth (the
+  // lockstep clock's reference below is to the wrapper, which passes the stream through).
+  const bool wrap_truth = !cfg.truth_faults.empty() || (cfg.control && !offline);
+  const auto new_truth = [&] {
+    TruthOfRun t{make_truth_source(cfg.truth, start, host_offset)};
+    if (wrap_truth) {
+      auto wrapped = std::make_unique<ImpairedTruth>(std::move(t.source));
+      t.impaired = wrapped.get();
+      t.source = std::move(wrapped);
+    }
+    return t;
+  };
+  TruthOfRun truth_of_run = new_truth();
+  TruthSource& truth = *truth_of_run.source;
+  ImpairedTruth* const main_impaired = truth_of_run.impaired;
   // Navigation data are checked before anything opens; lockstep knows its start only at the
   // first datagram, so it checks them then.
   NavData nav;
   if (!lockstep) nav = scenario_nav(plan, start, opt, log);
   RunOutputs outputs = open_outputs(cfg, plan, opt, log);
-  print_truth(cfg, *truth, log);
+  print_truth(cfg, truth, log);
   print_outputs(cfg, plan, outputs, opt, log);
   if (lockstep) {
-    const std::optional<GpsTime> first = wait_for_first_truth(cfg, *truth, outputs, log);
+    const std::optional<GpsTime> first = wait_for_first_truth(cfg, truth, outputs, log);
     if (!first) return sum;  // stopped while waiting
     start = *first;
     nav = scenario_nav(plan, start, opt, log);
@@ -282,29 +298,56 @@ EngineSummary run_engine(const RunConfig& cfg, GpsTime start, const EngineOption
   fmt::print(log, "navemu: scenario start {} ({}), seed {}, {}\n", format_iso_utc(start), format_week_tow(start),
              cfg.seed, offline ? "offline" : lockstep ? "lockstep" : "real time");
   const std::vector<std::unique_ptr<SensorChannel>> channels =
-      make_channels(cfg, plan, outputs, std::move(nav), opt, impaired, log);
+      make_channels(cfg, plan, outputs, std::move(nav), opt, main_impaired, log);
   if (!offline) try_realtime_hardening(cfg, log);
 
   const std::unique_ptr<Clock> clock =
       offline    ? make_offline_clock()
-      : lockstep ? make_lockstep_clock(*truth)
+      : lockstep ? make_lockstep_clock(truth)
                  : make_realtime_clock(start, opt.start_monotonic_ns.value_or(monotonic_ns()));
   const std::int64_t wall0 = monotonic_ns();
   // Setting up took time: in real time the run begins with the first events still ahead (none
   // is skipped as late at start), and the duration counts from there.
   if (clock->realtime()) start = GpsTime{start.ns + std::max<std::int64_t>(0, wall0 - clock->mono_of(start))};
   print_events(cfg, start, log);
-  if (impaired) impaired->set_faults(cfg.truth_faults, start);
+  if (main_impaired) main_impaired->set_faults(cfg.truth_faults, start);
   SchedulerOptions so;
   so.start = start;
   so.end = opt.duration_s ? start.plus_s(*opt.duration_s) : GpsTime{INT64_MAX};
   so.status_ns = cfg.status_interval_s > 0.0 ? std::llround(cfg.status_interval_s * 1e9) : 0;
-  std::vector<SensorChannel*> order;
-  for (const auto& c : channels) order.push_back(c.get());
-  Scheduler(*clock, *truth, order, so, log).run();
+  // The IMU on a thread of its own (EngineOptions::threads), with its own truth and clock; its
+  // log lines follow the others'.
+  const bool generated = cfg.truth.kind != TruthSourceKind::kCsv && cfg.truth.kind != TruthSourceKind::kUdp;
+  std::vector<SensorChannel*> order, apart;
+  for (const auto& c : channels)
+    (offline && generated && opt.threads >= 2 && c->status_key() == "imu" ? apart : order).push_back(c.get());
+  if (order.empty()) std::swap(order, apart);
+  std::ostringstream apart_log;
+  std::exception_ptr apart_error;
+  {
+    TruthOfRun apart_truth;
+    std::unique_ptr<Clock> apart_clock;
+    std::jthread apart_thread;  // declared last: joined before what it uses goes
+    if (!apart.empty()) {
+      fmt::print(log, "navemu: the IMU runs on a thread of its own\n");
+      apart_truth = new_truth();
+      if (apart_truth.impaired) apart_truth.impaired->set_faults(cfg.truth_faults, start);
+      apart_clock = make_offline_clock();
+      apart_thread = std::jthread([&] {
+        try {
+          Scheduler(*apart_clock, *apart_truth.source, apart, so, apart_log).run();
+        } catch (...) {
+          apart_error = std::current_exception();
+        }
+      });
+    }
+    Scheduler(*clock, truth, order, so, log).run();
+  }  // joined
+  if (apart_error) std::rethrow_exception(apart_error);
+  log << apart_log.str();
 
   for (const auto& c : channels) c->finish(sum);
-  if (const TruthCounters* tc = truth->counters()) sum.truth = *tc;
+  if (const TruthCounters* tc = truth.counters()) sum.truth = *tc;
   sum.wall_s = static_cast<double>(monotonic_ns() - wall0) * 1e-9;
   return sum;
 }

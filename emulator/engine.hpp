@@ -38,6 +38,11 @@ struct EngineOptions {
   // CLOCK_MONOTONIC read together with the start time (a run that starts "now"), so that GPS
   // time in the loop follows the system clock; unset: the loop's own start.
   std::optional<std::int64_t> start_monotonic_ns;
+  // Offline with a generated truth (stationary, circle, line, waypoints): 2 or more runs the
+  // IMU channel on a thread of its own beside the others. The files are the same as with one
+  // thread: the channels share nothing while they run (each has its own random streams and
+  // outputs), and a generator's truth is a function of time, so each thread has its own.
+  int threads = 1;
 };
 
 // CLOCK_MONOTONIC in nanoseconds.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <ostream>
+#include <thread>
 
 #include "emulator/commands.hpp"
 #include "emulator/engine.hpp"
@@ -19,6 +20,7 @@ struct RunOptions {
   std::string start;  // overrides scenario.start
   std::optional<std::uint64_t> seed;
   std::string out_dir;  // simulate
+  int threads = 1;      // simulate
   bool offline = false;
 };
 
@@ -113,6 +115,11 @@ std::shared_ptr<RunOptions> add_simulate_command(CLI::App& app) {
       ->required()
       ->check(positive_number());
   sim->add_option("--out", opt->out_dir, "Output folder (created)")->required();
+  opt->threads = std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+  sim->add_option("--threads", opt->threads,
+                  "Threads: 2 runs the IMU beside the GNSS receiver when the truth is a generator\n"
+                  "(identical files; default 2 on a machine with 2 or more cores, else 1)")
+      ->check(CLI::Range(1, 64));
   add_common(sim, *opt);
   return opt;
 }
@@ -152,6 +159,7 @@ int run_run(const RunOptions& opt, std::ostream& out, std::ostream& err) {
   eo.realtime = !opt.offline;
   eo.duration_s = opt.duration_s;
   eo.out_dir = opt.out_dir;
+  eo.threads = opt.threads;
   install_stop_handlers();
   const EngineSummary s = run_engine(cfg, start, eo, err);
   if (opt.offline) {

@@ -26,9 +26,10 @@
 namespace navemu {
 namespace {
 
-void simulate_one_hour(benchmark::State& state, const RunConfig& cfg) {
+void simulate_one_hour(benchmark::State& state, const RunConfig& cfg, int threads = 1) {
   EngineOptions opt;
   opt.realtime = false;
+  opt.threads = threads;
   opt.duration_s = 3600.0;
   // Per process: other runs of the benchmarks may be writing theirs.
   opt.out_dir = std::filesystem::temp_directory_path() /
@@ -67,6 +68,18 @@ void BM_SimulateOneHourAllOutputs(benchmark::State& state) {
   simulate_one_hour(state, every_output());
 }
 BENCHMARK(BM_SimulateOneHourAllOutputs)->Unit(benchmark::kSecond)->Iterations(1);
+
+// The same as navemu simulate runs it on two or more cores: the IMU on a thread of its own
+// (EngineOptions::threads; the same files). The factor is scenario time over wall time.
+void BM_SimulateOneHourTwoThreads(benchmark::State& state) {
+  simulate_one_hour(state, load_run_config(default_run_config()), 2);
+}
+BENCHMARK(BM_SimulateOneHourTwoThreads)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+void BM_SimulateOneHourAllOutputsTwoThreads(benchmark::State& state) {
+  simulate_one_hour(state, every_output(), 2);
+}
+BENCHMARK(BM_SimulateOneHourAllOutputsTwoThreads)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 void BM_SimulateOneHourAllOutputsUrban(benchmark::State& state) {
   RunConfig cfg = every_output();

@@ -101,6 +101,33 @@ TEST(Simulate, EventsAreDeterministicAndAct) {
   EXPECT_NE(ra.out.find("navemu: event: jamming, wideband on L1, J/S 50 dB"), std::string::npos) << ra.out;
 }
 
+// The IMU on a thread of its own (--threads 2, the default on two or more cores) writes the
+// same files as one thread, with truth faults (a freeze, a teleport, a time jump: each thread
+// has its own truth), a jammer and IMU faults in the run; both runs report the same counts.
+TEST(Simulate, TwoThreadsWriteTheFilesOfOne) {
+  const fs::path dir = temp_dir("threads"), one = dir / "one", two = dir / "two";
+  const fs::path cfg = dir / "faults.yaml";
+  std::ofstream(cfg) << slurp(fs::path(NAVEMU_SOURCE_DIR) / "configs" / "imu-stuck-gyro.yaml") <<
+      "  - {type: truth, start_s: 20, duration_s: 5, fault: freeze}\n"
+      "  - {type: truth, start_s: 30, duration_s: 5, fault: teleport, offset_m: [0, 100, 0]}\n"
+      "  - {type: truth, start_s: 40, duration_s: 5, fault: time_jump, jump_s: 3}\n"
+      "  - {type: jamming, start_s: 50, duration_s: 40, ramp_s: 10, j_over_s_db: 45, kind: wideband, band: L1}\n";
+  const auto r1 = simulate(cfg, one, 120, "--threads 1"), r2 = simulate(cfg, two, 120, "--threads 2");
+  ASSERT_EQ(r1.exit_code, 0) << r1.out;
+  ASSERT_EQ(r2.exit_code, 0) << r2.out;
+  for (const char* f : {"nmea.log", "truth.csv", "gnss.csv", "imu.csv", "can.log"}) {
+    EXPECT_FALSE(slurp(one / f).empty()) << f;
+    EXPECT_EQ(slurp(one / f), slurp(two / f)) << f;
+  }
+  const std::string apart = "navemu: the IMU runs on a thread of its own\n";
+  EXPECT_EQ(r1.out.find(apart), std::string::npos) << r1.out;
+  EXPECT_NE(r2.out.find(apart), std::string::npos) << r2.out;
+  const std::regex speed_and_folder(
+      R"(scenario in [0-9.]+ s \([0-9]+x real time\)|/(one|two)\b|navemu: the IMU runs on a thread of its own\n)");
+  EXPECT_EQ(std::regex_replace(r1.out, speed_and_folder, ""), std::regex_replace(r2.out, speed_and_folder, ""));
+  EXPECT_NE(r1.out.find("14750 IMU samples, 250 dropped by a fault"), std::string::npos) << r1.out;
+}
+
 // configs/tunnel.yaml: the F9P (1 Hz) loses its fix for the 20 s of the tunnel and the second
 // it takes to re-acquire the satellites after it. The same tunnel (and an IMU fault) given by
 // GPS time (`at`, 60 s after the 13:00:00 start) gives the same files.
