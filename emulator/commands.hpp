@@ -89,6 +89,7 @@ struct SppOptions {
   std::string iono = "klobuchar";
   std::string tropo = "saastamoinen";
   std::string residuals_file;  // empty: none
+  bool raim = true;            // the residual test with exclusion (SolverOptions::raim)
 };
 void add_spp_command(CLI::App& app, SppOptions& opt);
 int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err);

@@ -174,8 +174,10 @@ Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const Solve
   return sol;
 }
 
-void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions& opt,
-           Solution& sol) {
+namespace {
+// One weighted least-squares solution (no residual test).
+void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions& opt,
+                         Solution& sol) {
   const std::span<const RangeMeasurement> meas =
       all.first(std::min(all.size(), kMaxSolverSatellites));
   reset_keeping_storage(sol, &Solution::sats).sats.resize(meas.size());
@@ -352,6 +354,9 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
   }
   sol.cov_ecef_m2 = lu.inverse().topLeftCorner<3, 3>();
   sol.num_used = static_cast<int>(n_sat_rows);
+  for (std::size_t k = 0; k < n_sat_rows; ++k)
+    sol.chi_square += row_store[k].residual_m * row_store[k].residual_m / row_store[k].variance_m2;
+  sol.degrees_of_freedom = static_cast<int>(n_sat_rows + (hold_height ? 1 : 0)) - static_cast<int>(lu.rows());
   sol.fix = hold_height ? FixType::k2D : FixType::k3D;
   std::array<AzEl, kMaxSolverSatellites> dirs;
   for (std::size_t k = 0; k < n_sat_rows; ++k) {
@@ -388,6 +393,108 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
     sol.v_ecef_mps = x.head<3>();
     sol.clock_drift_mps = x(3);
   }
+}
+
+
+// Regularised lower incomplete gamma function P(a, x): its series below x = a + 1, one minus
+// the continued fraction of Q(a, x) above (Abramowitz & Stegun 6.5.29 and 6.5.31; the
+// continued fraction evaluated by the modified Lentz method).
+double gamma_p(double a, double x) {
+  if (x <= 0.0) return 0.0;
+  const double log_prefactor = -x + a * std::log(x) - std::lgamma(a);
+  if (x < a + 1.0) {
+    double term = 1.0 / a, sum = term;
+    for (int n = 1; n < 500 && std::abs(term) > std::abs(sum) * 1e-16; ++n) {
+      term *= x / (a + n);
+      sum += term;
+    }
+    return sum * std::exp(log_prefactor);
+  }
+  constexpr double kTiny = 1e-300;
+  double b = x + 1.0 - a, c = 1.0 / kTiny, d = 1.0 / b, h = d;
+  for (int i = 1; i < 500; ++i) {
+    const double an = -i * (i - a);
+    b += 2.0;
+    d = an * d + b;
+    if (std::abs(d) < kTiny) d = kTiny;
+    c = b + an / c;
+    if (std::abs(c) < kTiny) c = kTiny;
+    d = 1.0 / d;
+    const double delta = d * c;
+    h *= delta;
+    if (std::abs(delta - 1.0) < 1e-16) break;
+  }
+  return 1.0 - std::exp(log_prefactor) * h;
+}
+
+// The residual test's threshold for `dof` degrees of freedom, the quantiles of the usual
+// probability computed once.
+double raim_threshold(double p, int dof) {
+  constexpr double kUsual = 0.999;
+  static const std::array<double, kMaxSolverSatellites + 1> usual = [] {
+    std::array<double, kMaxSolverSatellites + 1> q{};
+    for (std::size_t k = 1; k < q.size(); ++k) q[k] = chi_square_quantile(kUsual, static_cast<int>(k));
+    return q;
+  }();
+  return p == kUsual && dof < static_cast<int>(usual.size()) ? usual[static_cast<std::size_t>(dof)]
+                                                             : chi_square_quantile(p, dof);
+}
+
+bool passes(const Solution& s, const SolverOptions& opt) {
+  return s.fix != FixType::kNone &&
+         (s.degrees_of_freedom <= 0 || s.chi_square <= raim_threshold(opt.raim_probability, s.degrees_of_freedom));
+}
+}  // namespace
+
+double chi_square_quantile(double p, int dof) {
+  const double a = 0.5 * dof;
+  double lo = 0.0, hi = std::max(1.0, 2.0 * dof);
+  while (gamma_p(a, 0.5 * hi) < p) hi *= 2.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (gamma_p(a, 0.5 * mid) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions& opt,
+           Solution& sol) {
+  solve_least_squares(all, t, opt, sol);
+  const std::span<const RangeMeasurement> meas =
+      all.first(std::min(all.size(), kMaxSolverSatellites));
+  if (!opt.raim || passes(sol, opt)) return;
+  // Fault detection failed (or there was no fix): each used satellite left out in turn
+  // (RTKLIB raim_fde); the passing fix with the smallest sum is kept.
+  std::vector<RangeMeasurement> without;
+  Solution trial, best;
+  std::optional<std::size_t> excluded;
+  for (std::size_t i = 0; i < meas.size(); ++i) {
+    if (sol.fix != FixType::kNone && !sol.sats[i].used) continue;
+    without.assign(meas.begin(), meas.end());
+    without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
+    solve_least_squares(without, t, opt, trial);
+    if (trial.degrees_of_freedom > 0 && passes(trial, opt) && (!excluded || trial.chi_square < best.chi_square)) {
+      std::swap(best, trial);
+      excluded = i;
+    }
+  }
+  if (!excluded) {
+    sol.integrity_failed = sol.fix != FixType::kNone;  // a fix that failed, not too few satellites
+    sol.fix = FixType::kNone;
+    return;
+  }
+  // The excluded satellite keeps its place in sats, with its residual against the fix kept.
+  const RangeMeasurement& m = meas[*excluded];
+  SatResidual out = sol.sats[*excluded];  // its direction and corrections, when computed
+  out.sat = m.sat;
+  const std::optional<double> clock = best.group_clock_m[clock_group(m.sat.system())];
+  const double tau_s = (m.sat_p_ecef_m - best.p_ecef_m).norm() / kSpeedOfLight_mps;
+  const double range = (rotate_earth(m.sat_p_ecef_m, tau_s) - best.p_ecef_m).norm();
+  out.residual_m = clock ? m.pseudorange_m - (range + *clock - m.sat_clock_m + out.iono_m + out.tropo_m) : 0.0;
+  out.used = false;
+  out.excluded = true;
+  best.sats.insert(best.sats.begin() + static_cast<std::ptrdiff_t>(*excluded), out);
+  sol = std::move(best);
 }
 
 }  // namespace navemu

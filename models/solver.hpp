@@ -77,6 +77,14 @@ struct SolverOptions {
   // the height, at fixed_height_m (ellipsoidal), once the estimate is near the Earth's surface.
   SolverFixMode fix_mode = SolverFixMode::kAuto;
   double fixed_height_m = 0.0;
+  // Receiver autonomous integrity monitoring with fault detection and exclusion (RTKLIB
+  // pntpos' valsol and raim_fde; Kaplan & Hegarty, Understanding GPS/GNSS 3rd ed., 10.4): a fix
+  // whose weighted sum of squared residuals (the variances above) exceeds the chi-square
+  // distribution's raim_probability point for its degrees of freedom (rows - unknowns) fails;
+  // then each used satellite in turn is left out and, of the fixes that pass, the one with the
+  // smallest sum is taken (its satellite reported excluded); when none passes there is no fix.
+  bool raim = false;
+  double raim_probability = 0.999;  // RTKLIB's chisqr table: alpha = 0.001
 };
 
 struct SatResidual {
@@ -84,7 +92,8 @@ struct SatResidual {
   double az_deg = 0.0, el_deg = 0.0;
   double residual_m = 0.0;  // measured minus modelled pseudorange after the final iteration
   double iono_m = 0.0, tropo_m = 0.0;
-  bool used = false;  // false: below mask
+  bool used = false;      // false: below mask, or excluded
+  bool excluded = false;  // left out by the residual test (SolverOptions::raim)
 };
 
 struct Solution {
@@ -103,8 +112,19 @@ struct Solution {
   Mat3 cov_ecef_m2 = Mat3::Zero();
   int num_used = 0;
   int iterations = 0;
+  // The residual test: the weighted sum of squared residuals of the fix (or of the attempt
+  // without a fix) and its degrees of freedom (rows - unknowns; 0: not testable); failed: the
+  // test (SolverOptions::raim) failed and no exclusion of one satellite passed it.
+  double chi_square = 0.0;
+  int degrees_of_freedom = 0;
+  bool integrity_failed = false;
   std::vector<SatResidual> sats;
 };
+
+// The p-quantile of the chi-square distribution with `dof` degrees of freedom (p in (0, 1),
+// dof >= 1): the x with P(dof / 2, x / 2) = p, P the regularised lower incomplete gamma
+// function (Abramowitz & Stegun 26.4.19), found by bisection.
+double chi_square_quantile(double p, int dof);
 
 // A measurement from a pseudorange observed at receiver time t_receive: the satellite state
 // at transmit time t_receive - P/c - dt_sat (IS-GPS-200 20.3.3.3.3.1), the L1 C/A clock

@@ -63,7 +63,12 @@ void add_spp_command(CLI::App& app, SppOptions& opt) {
       "CSV columns: time (UTC), lat_deg, lon_deg, h_m (ellipsoidal), x_m, y_m, z_m (ECEF),\n"
       "clock_m (receiver clock bias * c in GPS time, or in the first solved system's time\n"
       "without GPS/QZSS), nsat (satellites used), pdop, gps_week, gps_tow_s.\n"
-      "Epochs without a fix and a closing count go to stderr.\n"
+      "Each fix is tested by its residuals (RAIM: the weighted sum of squared residuals\n"
+      "against the chi-square distribution's 99.9 % point, as RTKLIB's pntpos); a fix that\n"
+      "fails is solved again without each satellite in turn and the best passing one is kept,\n"
+      "that satellite reported excluded; when none passes the epoch has no fix (--no-raim:\n"
+      "every fix is written untested).\n"
+      "Epochs without a fix, exclusions and a closing count go to stderr.\n"
       "Examples:\n"
       "  navemu spp 07590920.05o 07590920.05n --mask 15 > 0759.csv\n"
       "  navemu spp ESBC00DNK_R_20201770000_01H_30S_MO.rnx ESBC00DNK_R_20201770000_01D_MN.rnx \\\n"
@@ -89,7 +94,8 @@ void add_spp_command(CLI::App& app, SppOptions& opt) {
   spp->add_option("--residuals", opt.residuals_file,
                   "Also write per-satellite residuals of every solved epoch to this CSV file "
                   "(gps_week, gps_tow_s, sat (RINEX name), az_deg, el_deg, residual_m, iono_m, "
-                  "tropo_m, used)");
+                  "tropo_m, used, excluded: 1 when the residual test left the satellite out)");
+  spp->add_flag("!--no-raim", opt.raim, "Write every fix without the residual test and exclusion");
 }
 
 int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
@@ -131,6 +137,7 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
 
   SolverOptions so;
   so.elevation_mask_deg = opt.mask_deg;
+  so.raim = opt.raim;
   so.saastamoinen = opt.tropo == "saastamoinen";
   if (opt.iono == "klobuchar") {
     if (nav.klobuchar)
@@ -147,12 +154,11 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
     residuals.open(opt.residuals_file);
     if (!residuals)
       throw InputError(opt.residuals_file, 0, "--residuals", "cannot open for writing");
-    fmt::print(residuals, "gps_week,gps_tow_s,sat,az_deg,el_deg,residual_m,iono_m,tropo_m,used\n");
+    fmt::print(residuals, "gps_week,gps_tow_s,sat,az_deg,el_deg,residual_m,iono_m,tropo_m,used,excluded\n");
   }
 
   fmt::print(out, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s\n");
-  int solved = 0;
-  int unsolved = 0;
+  int solved = 0, unsolved = 0, failed_test = 0, with_exclusion = 0;
   std::vector<RangeMeasurement> meas;
   for (const ObsEpoch& epoch : obs.epochs) {
     meas.clear();
@@ -173,13 +179,28 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
         meas.push_back(make_range_measurement(r, epoch.time, pr, d));
     }
     const Solution sol = solve(meas, epoch.time, so);
+    const std::string when = fmt::format("{} (GPS {})", format_iso_utc(epoch.time, leap), format_week_tow(epoch.time));
     if (sol.fix != FixType::k3D) {
       ++unsolved;
-      fmt::print(err, "navemu spp: {} (GPS {}): no 3D fix ({} pseudoranges with ephemeris)\n",
-                 format_iso_utc(epoch.time, leap), format_week_tow(epoch.time), meas.size());
+      if (sol.integrity_failed) {
+        ++failed_test;
+        fmt::print(err,
+                   "navemu spp: {}: no fix: the residual test failed (chi-square {:.1f} > {:.1f} for {} "
+                   "degrees of freedom) and no exclusion of one satellite passes it\n",
+                   when, sol.chi_square, chi_square_quantile(so.raim_probability, sol.degrees_of_freedom),
+                   sol.degrees_of_freedom);
+      } else {
+        fmt::print(err, "navemu spp: {}: no 3D fix ({} pseudoranges with ephemeris)\n", when, meas.size());
+      }
       continue;
     }
     ++solved;
+    for (const SatResidual& r : sol.sats)
+      if (r.excluded) {
+        ++with_exclusion;
+        fmt::print(err, "navemu spp: {}: {} excluded by the residual test (residual {:.1f} m)\n", when,
+                   r.sat.rinex(), r.residual_m);
+      }
     // The next epoch starts from this one's position (faster convergence, and the mask applies
     // from the first iteration).
     so.initial_p_ecef_m = sol.p_ecef_m;
@@ -191,12 +212,13 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
                wt.week, wt.tow_s);
     if (residuals.is_open())
       for (const SatResidual& r : sol.sats)
-        fmt::print(residuals, "{},{:.3f},{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{}\n", wt.week,
+        fmt::print(residuals, "{},{:.3f},{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{},{}\n", wt.week,
                    wt.tow_s, r.sat.rinex(), r.az_deg, r.el_deg, r.residual_m, r.iono_m, r.tropo_m,
-                   r.used ? 1 : 0);
+                   r.used ? 1 : 0, r.excluded ? 1 : 0);
   }
-  fmt::print(err, "navemu spp: {} epochs, {} with a 3D fix, {} without\n", obs.epochs.size(),
-             solved, unsolved);
+  fmt::print(err, "navemu spp: {} epochs, {} with a 3D fix ({} after excluding a satellite), {} without{}\n",
+             obs.epochs.size(), solved, with_exclusion, unsolved,
+             opt.raim ? fmt::format(" ({} failing the residual test)", failed_test) : std::string(" (no residual test)"));
   return 0;
 }
 

@@ -4,11 +4,13 @@
 #include "emulator/cli.hpp"
 #include "tests/emulator/cli_runner.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -373,6 +375,84 @@ TEST(Cli, SppOnRealFilesReportsEveryEpoch) {
   EXPECT_NE(r.err.find("120 epochs, 120 with a 3D fix"), std::string::npos) << r.err;
 }
 
+
+// The rows (x_m, y_m, z_m) of an spp CSV by time.
+std::map<std::string, Vec3> spp_fixes(const std::string& csv) {
+  std::map<std::string, Vec3> out;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    if (f.size() >= 7) out[f[0]] = Vec3(std::stod(f[4]), std::stod(f[5]), std::stod(f[6]));
+  }
+  return out;
+}
+
+// A copy of the real ESBC observations with G05's C1C 1 km long in every epoch (made here from
+// the shared file): spp excludes G05 in each epoch where it is above the mask and says so; the
+// fixes stay a median 0.39 m from the clean file's (G05's own errors leave with it: the mean
+// fix moves 0.78 m); with --no-raim they are hundreds of metres off (or none: two epochs do not
+// converge).
+TEST(Cli, SppExcludesASatelliteOneKilometreOff) {
+  NAVEMU_REQUIRE_SHARED();
+  const auto dir = test::shared_data("gnss/esbc_20200625");
+  const auto obs = dir / "ESBC00DNK_R_20201770000_01H_30S_MO.rnx", nav = dir / "ESBC00DNK_R_20201770000_01D_MN.rnx";
+  std::ifstream in(obs);
+  std::ostringstream corrupted;
+  bool body = false;
+  int changed = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (body && line.rfind("G05", 0) == 0) {  // C1C is G's first observation (columns 4-17)
+      line.replace(3, 14, fmt::format("{:14.3f}", std::stod(line.substr(3, 14)) + 1000.0));
+      ++changed;
+    }
+    body = body || line.find("END OF HEADER") != std::string::npos;
+    corrupted << line << "\n";
+  }
+  ASSERT_EQ(changed, 120);
+  const auto bad = write_temp("esbc_g05_1km.rnx", corrupted.str());
+  const std::vector<std::string> gps = {"--systems", "G", "--mask", "10"};
+  const auto spp = [&](const std::filesystem::path& o, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"spp", o.string(), nav.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return navemu(args);
+  };
+  const CliRun clean = spp(obs, gps), fde = spp(bad, gps);
+  std::vector<std::string> no_raim = gps;
+  no_raim.push_back("--no-raim");
+  const CliRun plain = spp(bad, no_raim);
+  ASSERT_EQ(clean.code, 0) << clean.err;
+  ASSERT_EQ(fde.code, 0) << fde.err;
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_NE(clean.err.find("120 epochs, 120 with a 3D fix (0 after excluding a satellite), 0 without (0 failing"),
+            std::string::npos) << clean.err;
+  int excluded = 0;
+  for (std::size_t at = 0; (at = fde.err.find("G05 excluded by the residual test", at)) != std::string::npos; ++at)
+    ++excluded;
+  EXPECT_NE(fde.err.find("120 epochs, 120 with a 3D fix (" + std::to_string(excluded) + " after excluding"),
+            std::string::npos) << fde.err;
+  EXPECT_GE(excluded, 100);  // every epoch G05 is above the 10 deg mask in (all 120 here)
+  const auto a = spp_fixes(clean.out), b = spp_fixes(fde.out), c = spp_fixes(plain.out);
+  ASSERT_EQ(a.size(), 120u);
+  ASSERT_EQ(b.size(), 120u);
+  std::vector<double> off_m;
+  Vec3 mean_offset = Vec3::Zero();
+  double nearest_plain_m = 1e9;
+  for (const auto& [t, p] : a) {
+    off_m.push_back((b.at(t) - p).norm());
+    mean_offset += (b.at(t) - p) / static_cast<double>(a.size());
+    if (const auto it = c.find(t); it != c.end()) nearest_plain_m = std::min(nearest_plain_m, (it->second - p).norm());
+  }
+  std::sort(off_m.begin(), off_m.end());
+  std::printf("[ spp raim ] G05 +1 km: %d exclusions; from the clean fixes median %.3f m, max %.3f m, "
+              "mean offset %.3f m; without the test >= %.0f m off\n",
+              excluded, off_m[off_m.size() / 2], off_m.back(), mean_offset.norm(), nearest_plain_m);
+  EXPECT_LT(off_m[off_m.size() / 2], 0.5);
+  EXPECT_GT(nearest_plain_m, 10.0);
+}
 
 // A CAN output that cannot work is an error at start-up, before the loop, naming the output.
 TEST(Cli, RunWithAnUnusableCanOutputFailsAtStartUp) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "models/constellation.hpp"
@@ -247,6 +248,99 @@ TEST(SolverRealDoppler, StaticStationVelocityIsNearZero) {
   std::printf("ESBC Doppler velocity: %d epochs, max speed %.4f m/s\n", solved, max_speed);
   EXPECT_EQ(solved, static_cast<int>(obs.epochs.size()));
   EXPECT_LT(max_speed, 0.1);
+}
+
+// The chi-square quantiles against the published table (Abramowitz & Stegun, Table 26.8;
+// the same values as RTKLIB's chisqr[] for alpha = 0.001), 5 significant digits.
+TEST(SolverRaim, ChiSquareQuantilesMatchThePublishedTable) {
+  const struct { double p; int dof; double x; } table[] = {
+      {0.999, 1, 10.828}, {0.999, 2, 13.816}, {0.999, 5, 20.515}, {0.999, 10, 29.588},
+      {0.999, 30, 59.703}, {0.95, 1, 3.8415}, {0.95, 10, 18.307}, {0.99, 20, 37.566},
+      {0.5, 2, 1.3863}};
+  for (const auto& r : table) EXPECT_NEAR(chi_square_quantile(r.p, r.dof), r.x, 5e-5 * r.x) << r.p << " " << r.dof;
+}
+
+// The real ESBC epochs (GPS L1 C/A, broadcast corrections) with one satellite's pseudorange
+// 1 km long (a different one each epoch): without the residual test every fix is pulled off by
+// hundreds of metres; with it that satellite, and only it, is excluded, and the fix is the
+// clean data's fix without it (to a millimetre): a median 0.25 m from the fix of all clean
+// satellites (leaving one out moves a fix by its share of the errors: up to 2.4 m here). The
+// clean epochs pass the test untouched.
+TEST(SolverRaim, ASatelliteOneKilometreOffIsExcludedOnRealData) {
+  NAVEMU_REQUIRE_SHARED();
+  const auto dir = test::shared_data("gnss/esbc_20200625");
+  const ObsData obs = test::rinex_obs_file(dir / "ESBC00DNK_R_20201770000_01H_30S_MO.rnx");
+  const NavData nav = test::rinex_nav_file(dir / "ESBC00DNK_R_20201770000_01D_MN.rnx");
+  const int c1c = obs.header.index_of('G', "C1C");
+  ASSERT_GE(c1c, 0);
+  SolverOptions opt;
+  opt.klobuchar = nav.klobuchar;
+  opt.saastamoinen = true;
+  opt.elevation_mask_deg = 10.0;
+  SolverOptions raim = opt;
+  raim.raim = true;
+  std::size_t index = 0;
+  double nearest_plain_m = 1e9, worst_vs_reduced_m = 0.0;
+  std::vector<double> off_m;
+  for (const ObsEpoch& e : obs.epochs) {
+    std::vector<RangeMeasurement> meas;
+    for (const SatObs& so : e.sats) {
+      const double pr = so.system == 'G' ? so.values[static_cast<std::size_t>(c1c)] : NAN;
+      const GpsEphemeris* eph = so.system == 'G' ? select_ephemeris(nav, gps_sat(so.number), e.time) : nullptr;
+      if (eph != nullptr && std::isfinite(pr)) meas.push_back(make_range_measurement(*eph, e.time, pr));
+    }
+    const Solution clean = solve(meas, e.time, opt), clean_raim = solve(meas, e.time, raim);
+    ASSERT_EQ(clean.fix, FixType::k3D);
+    ASSERT_EQ(clean_raim.fix, FixType::k3D);
+    EXPECT_EQ(clean_raim.p_ecef_m, clean.p_ecef_m);
+    EXPECT_GT(clean.degrees_of_freedom, 0);
+    EXPECT_LE(clean.chi_square, chi_square_quantile(0.999, clean.degrees_of_freedom));
+    for (const SatResidual& r : clean_raim.sats) EXPECT_FALSE(r.excluded);
+
+    const std::size_t bad = index++ % meas.size();
+    if (!clean.sats[bad].used) continue;  // below the mask: nothing to detect
+    std::vector<RangeMeasurement> reduced = meas;
+    reduced.erase(reduced.begin() + static_cast<std::ptrdiff_t>(bad));
+    const Solution clean_without = solve(reduced, e.time, opt);
+    meas[bad].pseudorange_m += 1000.0;
+    const Solution plain = solve(meas, e.time, opt), fde = solve(meas, e.time, raim);
+    ASSERT_EQ(fde.fix, FixType::k3D) << e.time.ns;
+    ASSERT_EQ(fde.sats.size(), meas.size());
+    for (std::size_t i = 0; i < meas.size(); ++i) {
+      EXPECT_EQ(fde.sats[i].sat, meas[i].sat);
+      EXPECT_EQ(fde.sats[i].excluded, i == bad) << meas[i].sat.rinex();
+    }
+    EXPECT_NEAR(fde.sats[bad].residual_m, 1000.0, 5.0);
+    EXPECT_FALSE(fde.sats[bad].used);
+    nearest_plain_m = std::min(nearest_plain_m, (plain.p_ecef_m - clean.p_ecef_m).norm());
+    worst_vs_reduced_m = std::max(worst_vs_reduced_m, (fde.p_ecef_m - clean_without.p_ecef_m).norm());
+    off_m.push_back((fde.p_ecef_m - clean.p_ecef_m).norm());
+  }
+  ASSERT_GE(off_m.size(), 90u);
+  std::sort(off_m.begin(), off_m.end());
+  const double median_m = off_m[off_m.size() / 2];
+  std::printf("[ raim ] %zu ESBC epochs with a satellite 1 km off: without the test >= %.1f m off; with "
+              "it the reduced clean fix to %.1e m, from the full clean fix median %.3f m, max %.3f m\n",
+              off_m.size(), nearest_plain_m, worst_vs_reduced_m, median_m, off_m.back());
+  EXPECT_GT(nearest_plain_m, 10.0);
+  EXPECT_LT(worst_vs_reduced_m, 1e-3);
+  EXPECT_LT(median_m, 0.5);
+}
+
+// Fewer satellites than an exclusion needs: a failing fix is no fix, reported as failed.
+TEST(SolverRaim, AFailingFixWithoutRoomForExclusionIsNoFix) {
+  const Scenario s;
+  auto meas = exact_measurements(s, 5.0);
+  meas.resize(5);  // 4 unknowns + 1: testable, but no exclusion is (4 rows, 0 degrees of freedom)
+  meas[2].pseudorange_m += 500.0;
+  SolverOptions opt;
+  opt.elevation_mask_deg = 5.0;
+  opt.raim = true;
+  const Solution sol = solve(meas, s.t_tag, opt);
+  EXPECT_EQ(sol.fix, FixType::kNone);
+  EXPECT_TRUE(sol.integrity_failed);
+  opt.raim = false;
+  EXPECT_EQ(solve(meas, s.t_tag, opt).fix, FixType::k3D);
 }
 
 }  // namespace
