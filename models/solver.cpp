@@ -460,41 +460,58 @@ double chi_square_quantile(double p, int dof) {
 void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions& opt,
            Solution& sol) {
   solve_least_squares(all, t, opt, sol);
+  if (!opt.raim || passes(sol, opt)) return;
   const std::span<const RangeMeasurement> meas =
       all.first(std::min(all.size(), kMaxSolverSatellites));
-  if (!opt.raim || passes(sol, opt)) return;
-  // Fault detection failed (or there was no fix): each used satellite left out in turn
-  // (RTKLIB raim_fde); the passing fix with the smallest sum is kept.
+  // Fault detection failed (or there was no fix): exclusion, one satellite at a time (RTKLIB
+  // raim_fde for the first): each satellite still in use left out in turn, the fix with the
+  // smallest sum kept; it ends when that fix passes, and fails when none is left to test.
+  std::vector<std::size_t> kept(meas.size());  // indices into meas still in the solution
+  for (std::size_t i = 0; i < kept.size(); ++i) kept[i] = i;
+  std::vector<std::size_t> excluded;
   std::vector<RangeMeasurement> without;
   Solution trial, best;
-  std::optional<std::size_t> excluded;
-  for (std::size_t i = 0; i < meas.size(); ++i) {
-    if (sol.fix != FixType::kNone && !sol.sats[i].used) continue;
-    without.assign(meas.begin(), meas.end());
-    without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
-    solve_least_squares(without, t, opt, trial);
-    if (trial.degrees_of_freedom > 0 && passes(trial, opt) && (!excluded || trial.chi_square < best.chi_square)) {
-      std::swap(best, trial);
-      excluded = i;
+  const Solution first = sol;
+  Solution current = first;  // the fix over `kept` (its sats in that order)
+  for (int round = 0; round < opt.raim_max_exclusions; ++round) {
+    std::optional<std::size_t> out;  // position in kept of the best exclusion
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      if (current.fix != FixType::kNone && !current.sats[k].used) continue;  // below the mask
+      without.clear();
+      for (std::size_t j = 0; j < kept.size(); ++j)
+        if (j != k) without.push_back(meas[kept[j]]);
+      solve_least_squares(without, t, opt, trial);
+      if (trial.fix != FixType::kNone && trial.degrees_of_freedom > 0 && (!out || trial.chi_square < best.chi_square)) {
+        std::swap(best, trial);
+        out = k;
+      }
     }
-  }
-  if (!excluded) {
-    sol.integrity_failed = sol.fix != FixType::kNone;  // a fix that failed, not too few satellites
-    sol.fix = FixType::kNone;
+    if (!out) break;
+    excluded.push_back(kept[*out]);
+    kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(*out));
+    if (!passes(best, opt)) {
+      current = best;
+      continue;
+    }
+    // The excluded satellites keep their places in sats, with their residuals against the fix.
+    std::sort(excluded.begin(), excluded.end());
+    for (const std::size_t i : excluded) {
+      const RangeMeasurement& m = meas[i];
+      SatResidual r = first.sats[i];  // its direction and corrections, when computed
+      r.sat = m.sat;
+      const std::optional<double> clock = best.group_clock_m[clock_group(m.sat.system())];
+      const double tau_s = (m.sat_p_ecef_m - best.p_ecef_m).norm() / kSpeedOfLight_mps;
+      const double range = (rotate_earth(m.sat_p_ecef_m, tau_s) - best.p_ecef_m).norm();
+      r.residual_m = clock ? m.pseudorange_m - (range + *clock - m.sat_clock_m + r.iono_m + r.tropo_m) : 0.0;
+      r.used = false;
+      r.excluded = true;
+      best.sats.insert(best.sats.begin() + static_cast<std::ptrdiff_t>(i), r);
+    }
+    sol = std::move(best);
     return;
   }
-  // The excluded satellite keeps its place in sats, with its residual against the fix kept.
-  const RangeMeasurement& m = meas[*excluded];
-  SatResidual out = sol.sats[*excluded];  // its direction and corrections, when computed
-  out.sat = m.sat;
-  const std::optional<double> clock = best.group_clock_m[clock_group(m.sat.system())];
-  const double tau_s = (m.sat_p_ecef_m - best.p_ecef_m).norm() / kSpeedOfLight_mps;
-  const double range = (rotate_earth(m.sat_p_ecef_m, tau_s) - best.p_ecef_m).norm();
-  out.residual_m = clock ? m.pseudorange_m - (range + *clock - m.sat_clock_m + out.iono_m + out.tropo_m) : 0.0;
-  out.used = false;
-  out.excluded = true;
-  best.sats.insert(best.sats.begin() + static_cast<std::ptrdiff_t>(*excluded), out);
-  sol = std::move(best);
+  sol.integrity_failed = first.fix != FixType::kNone;  // a fix that failed, not too few satellites
+  sol.fix = FixType::kNone;
 }
 
 }  // namespace navemu

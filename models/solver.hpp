@@ -81,10 +81,12 @@ struct SolverOptions {
   // pntpos' valsol and raim_fde; Kaplan & Hegarty, Understanding GPS/GNSS 3rd ed., 10.4): a fix
   // whose weighted sum of squared residuals (the variances above) exceeds the chi-square
   // distribution's raim_probability point for its degrees of freedom (rows - unknowns) fails;
-  // then each used satellite in turn is left out and, of the fixes that pass, the one with the
-  // smallest sum is taken (its satellite reported excluded); when none passes there is no fix.
+  // then each used satellite in turn is left out and the fix with the smallest sum is taken (its satellite reported excluded); while that fix still fails, the
+  // next satellite is left out the same way, up to raim_max_exclusions (RTKLIB: one); when the
+  // last still fails, or no fix is left to test, there is no fix.
   bool raim = false;
   double raim_probability = 0.999;  // RTKLIB's chisqr table: alpha = 0.001
+  int raim_max_exclusions = 3;
 };
 
 struct SatResidual {
@@ -114,7 +116,7 @@ struct Solution {
   int iterations = 0;
   // The residual test: the weighted sum of squared residuals of the fix (or of the attempt
   // without a fix) and its degrees of freedom (rows - unknowns; 0: not testable); failed: the
-  // test (SolverOptions::raim) failed and no exclusion of one satellite passed it.
+  // test (SolverOptions::raim) failed and no exclusion made a fix pass it.
   double chi_square = 0.0;
   int degrees_of_freedom = 0;
   bool integrity_failed = false;

@@ -65,9 +65,9 @@ void add_spp_command(CLI::App& app, SppOptions& opt) {
       "without GPS/QZSS), nsat (satellites used), pdop, gps_week, gps_tow_s.\n"
       "Each fix is tested by its residuals (RAIM: the weighted sum of squared residuals\n"
       "against the chi-square distribution's 99.9 % point, as RTKLIB's pntpos); a fix that\n"
-      "fails is solved again without each satellite in turn and the best passing one is kept,\n"
-      "that satellite reported excluded; when none passes the epoch has no fix (--no-raim:\n"
-      "every fix is written untested).\n"
+      "fails is solved again without each satellite in turn and the best one is kept, that\n"
+      "satellite reported excluded, up to 3 satellites until the fix passes; when it does not\n"
+      "the epoch has no fix (--no-raim: every fix is written untested).\n"
       "Epochs without a fix, exclusions and a closing count go to stderr.\n"
       "Examples:\n"
       "  navemu spp 07590920.05o 07590920.05n --mask 15 > 0759.csv\n"
@@ -186,21 +186,23 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
         ++failed_test;
         fmt::print(err,
                    "navemu spp: {}: no fix: the residual test failed (chi-square {:.1f} > {:.1f} for {} "
-                   "degrees of freedom) and no exclusion of one satellite passes it\n",
+                   "degrees of freedom) and excluding up to {} satellites does not pass it\n",
                    when, sol.chi_square, chi_square_quantile(so.raim_probability, sol.degrees_of_freedom),
-                   sol.degrees_of_freedom);
+                   sol.degrees_of_freedom, so.raim_max_exclusions);
       } else {
         fmt::print(err, "navemu spp: {}: no 3D fix ({} pseudoranges with ephemeris)\n", when, meas.size());
       }
       continue;
     }
     ++solved;
+    bool any_excluded = false;
     for (const SatResidual& r : sol.sats)
       if (r.excluded) {
-        ++with_exclusion;
+        any_excluded = true;
         fmt::print(err, "navemu spp: {}: {} excluded by the residual test (residual {:.1f} m)\n", when,
                    r.sat.rinex(), r.residual_m);
       }
+    with_exclusion += any_excluded ? 1 : 0;
     // The next epoch starts from this one's position (faster convergence, and the mask applies
     // from the first iteration).
     so.initial_p_ecef_m = sol.p_ecef_m;
@@ -216,7 +218,7 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
                    wt.tow_s, r.sat.rinex(), r.az_deg, r.el_deg, r.residual_m, r.iono_m, r.tropo_m,
                    r.used ? 1 : 0, r.excluded ? 1 : 0);
   }
-  fmt::print(err, "navemu spp: {} epochs, {} with a 3D fix ({} after excluding a satellite), {} without{}\n",
+  fmt::print(err, "navemu spp: {} epochs, {} with a 3D fix ({} after excluding satellites), {} without{}\n",
              obs.epochs.size(), solved, with_exclusion, unsolved,
              opt.raim ? fmt::format(" ({} failing the residual test)", failed_test) : std::string(" (no residual test)"));
   return 0;

@@ -427,12 +427,12 @@ TEST(Cli, SppExcludesASatelliteOneKilometreOff) {
   ASSERT_EQ(clean.code, 0) << clean.err;
   ASSERT_EQ(fde.code, 0) << fde.err;
   ASSERT_EQ(plain.code, 0) << plain.err;
-  EXPECT_NE(clean.err.find("120 epochs, 120 with a 3D fix (0 after excluding a satellite), 0 without (0 failing"),
+  EXPECT_NE(clean.err.find("120 epochs, 120 with a 3D fix (0 after excluding satellites), 0 without (0 failing"),
             std::string::npos) << clean.err;
   int excluded = 0;
   for (std::size_t at = 0; (at = fde.err.find("G05 excluded by the residual test", at)) != std::string::npos; ++at)
     ++excluded;
-  EXPECT_NE(fde.err.find("120 epochs, 120 with a 3D fix (" + std::to_string(excluded) + " after excluding"),
+  EXPECT_NE(fde.err.find("120 epochs, 120 with a 3D fix (" + std::to_string(excluded) + " after excluding satellites"),
             std::string::npos) << fde.err;
   EXPECT_GE(excluded, 100);  // every epoch G05 is above the 10 deg mask in (all 120 here)
   const auto a = spp_fixes(clean.out), b = spp_fixes(fde.out), c = spp_fixes(plain.out);

@@ -327,6 +327,31 @@ TEST(SolverRaim, ASatelliteOneKilometreOffIsExcludedOnRealData) {
   EXPECT_LT(median_m, 0.5);
 }
 
+// Two satellites off (+300 m and -200 m) among exact measurements: the first exclusion still
+// fails, the second passes; both are reported, the fix is the exact position again. With one
+// exclusion allowed (RTKLIB's raim_fde) there is no fix.
+TEST(SolverRaim, TwoFaultySatellitesAreExcludedOneAfterTheOther) {
+  const Scenario s;
+  auto meas = exact_measurements(s, 5.0);
+  ASSERT_GE(meas.size(), 8u);
+  meas[1].pseudorange_m += 300.0;
+  meas[4].pseudorange_m -= 200.0;
+  SolverOptions opt;
+  opt.elevation_mask_deg = 5.0;
+  opt.raim = true;
+  const Solution sol = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(sol.fix, FixType::k3D);
+  ASSERT_EQ(sol.sats.size(), meas.size());
+  for (std::size_t i = 0; i < meas.size(); ++i) EXPECT_EQ(sol.sats[i].excluded, i == 1 || i == 4) << i;
+  EXPECT_NEAR(sol.sats[1].residual_m, 300.0, 1e-3);
+  EXPECT_NEAR(sol.sats[4].residual_m, -200.0, 1e-3);
+  EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 1e-3);
+  opt.raim_max_exclusions = 1;
+  const Solution one = solve(meas, s.t_tag, opt);
+  EXPECT_EQ(one.fix, FixType::kNone);
+  EXPECT_TRUE(one.integrity_failed);
+}
+
 // Fewer satellites than an exclusion needs: a failing fix is no fix, reported as failed.
 TEST(SolverRaim, AFailingFixWithoutRoomForExclusionIsNoFix) {
   const Scenario s;
