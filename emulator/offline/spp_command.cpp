@@ -62,7 +62,9 @@ void add_spp_command(CLI::App& app, SppOptions& opt) {
       "signal's frequency.\n"
       "CSV columns: time (UTC), lat_deg, lon_deg, h_m (ellipsoidal), x_m, y_m, z_m (ECEF),\n"
       "clock_m (receiver clock bias * c in GPS time, or in the first solved system's time\n"
-      "without GPS/QZSS), nsat (satellites used), pdop, gps_week, gps_tow_s.\n"
+      "without GPS/QZSS), nsat (satellites used), pdop, gps_week, gps_tow_s, sigma_e_m,\n"
+      "sigma_n_m, sigma_u_m (1-sigma east, north, up from the least squares' covariance with\n"
+      "the weights of RTKLIB's error model).\n"
       "Each fix is tested by its residuals (RAIM: the weighted sum of squared residuals\n"
       "against the chi-square distribution's 99.9 % point, as RTKLIB's pntpos); a fix that\n"
       "fails is solved again without each satellite in turn and the best one is kept, that\n"
@@ -157,7 +159,8 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
     fmt::print(residuals, "gps_week,gps_tow_s,sat,az_deg,el_deg,residual_m,iono_m,tropo_m,used,excluded\n");
   }
 
-  fmt::print(out, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s\n");
+  fmt::print(out, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s,sigma_e_m,sigma_n_m,"
+                 "sigma_u_m\n");
   int solved = 0, unsolved = 0, failed_test = 0, with_exclusion = 0;
   std::vector<RangeMeasurement> meas;
   for (const ObsEpoch& epoch : obs.epochs) {
@@ -208,10 +211,13 @@ int run_spp(const SppOptions& opt, std::ostream& out, std::ostream& err) {
     so.initial_p_ecef_m = sol.p_ecef_m;
     const Geodetic g = geodetic_from_ecef(sol.p_ecef_m);
     const WeekTow wt = to_week_tow(epoch.time);
-    fmt::print(out, "{},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.3f},{},{:.3f}\n",
+    const Mat3 r_enu = R_enu_from_ecef(g);
+    const Vec3 var_enu = (r_enu * sol.cov_ecef_m2 * r_enu.transpose()).diagonal();
+    fmt::print(out, "{},{:.9f},{:.9f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.3f},{},{:.3f},{:.4f},{:.4f},{:.4f}\n",
                format_iso_utc(epoch.time, leap), g.lat_deg, g.lon_deg, g.h_m, sol.p_ecef_m.x(),
                sol.p_ecef_m.y(), sol.p_ecef_m.z(), sol.clock_m, sol.num_used, sol.dops.pdop,
-               wt.week, wt.tow_s);
+               wt.week, wt.tow_s, std::sqrt(std::max(var_enu.x(), 0.0)), std::sqrt(std::max(var_enu.y(), 0.0)),
+               std::sqrt(std::max(var_enu.z(), 0.0)));
     if (residuals.is_open())
       for (const SatResidual& r : sol.sats)
         fmt::print(residuals, "{},{:.3f},{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{},{}\n", wt.week,

@@ -59,18 +59,22 @@ using Track = std::map<long long, Vec3>;
 
 long long key_ms(double tow_s) { return std::llround(tow_s); }
 
-Track parse_navemu_csv(const std::string& csv) {
+// `sigma_enu`: when given, each epoch's reported 1-sigma east, north, up.
+Track parse_navemu_csv(const std::string& csv, Track* sigma_enu = nullptr) {
   Track t;
   std::istringstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s");
+  EXPECT_EQ(line, "time,lat_deg,lon_deg,h_m,x_m,y_m,z_m,clock_m,nsat,pdop,gps_week,gps_tow_s,sigma_e_m,"
+                  "sigma_n_m,sigma_u_m");
   while (std::getline(in, line)) {
     std::vector<std::string> f;
     std::istringstream ls(line);
     for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    if (f.size() != 12) continue;
-    t[key_ms(std::stod(f[11]))] = Vec3(std::stod(f[4]), std::stod(f[5]), std::stod(f[6]));
+    if (f.size() != 15) continue;
+    const long long k = key_ms(std::stod(f[11]));
+    t[k] = Vec3(std::stod(f[4]), std::stod(f[5]), std::stod(f[6]));
+    if (sigma_enu) (*sigma_enu)[k] = Vec3(std::stod(f[12]), std::stod(f[13]), std::stod(f[14]));
   }
   return t;
 }
@@ -102,17 +106,23 @@ TEST_P(SppRealData, AccurateAndAgreesWithRtklib) {
       test::shell_quote(nav) + " --mask 15 --iono klobuchar --tropo saastamoinen --systems " +
       st.systems + " 2>/dev/null");
   ASSERT_EQ(ours.exit_code, 0);
-  const Track mine = parse_navemu_csv(ours.out);
+  Track sigma;
+  const Track mine = parse_navemu_csv(ours.out, &sigma);
   ASSERT_GE(mine.size(), 100u) << st.name;
 
-  // Accuracy against the precise station position.
+  // Accuracy against the precise station position; each component's error against the sigma
+  // the fix reports (no fix more than 10 sigma off).
   const Geodetic truth_geo = geodetic_from_ecef(st.truth_ecef_m);
-  double sum3d = 0.0;
+  double sum3d = 0.0, worst_ratio = 0.0;
   Vec3 sum_enu = Vec3::Zero();
   for (const auto& [k, p] : mine) {
     sum3d += (p - st.truth_ecef_m).norm();
-    sum_enu += enu_from_ecef(p, truth_geo);
+    const Vec3 enu = enu_from_ecef(p, truth_geo);
+    sum_enu += enu;
+    worst_ratio = std::max(worst_ratio, enu.cwiseAbs().cwiseQuotient(sigma.at(k)).maxCoeff());
   }
+  std::printf("%s: largest error / reported sigma of a component %.2f\n", st.name, worst_ratio);
+  EXPECT_LE(worst_ratio, 10.0) << st.name;
   const double mean3d = sum3d / static_cast<double>(mine.size());
   const Vec3 mean_enu = sum_enu / static_cast<double>(mine.size());
 
