@@ -63,8 +63,6 @@ const GpsEphemeris* select_ephemeris(const NavData& nav, SatId sat, GpsTime t) {
 }
 
 namespace {
-GpsTime reference_time(const KeplerEphemeris& e) { return e.toe; }
-GpsTime reference_time(const GlonassEphemeris& e) { return e.tb; }
 template <class Record>
 const Record* as_record(const Record& e) { return &e; }
 template <class Record>

@@ -63,7 +63,9 @@ const GlonassEphemeris* select_glonass_ephemeris(std::span<const GlonassEphemeri
 // monostate when there is none.
 using BroadcastRecord = std::variant<std::monostate, const GpsEphemeris*, const GalileoEphemeris*,
                                      const BeidouEphemeris*, const GlonassEphemeris*>;
-// Its reference time: toe, or tb for GLONASS.
+// A record's reference time: toe, or tb for GLONASS.
+inline GpsTime reference_time(const KeplerEphemeris& e) { return e.toe; }
+inline GpsTime reference_time(const GlonassEphemeris& e) { return e.tb; }
 GpsTime reference_time(const BroadcastRecord& r);
 // The record a single-frequency user takes for a satellite of any system at t: GPS and QZSS by
 // select_ephemeris within kMaxEphemerisAge_s, the others by their rules above; the monostate

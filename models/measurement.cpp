@@ -232,8 +232,6 @@ struct MeasurementGenerator::State {
     for (const Eph& e : list) table.try_emplace(e.sat).first.push_back(&e);
   }
 
-  static GpsTime reference_time(const KeplerEphemeris& e) { return e.toe; }
-  static GpsTime reference_time(const GlonassEphemeris& e) { return e.tb; }
   template <class Eph>
   static const Eph& latest(const std::vector<const Eph*>& r) {
     return **std::max_element(r.begin(), r.end(),

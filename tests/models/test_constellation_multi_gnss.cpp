@@ -204,13 +204,6 @@ TEST(NominalMultiGnss, EachSystemIsWhereItsOperatorPutsIt) {
   }
 }
 
-// Consecutive uploads continue one orbit: every satellite's sets agree along the span between
-// their reference times (Keplerian sets to the micrometre; GLONASS's integrated states to the
-// millimetre), the sets of a later day's constellation for the same toe are the same, and
-// GLONASS's tb fall at 15 and 45 min past the hour of UTC (ICD 4.4).
-GpsTime reference(const KeplerEphemeris& e) { return e.toe; }
-GpsTime reference(const GlonassEphemeris& e) { return e.tb; }
-
 // The largest position difference of consecutive records of each satellite along the span
 // between their reference times (every 5 min).
 template <class Eph>
@@ -220,7 +213,7 @@ double worst_step_m(const std::vector<Eph>& records) {
   double worst = 0.0;
   for (const auto& [sat, list] : by_sat)
     for (std::size_t k = 1; k < list.size(); ++k) {
-      const GpsTime from = reference(*list[k - 1]), to = reference(*list[k]);
+      const GpsTime from = reference_time(*list[k - 1]), to = reference_time(*list[k]);
       EXPECT_GT(to, from);
       for (GpsTime t = from; t <= to; t = t.plus_s(300.0))
         worst = std::max(worst, (record_sat_state(list[k - 1], t).p_ecef_m - record_sat_state(list[k], t).p_ecef_m).norm());
@@ -228,6 +221,10 @@ double worst_step_m(const std::vector<Eph>& records) {
   return worst;
 }
 
+// Consecutive uploads continue one orbit: every satellite's sets agree along the span between
+// their reference times (Keplerian sets to the micrometre; GLONASS's integrated states to the
+// millimetre), the sets of a later day's constellation for the same toe are the same, and
+// GLONASS's tb fall at 15 and 45 min past the hour of UTC (ICD 4.4).
 TEST(NominalMultiGnss, ConsecutiveUploadsContinueOneOrbit) {
   const NavData nav = nominal_constellation(kT0, kAll);
   EXPECT_EQ(nav.galileo.size(), 24u * 15);
