@@ -36,6 +36,11 @@ using rinex::Where;
 
 enum class NavFormat { v2, v3, v4 };
 
+// Week 10000 is in the year 2171; beyond about 15000 the time no longer fits in int64 ns.
+void require_week(const std::string& source, int line, const char* field, std::int64_t week) {
+  if (week < 0 || week > 10'000) fail(source, line, field, fmt::format("must be in 0..10000, got {}", week));
+}
+
 // Field names of the seven BROADCAST ORBIT lines of a Kepler record by system, used in error
 // messages: GPS (RINEX 2.11 Table A4, RINEX 3.05 GPS navigation data record) and QZSS (its
 // QZSS record: the same layout, a fit interval flag), Galileo and BDS (RINEX 3.05 Galileo and
@@ -214,8 +219,7 @@ KeplerRecord parse_kepler_record(const Lines& lines, int n, NavFormat format, in
     fail(src, n + 2, "e", fmt::format("eccentricity must be in [0, 1), got {}", eph.e));
   if (!(toe_s >= 0.0 && toe_s < static_cast<double>(kSecondsPerWeek)))
     fail(src, n + 3, "Toe", fmt::format("must be in [0, 604800) s of week, got {}", toe_s));
-  // Week 10000 is in the year 2171; beyond about 15000 the time no longer fits in int64 ns.
-  if (week < 0 || week > 10'000) fail(src, n + 5, week_name, fmt::format("must be in 0..10000, got {}", week));
+  require_week(src, n + 5, week_name, week);
 
   // toe = continuous week (RINEX 2.10+: "no roll-over") + Toe seconds. A week that puts toe
   // more than half a week from toc (a modulo-1024 week, or the week of transmission rather
@@ -460,7 +464,7 @@ TimeSystemOffset read_time_system_corr(const Lines& lines, int n) {
   if (!(sow_s >= 0.0 && sow_s < 604800.0))
     fail(lines.source(), n, "TIME SYSTEM CORR T", fmt::format("reference time {} s is not a second of the week (0-604799)", sow_s));
   const int wk = rinex::integral(w, week, "TIME SYSTEM CORR W");
-  if (wk < 0) fail(lines.source(), n, "TIME SYSTEM CORR W", fmt::format("negative week {}", wk));
+  require_week(lines.source(), n, "TIME SYSTEM CORR W", wk);
   o.t_ref = offset_reference(o.type, wk, sow_s);
   o.source = fmt::format("{}:{}", lines.source(), n);
   return o;
@@ -580,8 +584,8 @@ NavData parse_nav_text(std::string text, const std::string& source) {
       TimeSystemOffset o{"GPUT", req_double(w, line, 3, 19, "DELTA-UTC A0"), req_double(w, line, 22, 19, "DELTA-UTC A1"),
                          0.0, {}, fmt::format("{}:{}", source, n)};
       const int t = req_int(w, line, 41, 9, "DELTA-UTC T"), week = req_int(w, line, 50, 9, "DELTA-UTC W");
-      if (t < 0 || t >= 604800 || week < 0)
-        fail(source, n, "DELTA-UTC T", fmt::format("reference time {} s of week {} is not a time of week", t, week));
+      if (t < 0 || t >= 604800) fail(source, n, "DELTA-UTC T", fmt::format("reference time {} s is not a second of the week (0-604799)", t));
+      require_week(source, n, "DELTA-UTC W", week);
       o.t_ref = from_week_tow(week, t);
       delta_utc = nav.time_offsets.size();
       nav.time_offsets.push_back(o);

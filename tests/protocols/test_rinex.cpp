@@ -485,6 +485,19 @@ TEST(RinexNavErrors, MissingEndOfHeader) {
       2, "END OF HEADER");
 }
 
+// RINEX 2.11 Table A3, DELTA-UTC: A0,A1,T,W (3X,2D19.12,2I9): T a second of the week, W a week
+// the nanosecond count holds.
+TEST(RinexNavErrors, DeltaUtcReferenceTime) {
+  const auto with = [](const std::string& t_w) {
+    return hdr("     2.10           N: GPS NAV DATA", "RINEX VERSION / TYPE") +
+           hdr("    .133179128170D-06  .107469588780D-12" + t_w, "DELTA-UTC: A0,A1,T,W") + hdr("", "END OF HEADER");
+  };
+  (void)nav_from(with("   552960     1316"));
+  expect_input_error([&] { (void)nav_from(with("   604800     1316")); }, 2, "DELTA-UTC T");
+  expect_input_error([&] { (void)nav_from(with("   552960      -13")); }, 2, "DELTA-UTC W");
+  expect_input_error([&] { (void)nav_from(with("   552960 99999999")); }, 2, "DELTA-UTC W");
+}
+
 TEST(RinexNavErrors, NonNumericField) {
   const std::string bad = replace(kNavV2Record, " 5.153636478420D+03", "        5.15x3D+03");
   const std::string msg = expect_input_error([&] { (void)nav_from(nav_v2_header() + bad, "x.05n"); },
@@ -673,6 +686,8 @@ TEST(RinexNav, TimeSystemCorrections) {
   expect_input_error([&] { (void)nav_from(with("GA    2.3574102670E-09 3.996802889E-15 345600 2111")); }, 2, "TIME SYSTEM CORR type");
   expect_input_error([&] { (void)nav_from(with("GAGP  2.35741026x0E-09 3.996802889E-15 345600 2111")); }, 2, "TIME SYSTEM CORR a0");
   expect_input_error([&] { (void)nav_from(with("GAGP  2.3574102670E-09 3.996802889E-15 604800 2111")); }, 2, "TIME SYSTEM CORR T");
+  // A week beyond 10000 (year 2171; the columns read 60121) would overflow the nanosecond count.
+  expect_input_error([&] { (void)nav_from(with("GAGP  2.3574102670E-09 3.996802889E-15  3456060121")); }, 2, "TIME SYSTEM CORR W");
 }
 
 // ---------------------------------------------------------------------------------------------
