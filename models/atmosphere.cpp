@@ -93,7 +93,7 @@ TropoDelay saastamoinen_delay(const Geodetic& rx, double el_rad, const Meteo& m)
 
 SaastamoinenZenith saastamoinen_zenith(const Geodetic& rx, const Meteo& m) {
   SaastamoinenZenith z;
-  z.in_domain = !(rx.h_m < -100.0 || rx.h_m > 1.0e4);
+  z.in_domain = !(rx.h_m < kSaastamoinenLowest_m || rx.h_m > 1.0e4);
   if (!z.in_domain) return z;
   const double h = std::max(rx.h_m, 0.0);
   const double t = m.temperature_k;

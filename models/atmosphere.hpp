@@ -43,6 +43,7 @@ TropoDelay saastamoinen_delay(const Geodetic& rx, double el_rad, const Meteo& m)
 // The same in two parts, the first depending only on the receiver and the meteorology (once
 // per position for many satellites): the zenith delays (delay = zenith / cos z), and whether
 // the height lies in RTKLIB's domain.
+inline constexpr double kSaastamoinenLowest_m = -100.0;  // RTKLIB's domain: [-100 m, 10 km]
 struct SaastamoinenZenith {
   bool in_domain = false;
   double hydrostatic_m = 0.0;

@@ -239,9 +239,15 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
     if (known && new_tropo) {
       geo = geodetic_of(p);
       if (new_directions) r_enu = R_enu_from_ecef(geo);
-      if (opt.saastamoinen)
-        tropo_zenith =
-            saastamoinen_zenith(geo, standard_atmosphere(geo.h_m, opt.relative_humidity));
+      if (opt.saastamoinen) {
+        // RTKLIB's Saastamoinen has no delay below -100 m (atmosphere.cpp); an estimate near that
+        // height (the sea south of Sri Lanka, geoid -106 m, or a fix pulled down by errors) then
+        // flips between two solutions 10 m apart and never converges. Below it the model is
+        // taken at -100 m (continuous; rnx2rtkp differs only there).
+        Geodetic at = geo;
+        at.h_m = std::max(at.h_m, kSaastamoinenLowest_m);
+        tropo_zenith = saastamoinen_zenith(at, standard_atmosphere(at.h_m, opt.relative_humidity));
+      }
     }
     if (new_directions) directions_at = known ? p : Vec3::Zero();
     if (new_tropo) tropo_at = known ? p : Vec3::Zero();

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/atmosphere.hpp"
 #include "models/constellation.hpp"
 #include "models/orbit.hpp"
 #include "protocols/rinex.hpp"
@@ -153,6 +154,31 @@ TEST(SolverExact, ElevationMaskExcludesLowSatellites) {
   EXPECT_GT(below, 0);
   EXPECT_EQ(used, sol.num_used);
   EXPECT_LT((sol.p_ecef_m - ecef_from_geodetic(s.rx)).norm(), 1e-3);
+}
+
+// RTKLIB's Saastamoinen stops at -100 m; the solver takes it at -100 m below that, so that a
+// receiver at the edge (the sea south of Sri Lanka: geoid -106 m) converges. Measurements carry
+// the model's delay at -100 m; without the hold the estimate flipped between two solutions.
+TEST(SolverExact, ConvergesAtTheTroposphereModelsLowestHeight) {
+  for (const double h_m : {-99.7, -100.3, -130.0}) {
+    Scenario s;
+    s.rx = {6.0, 80.5, h_m};
+    std::vector<RangeMeasurement> meas = exact_measurements(s, 10.0);
+    ASSERT_GE(meas.size(), 5u);
+    const Vec3 p = ecef_from_geodetic(s.rx);
+    const Geodetic lowest{s.rx.lat_deg, s.rx.lon_deg, std::max(h_m, kSaastamoinenLowest_m)};
+    for (RangeMeasurement& m : meas)
+      m.pseudorange_m += saastamoinen_delay(lowest, azimuth_elevation(s.rx, p, m.sat_p_ecef_m).el_rad,
+                                            standard_atmosphere(lowest.h_m, 0.7))
+                             .total_m();
+    SolverOptions opt;
+    opt.elevation_mask_deg = 10.0;
+    opt.saastamoinen = true;
+    opt.initial_p_ecef_m = ecef_from_geodetic({s.rx.lat_deg, s.rx.lon_deg, -80.0});
+    const Solution sol = solve(meas, s.t_tag, opt);
+    ASSERT_EQ(sol.fix, FixType::k3D) << h_m << " m";
+    EXPECT_LT((sol.p_ecef_m - p).norm(), 0.01) << h_m << " m";
+  }
 }
 
 TEST(SolverFixType, ThreeSatellitesGiveTwoDWithHeightHeldFewerGiveNone) {
