@@ -776,8 +776,8 @@ TEST(Px4Spoofing, TheDriverSeesTheTimePulledAway) {
 //    whose length can come near zero: offline (`navemu simulate`, this profile at 5 Hz, 600
 //    random times in two months and seeds) its least length while the event lasts was 1.5 m at
 //    the least, 3.0 m at the 1st percentile, 27 m the median; with the tail's r^3 law, 0.5 m has
-//    a chance of some 1e-4. Without the event the least move is 0.16 m at most (200 runs). At
-//    x 1000 some epochs lose their fix; at x 100 the move was under 2 m in a few per cent of runs;
+//    a chance of some 1e-4. Without the event the least move is 0.16 m at most (200 runs); at
+//    x 100 it was under 2 m in a few per cent of runs;
 //  - the second highest satellite 300 m off its broadcast orbit, radially, for 4 s (its range
 //    longer by ~300 m: the satellite sees the receiver within 14 deg of its nadir): the fix
 //    moves by more than 20 m, and comes back within 3 m.
