@@ -477,8 +477,8 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
   std::vector<std::size_t> excluded;
   std::vector<RangeMeasurement> without;
   Solution trial, best;
-  const Solution first = sol;
-  Solution current = first;  // the fix over `kept` (its sats in that order)
+  // `sol` keeps the failed fix over every satellite until an exclusion passes.
+  Solution current = sol;  // the fix over `kept` (its sats in that order)
   for (int round = 0; round < opt.raim_max_exclusions; ++round) {
     std::optional<std::size_t> out;  // position in kept of the best exclusion
     for (std::size_t k = 0; k < kept.size(); ++k) {
@@ -503,7 +503,7 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
     std::sort(excluded.begin(), excluded.end());
     for (const std::size_t i : excluded) {
       const RangeMeasurement& m = meas[i];
-      SatResidual r = first.sats[i];  // its direction and corrections, when computed
+      SatResidual r = sol.sats[i];  // its direction and corrections, when computed
       r.sat = m.sat;
       const std::optional<double> clock = best.group_clock_m[clock_group(m.sat.system())];
       const double tau_s = (m.sat_p_ecef_m - best.p_ecef_m).norm() / kSpeedOfLight_mps;
@@ -516,7 +516,7 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
     sol = std::move(best);
     return;
   }
-  sol.integrity_failed = first.fix != FixType::kNone;  // a fix that failed, not too few satellites
+  sol.integrity_failed = sol.fix != FixType::kNone;  // a fix that failed, not too few satellites
   sol.fix = FixType::kNone;
 }
 
