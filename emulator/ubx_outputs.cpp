@@ -359,6 +359,21 @@ void emit_nav_eoe(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(NavEoe{e.i_tow}, out);
 }
 
+// RXM-RAWX trkStat (F9 HPG 1.32 interface description): the pseudorange is valid while the
+// signal is tracked; the phase while cpStdev is not 15 ("invalid"; the real ZED-F9T of
+// receiver_logs/nav-solutions clears cpValid exactly then); the half-cycle ambiguity of the
+// Costas loop is resolved by the navigation data's synchronisation pattern, so once the arc has
+// lasted one subframe (GPS LNAV and QZSS 6 s, IS-GPS-200 20.3.2; BeiDou D1 6 s, BDS-SIS-ICD-B1I
+// 5.2.1) or one string or page (GLONASS 2 s, ICD 3.3.2.2; Galileo I/NAV 2 s, OS SIS ICD 4.3.2).
+// navemu's carrier phase carries no half cycle, so none is subtracted (bit 3 stays clear).
+std::uint8_t rawx_tracking_status(GnssSystem system, const SignalObs& o, std::uint8_t cp_stdev) {
+  const double resolve_s = system == GnssSystem::kGalileo || system == GnssSystem::kGlonass ? 2.0 : 6.0;
+  std::uint8_t st = RxmRawxMeas::kPrValid;
+  if (cp_stdev != 15) st |= RxmRawxMeas::kCpValid;
+  if (cp_stdev != 15 && o.lock_time_s >= resolve_s) st |= RxmRawxMeas::kHalfCyc;
+  return st;
+}
+
 void emit_rxm_rawx(const EpochView& e, std::vector<std::uint8_t>& out) {
   const WeekTow rt = to_week_tow(e.meas.t_receiver);
   RxmRawx& m = reset_keeping_storage(e.lists.rawx, &RxmRawx::meas);
@@ -379,11 +394,10 @@ void emit_rxm_rawx(const EpochView& e, std::vector<std::uint8_t>& out) {
     if (s.sat.system() == GnssSystem::kGlonass) r.freq_id = static_cast<std::uint8_t>(ubx_freq_id(s.glonass_channel));
     r.locktime_ms = static_cast<std::uint16_t>(std::min(o.lock_time_s * 1000.0, kMaxLockTime_ms));
     r.cno_dbhz = clamp_cast<std::uint8_t>(o.cn0_dbhz);
-    r.pr_stdev = 5;  // 0.01 * 2^5 = 0.32 m
-    r.cp_stdev = 3;  // 0.012 cycles
-    r.do_stdev = 6;  // 0.128 Hz
-    r.trk_stat = RxmRawxMeas::kPrValid | RxmRawxMeas::kCpValid | RxmRawxMeas::kHalfCyc |
-                 RxmRawxMeas::kSubHalfCyc;
+    r.pr_stdev = ubx::rawx_pr_stdev(o.sigma.code_m);
+    r.cp_stdev = ubx::rawx_cp_stdev(o.sigma.phase_cycles);
+    r.do_stdev = ubx::rawx_do_stdev(o.sigma.doppler_hz);
+    r.trk_stat = rawx_tracking_status(s.sat.system(), o, r.cp_stdev);
     m.meas.push_back(r);
   }
   append(m, out);

@@ -636,8 +636,8 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
       so.cn0_dbhz = effective_cn0_dbhz(cn0_clear_l1 + kCn0OffsetDb[static_cast<std::size_t>(b)],
                                        out.interference[static_cast<std::size_t>(b)],
                                        signal->chip_rate_hz);
-      const TrackingNoise noise =
-          on.noise ? tracking_noise(so.cn0_dbhz, cfg_.tracking) : TrackingNoise{};
+      so.sigma = tracking_noise(so.cn0_dbhz, cfg_.tracking);
+      const TrackingNoise noise = on.noise ? so.sigma : TrackingNoise{};
       const double code_sigma = noise.code_m;
       const double phase_sigma = noise.phase_cycles;
       const double doppler_sigma = noise.doppler_hz;

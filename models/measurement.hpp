@@ -292,6 +292,9 @@ struct SignalObs {
   double cn0_dbhz = 0.0;
   bool loss_of_lock = false;  // first epoch of a new carrier arc
   double lock_time_s = 0.0;
+  // The tracking loops' 1-sigma at cn0_dbhz (tracking_noise), also when no noise is applied:
+  // the measurement quality the receiver reports (RXM-RAWX prStdev, cpStdev, doStdev).
+  TrackingNoise sigma;
 };
 
 struct SatMeasurement {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <type_traits>
 
 namespace navemu::ubx {
@@ -85,6 +86,21 @@ int protocol_version_x100(const MonVer& m) {
     return major * 100 + minor;
   }
   return 0;
+}
+
+namespace {
+// n in [lo, 15] nearest to sigma / scale on a log2 scale (0 and non-finite: lo).
+std::uint8_t log2_index(double sigma, double scale) {
+  if (!(sigma > 0.0) || !std::isfinite(sigma)) return 0;
+  return static_cast<std::uint8_t>(std::clamp(std::lround(std::log2(sigma / scale)), 0L, 15L));
+}
+}  // namespace
+
+std::uint8_t rawx_pr_stdev(double sigma_m) { return log2_index(sigma_m, 0.01); }
+std::uint8_t rawx_do_stdev(double sigma_hz) { return log2_index(sigma_hz, 0.002); }
+std::uint8_t rawx_cp_stdev(double sigma_cycles) {
+  if (!(sigma_cycles >= 0.0)) return 15;
+  return static_cast<std::uint8_t>(std::clamp(std::lround(std::min(sigma_cycles, 1.0) / 0.004), 1L, 15L));
 }
 
 }  // namespace navemu::ubx

@@ -717,6 +717,12 @@ struct RxmRawxMeas {
   std::uint8_t do_stdev = 0;  // bits 0..3: n, sigma = 0.002 * 2^n Hz
   std::uint8_t trk_stat = 0, reserved3 = 0;
 };
+// The stdev fields from a 1-sigma (F9 HPG 1.32 interface description, UBX-RXM-RAWX): the
+// index whose value is nearest, on a log scale for the 2^n fields; cpStdev at least 1 (0 would
+// claim a perfect phase) and 15 ("invalid") from 0.058 cycles up.
+std::uint8_t rawx_pr_stdev(double sigma_m);
+std::uint8_t rawx_cp_stdev(double sigma_cycles);
+std::uint8_t rawx_do_stdev(double sigma_hz);
 struct RxmRawx {
   static constexpr MsgId kMsg = kRxmRawx;
   static constexpr std::size_t kHeaderSize = 16, kBlockSize = 32;

@@ -10,8 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -1030,6 +1032,14 @@ TEST_F(UbxDeviceTest, EpochOutputDecodesToTheReceiversFixAndMeasurements) {
       EXPECT_EQ(r.meas[i].cp_mes_cycles, with_l1[i]->signals[0]->carrier_cycles);
       EXPECT_EQ(r.meas[i].trk_stat & 0x03, 0x03) << "pseudorange and phase valid";
       EXPECT_LE(r.meas[i].cp_stdev & 0x0F, 5) << "RTKLIB discards phase with cpStdev > 5";
+      // Measurement quality from the loops at the signal's C/N0; the half cycle resolved once
+      // the arc has lasted an LNAV subframe (6 s).
+      const SignalObs& o = *with_l1[i]->signals[0];
+      EXPECT_EQ(r.meas[i].pr_stdev, ubx::rawx_pr_stdev(o.sigma.code_m));
+      EXPECT_EQ(r.meas[i].cp_stdev, ubx::rawx_cp_stdev(o.sigma.phase_cycles));
+      EXPECT_EQ(r.meas[i].do_stdev, ubx::rawx_do_stdev(o.sigma.doppler_hz));
+      EXPECT_EQ((r.meas[i].trk_stat & ubx::RxmRawxMeas::kHalfCyc) != 0, o.lock_time_s >= 6.0) << o.lock_time_s;
+      EXPECT_EQ(r.meas[i].trk_stat & ubx::RxmRawxMeas::kSubHalfCyc, 0);
     }
 
     const std::vector<Frame> sfrbx = of_type(f, ubx::kRxmSfrbx);
@@ -1201,6 +1211,51 @@ bool well_formed(const Frame& f) {
 // 32.2 "a message is polled by sending it with no payload"); a message of the other generation
 // gets no answer, as on the part. MON-GNSS, MON-PATCH and SEC-UNIQID are answered by both,
 // NAV-RESETODO is acknowledged.
+// RXM-RAWX measurement quality against the real ZED-F9T of receiver_logs/nav-solutions (5 min,
+// 299 epochs): the stdev fields navemu derives from its tracking loops (the geodetic class, the
+// F9P's and F9T's) at each real L1 measurement's C/N0 against what the part reported, on the
+// L1 signals of GPS, Galileo and BeiDou with a valid phase (the L2 ones run other loops). No
+// parameter was fitted to this file.
+TEST(RawxQuality, StdevFieldsFollowTheRealF9tByCn0) {
+  NAVEMU_REQUIRE_SHARED();
+  std::ifstream in(test::shared_data("receiver_logs/nav-solutions/F9T-L2-5min.ubx"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  MeasurementConfig cfg;
+  apply_receiver_class(cfg, ReceiverClass::kGeodetic);
+  struct Field {
+    const char* name;
+    int near = 0;
+    double diff = 0.0;
+  };
+  std::array<Field, 3> fields{{{"prStdev"}, {"cpStdev"}, {"doStdev"}}};
+  int n = 0;
+  for (const Frame& f : of_type(frames_of(bytes), ubx::kRxmRawx)) {
+    ubx::RxmRawx r;
+    ASSERT_TRUE(ubx::decode(f.payload, r));
+    for (const ubx::RxmRawxMeas& m : r.meas) {
+      const bool l1 = (m.gnss_id == 0 && m.sig_id == 0) || ((m.gnss_id == 2 || m.gnss_id == 3) && m.sig_id <= 1);
+      if (!l1 || (m.cp_stdev & 0x0F) == 15) continue;
+      const TrackingNoise s = tracking_noise(m.cno_dbhz, cfg.tracking);
+      const std::array<int, 3> d{ubx::rawx_pr_stdev(s.code_m) - (m.pr_stdev & 0x0F),
+                                 ubx::rawx_cp_stdev(s.phase_cycles) - (m.cp_stdev & 0x0F),
+                                 ubx::rawx_do_stdev(s.doppler_hz) - (m.do_stdev & 0x0F)};
+      for (std::size_t k = 0; k < 3; ++k) {
+        fields[k].near += std::abs(d[k]) <= 1 ? 1 : 0;
+        fields[k].diff += d[k];
+      }
+      ++n;
+    }
+  }
+  ASSERT_GT(n, 5000);
+  for (const Field& fd : fields) {
+    const double near = static_cast<double>(fd.near) / n, mean = fd.diff / n;
+    std::printf("RXM-RAWX %s against the real F9T: %.1f %% within one step, mean difference %+.2f steps (%d measurements)\n",
+                fd.name, 100.0 * near, mean, n);
+    EXPECT_GE(near, 0.9) << fd.name;
+    EXPECT_LE(std::abs(mean), 0.6) << fd.name;
+  }
+}
+
 TEST_F(UbxDeviceTest, EveryOutputMessageOfThePartAnswersAPoll) {
   for (const GnssProfile* p : {&m8_, &f9p_}) {
     SCOPED_TRACE(p->name);

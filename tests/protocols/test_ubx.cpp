@@ -1128,6 +1128,28 @@ TEST(UbxCaptures, ZedF9tFiveMinutes) {
   EXPECT_NEAR(pvt[0].height_mm * 1e-3, 1110.3, 1.0);
 }
 
+// RXM-RAWX stdev fields (F9 HPG 1.32 interface description): prStdev 0.01 * 2^n m, cpStdev
+// 0.004 * n cycles (15 invalid), doStdev 0.002 * 2^n Hz; the nearest index, log scale for 2^n.
+TEST(UbxMessages, RawxStdevFieldsQuantiseAsTheInterfaceDescription) {
+  EXPECT_EQ(rawx_pr_stdev(0.32), 5);
+  EXPECT_EQ(rawx_pr_stdev(0.08), 3);
+  EXPECT_EQ(rawx_pr_stdev(0.08 * 1.40), 3);  // below sqrt(2) x 0.08: nearer 0.08 than 0.16
+  EXPECT_EQ(rawx_pr_stdev(0.08 * 1.42), 4);
+  EXPECT_EQ(rawx_pr_stdev(0.001), 0);
+  EXPECT_EQ(rawx_pr_stdev(0.0), 0);
+  EXPECT_EQ(rawx_pr_stdev(1e6), 15);
+  EXPECT_EQ(rawx_do_stdev(0.128), 6);
+  EXPECT_EQ(rawx_do_stdev(0.064), 5);
+  EXPECT_EQ(rawx_do_stdev(1e3), 15);
+  EXPECT_EQ(rawx_cp_stdev(0.004), 1);
+  EXPECT_EQ(rawx_cp_stdev(0.0005), 1);  // never 0: no phase is perfect
+  EXPECT_EQ(rawx_cp_stdev(0.012), 3);
+  EXPECT_EQ(rawx_cp_stdev(0.0139), 3);
+  EXPECT_EQ(rawx_cp_stdev(0.0141), 4);
+  EXPECT_EQ(rawx_cp_stdev(0.06), 15);
+  EXPECT_EQ(rawx_cp_stdev(0.5), 15);
+}
+
 TEST(UbxCaptures, M10AndF9tTimingEpochs) {
   for (const char* name : {"ublox-glo.log", "ublox-zed-f9t-ubx_nmea_l5.log"}) {
     const auto path = receiver_logs() / "gpsd" / name;
