@@ -89,9 +89,10 @@ int protocol_version_x100(const MonVer& m) {
 }
 
 namespace {
-// n in [lo, 15] nearest to sigma / scale on a log2 scale (0 and non-finite: lo).
+// n in [0, 15] nearest to sigma / scale on a log2 scale (zero or not a number: 0, infinite: 15).
 std::uint8_t log2_index(double sigma, double scale) {
-  if (!(sigma > 0.0) || !std::isfinite(sigma)) return 0;
+  if (!(sigma > 0.0)) return 0;
+  if (!std::isfinite(sigma)) return 15;
   return static_cast<std::uint8_t>(std::clamp(std::lround(std::log2(sigma / scale)), 0L, 15L));
 }
 }  // namespace
