@@ -89,10 +89,11 @@ int protocol_version_x100(const MonVer& m) {
 }
 
 namespace {
-// n in [0, 15] nearest to sigma / scale on a log2 scale (zero or not a number: 0, infinite: 15).
+// n in [0, 15] nearest to sigma / scale on a log2 scale (zero or below: 0; infinite or not a
+// number: 15, the worst, as cpStdev's "invalid").
 std::uint8_t log2_index(double sigma, double scale) {
+  if (!std::isfinite(sigma) && !(sigma < 0.0)) return 15;
   if (!(sigma > 0.0)) return 0;
-  if (!std::isfinite(sigma)) return 15;
   return static_cast<std::uint8_t>(std::clamp(std::lround(std::log2(sigma / scale)), 0L, 15L));
 }
 }  // namespace

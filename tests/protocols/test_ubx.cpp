@@ -1140,7 +1140,8 @@ TEST(UbxMessages, RawxStdevFieldsQuantiseAsTheInterfaceDescription) {
   EXPECT_EQ(rawx_pr_stdev(0.0), 0);
   EXPECT_EQ(rawx_pr_stdev(1e6), 15);
   EXPECT_EQ(rawx_pr_stdev(std::numeric_limits<double>::infinity()), 15);
-  EXPECT_EQ(rawx_pr_stdev(std::numeric_limits<double>::quiet_NaN()), 0);
+  EXPECT_EQ(rawx_pr_stdev(std::numeric_limits<double>::quiet_NaN()), 15);
+  EXPECT_EQ(rawx_cp_stdev(std::numeric_limits<double>::quiet_NaN()), 15);
   EXPECT_EQ(rawx_do_stdev(0.128), 6);
   EXPECT_EQ(rawx_do_stdev(0.064), 5);
   EXPECT_EQ(rawx_do_stdev(1e3), 15);
