@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/satellite.hpp"
+#include "core/time.hpp"
 
 namespace navemu {
 
@@ -148,5 +149,10 @@ constexpr std::optional<int> ubx_sig_id(SatId sat, SignalId s) {
 
 // UBX freqId of a GLONASS frequency channel: k + 7, 0..13 (UBX-RXM-RAWX, UBX-NAV-SIG).
 constexpr int ubx_freq_id(int glonass_channel) { return glonass_channel + 7; }
+
+// Whether the satellite broadcasts the signal at time t. Every satellite of a system sends its
+// system's signals in kSignals, except GPS L2C (Block IIR-M and later) and L5 (Block IIF and
+// later), looked up by PRN and day, and BeiDou B2I (BDS-2 only).
+bool broadcasts(SatId sat, SignalId signal, GpsTime t);
 
 }  // namespace navemu

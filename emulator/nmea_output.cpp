@@ -112,21 +112,33 @@ void NmeaOutput::encode(const ReceiverFix& fix, std::int64_t epoch_index, std::s
       }
     } else if (name == "GSV") {
       // One GSV group per system tracked, under the system's talker (u-blox CFG-NMEA
-      // gsvTalkerId 0, its default) and with its L1 signal's ID (NMEA 0183 4.11); with the NMEA 4.10 numbering QZSS goes with GPS, whose IDs
-      // 193-202 it has there.
+      // gsvTalkerId 0, its default) and with its L1 signal's ID (NMEA 0183 4.11); with the NMEA
+      // 4.10 numbering QZSS goes with GPS, whose IDs 193-202 it has there. Where the sentences
+      // carry signal IDs, each further band of the profile has its own group after it, of the
+      // satellites tracked on it (as a ZED-F9T sends its L1 and L5 groups per system,
+      // receiver_logs/gpsd/ublox-zed-f9t-ubx_nmea_l5.log).
       for (const GnssSystem system : kNmeaSystemOrder) {
         if (!(profile_.systems & system_bit(system)) || gsv_system(system) != system) continue;
-        gsv_.clear();
-        for (const ReceiverSatellite& s : fix.satellites)
-          if (const std::optional<int> id = s.sat.nmea_id(numbering_); id && gsv_system(s.sat.system()) == system)
-            gsv_.push_back({*id, static_cast<int>(std::lround(std::max(s.el_deg, 0.0))),
-                            static_cast<int>(std::lround(s.az_deg)) % 360,
-                            static_cast<int>(std::lround(s.cn0_dbhz))});
-        const std::optional<BandSignal> l1 = band_signal(system, Band::kL1);
-        const SignalInfo* info = l1 ? signal_info(l1->id) : nullptr;
-        nmea::GsvFields f{nmea::system_talker(system), gsv_};
-        f.signal_id = info ? info->nmea_signal_id : 1;
-        nmea::encode(f, format_, out);
+        for (const Band band : {Band::kL1, Band::kL2, Band::kL5}) {
+          const std::optional<BandSignal> signal = band_signal(system, band);
+          const SignalInfo* info = signal ? signal_info(signal->id) : nullptr;
+          const std::size_t b = static_cast<std::size_t>(band);
+          if (band != Band::kL1 && (!(profile_.bands & band_bit(band)) || !format_.system_signal_ids ||
+                                    info == nullptr || info->nmea_signal_id == 0))
+            continue;
+          gsv_.clear();
+          for (const ReceiverSatellite& s : fix.satellites) {
+            if (gsv_system(s.sat.system()) != system || (band != Band::kL1 && s.band_cn0_dbhz[b] <= 0.0)) continue;
+            if (const std::optional<int> id = s.sat.nmea_id(numbering_))
+              gsv_.push_back({*id, static_cast<int>(std::lround(std::max(s.el_deg, 0.0))),
+                              static_cast<int>(std::lround(s.az_deg)) % 360,
+                              static_cast<int>(std::lround(band == Band::kL1 ? s.cn0_dbhz : s.band_cn0_dbhz[b]))});
+          }
+          if (band != Band::kL1 && gsv_.empty()) continue;
+          nmea::GsvFields f{nmea::system_talker(system), gsv_};
+          f.signal_id = info ? info->nmea_signal_id : 1;
+          nmea::encode(f, format_, out);
+        }
       }
     } else if (name == "VTG") {
       nmea::encode(nmea::VtgFields{talker, course_deg, {}, speed_mps, mode}, format_, out);

@@ -308,6 +308,16 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
     }
     if (p.systems == 0) m.fail("systems", "at least one system");
   }
+  if (auto names = m.text_list("bands")) {
+    constexpr std::pair<std::string_view, Band> kBands[] = {{"L1", Band::kL1}, {"L2", Band::kL2}, {"L5", Band::kL5}};
+    p.bands = 0;
+    for (const std::string& n : *names) {
+      const auto it = std::find_if(std::begin(kBands), std::end(kBands), [&](const auto& b) { return n == b.first; });
+      if (it == std::end(kBands)) m.fail("bands", fmt::format("unknown band '{}': L1, L2 or L5", n));
+      p.bands |= band_bit(it->second);
+    }
+    if (!(p.bands & band_bit(Band::kL1))) m.fail("bands", "L1 is needed: the receiver acquires on it");
+  }
   p.talker = m.text("talker").value_or(std::string(nmea::main_talker(p.systems)));
   if (p.talker.size() != 2) m.fail("talker", "two letters, e.g. GP or GN");
   p.style = m.text("style").value_or(p.style);

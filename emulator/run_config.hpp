@@ -37,6 +37,9 @@ struct GnssProfile {
   int baud = 9600;               // of a serial output
   // The systems tracked (system_bit), YAML `systems: [GPS, GLONASS, Galileo, BeiDou, QZSS]`.
   std::uint32_t systems = system_bit(GnssSystem::kGps);
+  // The bands tracked (band_bit), YAML `bands: [L1, L2]` or `[L1, L5]`: the signal of each
+  // system on each (models/measurement.hpp band_signal). L1 alone when not given.
+  std::uint32_t bands = band_bit(Band::kL1);
   // Main NMEA talker (GGA, RMC, GSA, ...); unset in the YAML: the systems' own, GN for several
   // (nmea_main_talker).
   std::string talker = "GP";

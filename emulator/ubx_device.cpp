@@ -130,12 +130,13 @@ constexpr F9GnssBlock kF9GnssBlocks[] = {
 bool major_gnss(std::uint8_t gnss_id) { return gnss_id == 0 || gnss_id == 2 || gnss_id == 3 || gnss_id == 6; }
 
 // The systems tracked under a CFG-GNSS configuration: a system is tracked while enabled
-// with its L1 signal (sigCfgMask bit 0); SBAS and QZSS with theirs.
-std::uint32_t systems_of(const CfgGnss& g) {
+// with the sigCfgMask bits `signals` (0x01: its L1 signal; 0x30: its second-band signal, GPS,
+// QZSS and GLONASS L2, BeiDou B2I 0x10, Galileo E5b 0x20).
+std::uint32_t systems_of(const CfgGnss& g, std::uint32_t signals = 0x01) {
   std::uint32_t s = 0;
   for (const CfgGnssBlock& b : g.blocks) {
     const std::optional<SatId> sat = SatId::from_ubx(b.gnss_id, b.gnss_id == 1 ? 120 : 1);
-    if (sat && (b.flags & CfgGnssBlock::kEnable) && (b.flags >> CfgGnssBlock::kSigCfgMaskShift & 0x01))
+    if (sat && (b.flags & CfgGnssBlock::kEnable) && (b.flags >> CfgGnssBlock::kSigCfgMaskShift & signals))
       s |= system_bit(sat->system());
   }
   return s;
@@ -206,6 +207,7 @@ UbxDevice::UbxDevice(const GnssProfile& profile, ReceiverMode mode, const NavDat
   lists_.comms.ports.reserve(kNumPorts);
   lists_.io.ports.reserve(kNumPorts);
   status_.hw_version = profile_.ubx->hw_version;
+  status_.bands = profile_.bands;
   // Messages without a CFG-MSGOUT item on this part (u-blox 8 ones): the profile's rates, on
   // the ports profile_defaults() sets.
   const auto keep = [&](MsgId id, int rate) {
@@ -277,7 +279,9 @@ void UbxDevice::refresh() {
   engine_ = engine_settings_of(config_);
   // The systems tracked: the F9's CFG-SIGNAL items, the u-blox 8's CFG-GNSS (power-up: GPS,
   // SBAS, QZSS, GLONASS; m8_power_up_gnss), both seen as CFG-GNSS.
-  engine_.systems = systems_of(current_cfg_gnss());
+  const CfgGnss gnss = current_cfg_gnss();
+  engine_.systems = systems_of(gnss);
+  if (protocol27_) engine_.l2_systems = systems_of(gnss, 0x30);
   // Switches the outputs follow: configuration items on the F9, the legacy CFG-ITFM (config
   // bit 31 "enable") and CFG-ODO (flags bit 0 "useODO") on the u-blox 8 (UBX-13003221).
   if (protocol27_) {

@@ -381,25 +381,27 @@ void emit_rxm_rawx(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.week = static_cast<std::uint16_t>(rt.week);
   m.leap_s = static_cast<std::int8_t>(e.leap_s);
   m.rec_stat = RxmRawx::kLeapSec;
-  for (const SatMeasurement& s : e.meas.sats) {
-    if (!s.signals[0]) continue;
-    const SignalObs& o = *s.signals[0];
-    RxmRawxMeas r;
-    r.pr_mes_m = o.pseudorange_m;
-    r.cp_mes_cycles = o.carrier_cycles;
-    r.do_mes_hz = static_cast<float>(o.doppler_hz);
-    r.gnss_id = s.sat.ubx_gnss_id();
-    r.sv_id = s.sat.ubx_sv_id();
-    r.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, o.signal).value_or(0));
-    if (s.sat.system() == GnssSystem::kGlonass) r.freq_id = static_cast<std::uint8_t>(ubx_freq_id(s.glonass_channel));
-    r.locktime_ms = static_cast<std::uint16_t>(std::min(o.lock_time_s * 1000.0, kMaxLockTime_ms));
-    r.cno_dbhz = clamp_cast<std::uint8_t>(o.cn0_dbhz);
-    r.pr_stdev = ubx::rawx_pr_stdev(o.sigma.code_m);
-    r.cp_stdev = ubx::rawx_cp_stdev(o.sigma.phase_cycles);
-    r.do_stdev = ubx::rawx_do_stdev(o.sigma.doppler_hz);
-    r.trk_stat = rawx_tracking_status(s.sat.system(), o, r.cp_stdev);
-    m.meas.push_back(r);
-  }
+  for (const SatMeasurement& s : e.meas.sats)
+    for (std::size_t b = 0; b < s.signals.size(); ++b) {
+      // The part's bands; numMeas is a U1.
+      if (!s.signals[b] || !(e.status.bands & band_bit(static_cast<Band>(b))) || m.meas.size() == 255) continue;
+      const SignalObs& o = *s.signals[b];
+      RxmRawxMeas r;
+      r.pr_mes_m = o.pseudorange_m;
+      r.cp_mes_cycles = o.carrier_cycles;
+      r.do_mes_hz = static_cast<float>(o.doppler_hz);
+      r.gnss_id = s.sat.ubx_gnss_id();
+      r.sv_id = s.sat.ubx_sv_id();
+      r.sig_id = static_cast<std::uint8_t>(ubx_sig_id(s.sat, o.signal).value_or(0));
+      if (s.sat.system() == GnssSystem::kGlonass) r.freq_id = static_cast<std::uint8_t>(ubx_freq_id(s.glonass_channel));
+      r.locktime_ms = static_cast<std::uint16_t>(std::min(o.lock_time_s * 1000.0, kMaxLockTime_ms));
+      r.cno_dbhz = clamp_cast<std::uint8_t>(o.cn0_dbhz);
+      r.pr_stdev = ubx::rawx_pr_stdev(o.sigma.code_m);
+      r.cp_stdev = ubx::rawx_cp_stdev(o.sigma.phase_cycles);
+      r.do_stdev = ubx::rawx_do_stdev(o.sigma.doppler_hz);
+      r.trk_stat = rawx_tracking_status(s.sat.system(), o, r.cp_stdev);
+      m.meas.push_back(r);
+    }
   append(m, out);
 }
 
@@ -746,7 +748,7 @@ void emit_nav_cov(const EpochView& e, std::vector<std::uint8_t>& out) {
   append(m, out);
 }
 
-// NAV-SIG (F9 5.14.15): one block per tracked signal of the ZED-F9P's bands (L1, L2). Flags as
+// NAV-SIG (F9 5.14.15): one block per tracked signal of the profile's bands (ZED-F9P: L1, L2). Flags as
 // a ZED-F9T reports them in ../shared/data (F9T-L2-5min.ubx): health 1 (healthy); a signal the
 // solution uses has prUsed and doUsed, and its ionosphere model (1 Klobuchar, 8 dual
 // frequency); differential corrections (DGPS, RTK: RTCM 3 OSR, corrSource 4) add prCorrUsed,
@@ -761,8 +763,8 @@ void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
                                  [&](const ReceiverSatellite& r) { return r.sat == s.sat; });
     const bool sat_used = it != e.fix.satellites.end() && it->used;
     const double residual_m = sat_used ? it->residual_m : 0.0;
-    for (std::size_t b = 0; b < 2 && m.signals.size() < 255; ++b) {
-      if (!s.signals[b]) continue;
+    for (std::size_t b = 0; b < s.signals.size() && m.signals.size() < 255; ++b) {
+      if (!s.signals[b] || !(e.status.bands & band_bit(static_cast<Band>(b)))) continue;
       const std::optional<int> sig = ubx_sig_id(s.sat, s.signals[b]->signal);
       if (!sig) continue;
       // The single-frequency solution uses L1; the dual-frequency one both bands.

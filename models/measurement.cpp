@@ -313,7 +313,8 @@ struct MeasurementGenerator::State {
 
 MeasurementGenerator::MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg)
     : nav_(nav), cfg_(cfg), state_(std::make_unique<State>(cfg)) {
-  if (cfg_.mode == ReceiverMode::kDualFrequency) cfg_.dual_frequency_signals = true;
+  cfg_.bands |= band_bit(Band::kL1);
+  if (cfg_.mode == ReceiverMode::kDualFrequency) cfg_.bands = kAllBands;
   if (cfg_.iono_model == IonoModel::kKlobuchar && !nav_.klobuchar)
     cfg_.iono_model = IonoModel::kPaperVtec;
   // The records of the systems tracked, indexed once and at each renewal.
@@ -621,12 +622,18 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
                              m.tropo_hydro_m + m.tropo_wet_m + m.sat_error_m;
     const double rate_mps = m.range_rate_mps + c * (out.rx_clock_drift_sps - g.sat.clock_drift_sps);
 
-    const int n_bands = cfg_.dual_frequency_signals ? 3 : 1;
     double l1_code_noise_m = 0.0;
-    for (int b = 0; b < n_bands; ++b) {
+    for (int b = 0; b < 3; ++b) {
       const Band band = static_cast<Band>(b);
+      if (!(cfg_.bands & band_bit(band))) continue;
+      if (band == Band::kL2 && !(active_l2_systems_ & system_bit(sat.system()))) continue;
       const std::optional<BandSignal> signal = band_signal(sat.system(), band);
-      if (!signal) continue;
+      // The paper's dual-frequency receiver is a geodetic one, which tracks L2 on every GPS
+      // satellite (P(Y) semi-codeless where there is no L2C, as the ESBC station's C2W); it is
+      // generated as the band's signal. Receivers of L2C and L5 see only the satellites that
+      // send them.
+      if (!signal || (cfg_.mode != ReceiverMode::kDualFrequency && !broadcasts(sat, signal->id, out.t_true)))
+        continue;
       SignalObs so;
       so.signal = signal->id;
       so.carrier_hz = carrier_frequency_hz(signal->id, glonass_channel);

@@ -47,6 +47,8 @@ enum class IonoModel {
 
 // The signals generated, by band: L1 C/A, L2C (the CL pilot) and the L5 pilot (Q).
 enum class Band { kL1 = 0, kL2 = 1, kL5 = 2 };
+constexpr std::uint32_t band_bit(Band b) { return 1u << static_cast<unsigned>(b); }
+inline constexpr std::uint32_t kAllBands = band_bit(Band::kL1) | band_bit(Band::kL2) | band_bit(Band::kL5);
 
 // Scheduled impairments, each acting through the signals (EventWindow: seconds from the
 // scenario's start; ramps where they apply).
@@ -246,7 +248,11 @@ struct MeasurementConfig {
   double multipath_tau_s = 60.0;
   double rtk_noise_sigma_m = 0.01;
 
-  bool dual_frequency_signals = false;  // also generate L2 (L2C) and L5; on in kDualFrequency
+  // The bands whose signals are generated (band_bit): the receiver's front ends, e.g. L1 and L2
+  // for the ZED-F9P. L1 always; all three in kDualFrequency. A satellite that does not broadcast
+  // a band's signal at the time (broadcasts(): GPS L2C and L5 by block, BeiDou B2I) has none,
+  // except in kDualFrequency (see generate()).
+  std::uint32_t bands = band_bit(Band::kL1);
   // The systems tracked (system_bit) among those the navigation data have records of.
   std::uint32_t systems = system_bit(GnssSystem::kGps);
   double elevation_mask_deg = 5.0;      // the position engine's mask
@@ -369,13 +375,18 @@ class MeasurementGenerator {
   // Of the systems configured (MeasurementConfig::systems), those tracked from the next epoch
   // on (system_bit; all by default): the others' satellites lose lock at once and are
   // re-acquired after the tracking loops' re-acquisition time when enabled again.
-  void set_active_systems(std::uint32_t systems) { active_systems_ = systems; }
+  // The same for the second band (Band::kL2, of the configured bands): the systems whose L2
+  // signal is enabled (u-blox CFG-SIGNAL-*_L2*_ENA).
+  void set_active_systems(std::uint32_t systems, std::uint32_t l2_systems = ~0u) {
+    active_systems_ = systems;
+    active_l2_systems_ = l2_systems;
+  }
 
  private:
   struct State;
   const NavData& nav_;
   MeasurementConfig cfg_;
-  std::uint32_t active_systems_ = ~0u;
+  std::uint32_t active_systems_ = ~0u, active_l2_systems_ = ~0u;
   std::unique_ptr<State> state_;
 };
 

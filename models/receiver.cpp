@@ -37,7 +37,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   const Vec3 p_ecef = ecef_from_geodetic(truth->position);
   const Vec3 v_ecef = R_ned_from_ecef(truth->position).transpose() * truth->v_ned_mps;
   EpochMeasurements& e = meas_;
-  gen_.set_active_systems(engine_.systems);
+  gen_.set_active_systems(engine_.systems, engine_.l2_systems);
   gen_.generate(t, p_ecef, v_ecef, e);
   // The receiver keeps its time by its clock solution: a time spoofer's pull moves it.
   out.t = t.plus_s(e.spoofed_time_s);
@@ -94,6 +94,8 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
     s.az_deg = m.dir.az_rad * kRadToDeg;
     s.el_deg = m.dir.el_rad * kRadToDeg;
     s.cn0_dbhz = l1_cn0_dbhz(m);
+    for (std::size_t b = 0; b < m.signals.size(); ++b)
+      if (m.signals[b]) s.band_cn0_dbhz[b] = m.signals[b]->cn0_dbhz;
     s.unhealthy = m.unhealthy;
     for (const SatResidual& r : sol.sats)
       if (r.sat == m.sat && r.used && sol.fix != FixType::kNone) {

@@ -4,6 +4,7 @@
 // receiver reports: fix type, satellites in view and used, DOPs and accuracy estimates.
 // Time is passed in; nothing here reads a clock or does I/O.
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -48,14 +49,18 @@ struct NavEngineSettings {
   // The systems whose signals the receiver tracks (system_bit; u-blox CFG-SIGNAL-*_ENA): the
   // others' satellites are dropped and re-acquired when enabled again.
   std::uint32_t systems = ~0u;
+  // Of those, the systems whose second-band signal is enabled (CFG-SIGNAL-*_L2*_ENA, E5B, B2),
+  // for profiles with that band.
+  std::uint32_t l2_systems = ~0u;
 };
 
 struct ReceiverSatellite {
   SatId sat;
-  double az_deg = 0.0, el_deg = 0.0, cn0_dbhz = 0.0;
+  double az_deg = 0.0, el_deg = 0.0, cn0_dbhz = 0.0;  // C/N0 of the L1 signal
   bool used = false;
   bool unhealthy = false;   // flagged so by its broadcast data: tracked, not used
   double residual_m = 0.0;  // pseudorange residual of the fix (used satellites), else 0
+  std::array<double, 3> band_cn0_dbhz{};  // of each Band's signal; 0: not tracked on it
 };
 
 struct ReceiverFix {

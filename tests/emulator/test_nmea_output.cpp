@@ -156,5 +156,45 @@ TEST(NmeaOutput, MultiGnssSentencesPerSystem) {
   EXPECT_EQ(s[8].back(), "1");  // B1I
 }
 
+// The profile's second band (the ZED-F9P's L2): after each system's L1 group, a group of the
+// satellites tracked on its L2-band signal with that signal's ID and C/N0 (NMEA 4.11 signal IDs
+// as u-blox gives them: GPS L2 CL 6, Galileo E5b 2), as the ZED-F9T sends its L1 and L5 groups
+// (receiver_logs/gpsd/ublox-zed-f9t-ubx_nmea_l5.log); none where a system has no satellite on
+// it, and none without signal IDs (before NMEA 4.10).
+TEST(NmeaOutput, SecondBandGsvGroupsFollowEachSystemsL1Group) {
+  GnssProfile p = load_gnss_profile("ublox-f9p");
+  ASSERT_EQ(p.bands, band_bit(Band::kL1) | band_bit(Band::kL2));
+  p.systems = system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kGlonass) | system_bit(GnssSystem::kGalileo);
+  p.talker = "GN";
+  p.sentences = {{"GSV", 1}};
+  ReceiverFix f = a_fix();
+  f.satellites = {{gps_sat(5), 120.0, 45.0, 44.0, true, false, 0.0, {44.0, 38.0, 0.0}},
+                  {gps_sat(13), 60.0, 30.0, 40.0, true, false, 0.0, {40.0, 0.0, 0.0}},
+                  {SatId(GnssSystem::kGalileo, 11), 200.0, 60.0, 46.0, true, false, 0.0, {46.0, 41.0, 0.0}},
+                  {SatId(GnssSystem::kGlonass, 3), 300.0, 30.0, 41.0, true, false, 0.0, {41.0, 0.0, 0.0}}};
+  std::string text;
+  NmeaOutput(p, ReceiverMode::kStandalone, 41).encode(f, 0, text);
+  const auto s = sentences(text);
+  ASSERT_EQ(s.size(), 5u) << text;
+  EXPECT_EQ(s[0][0], "GPGSV");
+  EXPECT_EQ(s[0][3], "02");
+  EXPECT_EQ(s[0].back(), "1");
+  EXPECT_EQ(s[1][0], "GPGSV");
+  EXPECT_EQ(s[1][3], "01");  // only the L2C satellite
+  EXPECT_EQ(s[1][4], "05");
+  EXPECT_EQ(s[1][7], "38");
+  EXPECT_EQ(s[1].back(), "6");
+  EXPECT_EQ(s[2][0], "GLGSV");  // no GLONASS satellite on L2
+  EXPECT_EQ(s[3][0], "GAGSV");
+  EXPECT_EQ(s[3].back(), "7");
+  EXPECT_EQ(s[4][0], "GAGSV");
+  EXPECT_EQ(s[4][7], "41");
+  EXPECT_EQ(s[4].back(), "2");
+
+  text.clear();
+  NmeaOutput(p, ReceiverMode::kStandalone, 40).encode(f, 0, text);  // NMEA 4.0: no signal IDs
+  EXPECT_EQ(sentences(text).size(), 3u) << text;
+}
+
 }  // namespace
 }  // namespace navemu

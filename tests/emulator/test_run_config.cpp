@@ -397,6 +397,12 @@ TEST(RunConfig, ProfileSystemsAndTheirTalker) {
       << bad("systems: [GPS, Compass]\n");
   EXPECT_NE(bad("systems: []\n").find("systems: at least one system"), std::string::npos)
       << bad("systems: []\n");
+  // `bands`: the front ends; L1 alone by default, L1 always.
+  EXPECT_EQ(load("").bands, band_bit(Band::kL1));
+  EXPECT_EQ(load("bands: [L1, L5]\n").bands, band_bit(Band::kL1) | band_bit(Band::kL5));
+  EXPECT_NE(bad("bands: [L1, E6]\n").find(":2: bands: unknown band 'E6': L1, L2 or L5"), std::string::npos)
+      << bad("bands: [L1, E6]\n");
+  EXPECT_NE(bad("bands: [L2]\n").find(":2: bands: L1 is needed"), std::string::npos) << bad("bands: [L2]\n");
 }
 
 TEST(RunConfig, UnknownKeyIsReportedWithItsLine) {

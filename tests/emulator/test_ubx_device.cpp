@@ -1284,6 +1284,50 @@ TEST_F(UbxDeviceTest, EveryOutputMessageOfThePartAnswersAPoll) {
   }
 }
 
+// RXM-RAWX of the F9P profile (bands L1 and L2, five systems, its default signal items): every
+// tracked satellite's L1 signal, and its L2-band one where the satellite sends it (GPS L2C from
+// Block IIR-M on: core/signal.cpp) and the item enables it (BeiDou B2I off by default), with the
+// UBX sigIds of the part (F9 interface description, "Signal identifiers").
+TEST_F(UbxDeviceTest, RawxListsTheProfilesBandsOfEachSatellite) {
+  const GpsTime t = gps_from_utc(CalendarTime{2024, 6, 1, 12, 0, 0.0});  // 25 GPS PRNs with L2C then
+  const NavData nav = nominal_constellation(t, f9p_.systems);
+  ReceiverParams rp;
+  rp.measurement.systems = f9p_.systems;
+  rp.measurement.bands = f9p_.bands;
+  rp.max_channels = 64;
+  Receiver rx(nav, rp);
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, nav);
+  set_items(d, {{"CFG-MSGOUT-UBX_RXM_RAWX_UART1", 1}});
+  rx.set_engine(*d.engine_settings());
+  ImuTruth truth;
+  truth.position = Geodetic{32.3, -90.9, 60.0};
+  truth.t = t;
+  const ReceiverFix fix = rx.update(t, &truth);
+  std::string out;
+  d.encode_epoch(fix, rx.measurements(), 0, out);
+  const std::vector<Frame> f = of_type(frames_of(out), ubx::kRxmRawx);
+  ASSERT_EQ(f.size(), 1u);
+  ubx::RxmRawx m;
+  ASSERT_TRUE(ubx::decode(f[0].payload, m));
+  std::map<std::pair<int, int>, std::set<int>> sig_ids;  // (gnssId, svId) -> sigIds
+  for (const ubx::RxmRawxMeas& r : m.meas) sig_ids[{r.gnss_id, r.sv_id}].insert(r.sig_id);
+  std::map<GnssSystem, int> with_l2;
+  for (const SatMeasurement& s : rx.measurements().sats) {
+    SCOPED_TRACE(s.sat.rinex());
+    const std::set<int>& ids = sig_ids[{s.sat.ubx_gnss_id(), s.sat.ubx_sv_id()}];
+    const std::optional<int> l1 = ubx_sig_id(s.sat, band_signal(s.sat.system(), Band::kL1)->id);
+    const std::optional<int> l2 = ubx_sig_id(s.sat, band_signal(s.sat.system(), Band::kL2)->id);
+    const bool expect_l2 = s.sat.system() != GnssSystem::kBeidou && broadcasts(s.sat, band_signal(s.sat.system(), Band::kL2)->id, t);
+    const std::set<int> expected = expect_l2 ? std::set<int>{*l1, *l2} : std::set<int>{*l1};
+    EXPECT_EQ(ids, expected);
+    with_l2[s.sat.system()] += expect_l2 ? 1 : 0;
+  }
+  EXPECT_GT(with_l2[GnssSystem::kGps], 3);  // GPS L2C sigId 3
+  EXPECT_GT(with_l2[GnssSystem::kGalileo], 3);  // E5b Q sigId 6
+  EXPECT_GT(with_l2[GnssSystem::kGlonass], 3);  // L2OF sigId 2
+  EXPECT_EQ(with_l2[GnssSystem::kBeidou], 0);
+}
+
 // NAV-SIG of a dual-frequency F9P: one block per tracked L1 C/A and L2 CL signal (sigId 0 and
 // 3, as the ZED-F9T in ../shared/data numbers them); the signals of satellites the solution
 // uses carry prUsed and doUsed (0x29 with health "healthy", as in that log) and the dual-frequency
@@ -1506,6 +1550,15 @@ TEST_F(UbxDeviceTest, MonitorsFollowTheirConfiguration) {
   EXPECT_TRUE(tracked(GnssSystem::kGps));
   EXPECT_TRUE(tracked(GnssSystem::kBeidou));
   EXPECT_TRUE(tracked(GnssSystem::kQzss));
+  // The second band follows its signal's item: BeiDou B2I off at power-up (the part's default),
+  // switched on; GPS L2C switched off.
+  const auto on_l2 = [&](GnssSystem s) { return (d.engine_settings()->l2_systems & system_bit(s)) != 0; };
+  EXPECT_TRUE(on_l2(GnssSystem::kGps));
+  EXPECT_FALSE(on_l2(GnssSystem::kBeidou));
+  set_items(d, {{"CFG-SIGNAL-BDS_B2_ENA", 1}, {"CFG-SIGNAL-GPS_L2C_ENA", 0}});
+  EXPECT_TRUE(on_l2(GnssSystem::kBeidou));
+  EXPECT_FALSE(on_l2(GnssSystem::kGps));
+  EXPECT_TRUE(tracked(GnssSystem::kGps));
 }
 
 // CFG-GNSS (M8 receiver description 32.10.12 "Configuration requirements"; deprecated on the F9,

@@ -41,6 +41,9 @@ Vec3 esbc_arp() {
 
 // The L1 code the real file holds per system (RINEX 3.05 header of the file).
 const char* l1_code(GnssSystem s) { return s == GnssSystem::kBeidou ? "C2I" : "C1C"; }
+// The code of the ZED-F9P's second-band signal (GPS L2C CL, GLONASS L2OF, Galileo E5b Q, BeiDou
+// B2I: band_signal(s, Band::kL2)) in the real file.
+std::string l2_code(GnssSystem s) { return fmt::format("C{}", band_signal(s, Band::kL2)->id.rinex_code()); }
 
 TEST(MultiGnssReceiver, TracksAndMeasuresEverySystemLikeTheRealReceiverAtEsbc) {
   NAVEMU_REQUIRE_SHARED();
@@ -121,10 +124,14 @@ TEST(MultiGnssReceiver, TracksAndMeasuresEverySystemLikeTheRealReceiverAtEsbc) {
   EXPECT_LT(mean_error_m, 5.0);
 }
 
-// The emulated F9P (the shipped ublox-f9p profile: five systems, 10 deg mask, 32 channels) at
-// the station's place and hour with its broadcast file, as a logging client sees it: NAV-SAT's
-// tracked satellites (C/N0 > 0) per system at the station's 30 s epochs, above the profile's
-// mask, against the satellites the real receiver has L1 code for above the same mask.
+// The emulated F9P (the shipped ublox-f9p profile: five systems on L1 and L2, 10 deg mask, 32
+// channels) at the station's place and hour with its broadcast file, as a logging client sees
+// it: NAV-SAT's tracked satellites (C/N0 > 0) per system at the station's 30 s epochs, above the
+// profile's mask, against the satellites the real receiver has L1 code for above the same mask;
+// and RXM-RAWX's signals per system (L1 and L2 band) against the real receiver's codes of the
+// same signals: those the part enables by default (ZED-F9P integration manual, "Default GNSS
+// configuration": BeiDou B2I off, CFG-SIGNAL-BDS_B2_ENA 0), where the satellite sends them
+// (only GPS Block IIR-M and later send L2C).
 TEST(MultiGnssReceiver, TheEmulatedF9pTracksEachSystemLikeTheStation) {
   NAVEMU_REQUIRE_SHARED();
   const fs::path nav_file = test::shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx");
@@ -148,30 +155,45 @@ TEST(MultiGnssReceiver, TheEmulatedF9pTracksEachSystemLikeTheStation) {
       " --start 2020-06-25T00:00:00Z --duration 3600 --out " + test::shell_quote((dir / "out").string()) + " 2>&1");
   ASSERT_EQ(r.exit_code, 0) << r.out;
 
-  // NAV-SAT by GPS time of week (ms).
+  // NAV-SAT and RXM-RAWX by GPS time of week (ms).
   std::map<std::uint32_t, ubx::NavSat> nav_sat;
+  std::map<std::uint32_t, ubx::RxmRawx> rawx;
   std::ifstream in(dir / "out" / "ubx.bin", std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ubx::Parser parser(65535);
   parser.feed(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()),
               [&](ubx::Parser::Result res) {
+                if (res != ubx::Parser::Result::kFrame) return;
                 ubx::NavSat m;
-                if (res == ubx::Parser::Result::kFrame && ubx::MsgId{parser.cls(), parser.id()} == ubx::kNavSat &&
-                    ubx::decode(parser.payload(), m))
+                ubx::RxmRawx raw_msg;
+                if (ubx::MsgId{parser.cls(), parser.id()} == ubx::kNavSat && ubx::decode(parser.payload(), m))
                   nav_sat[m.i_tow_ms] = m;
+                if (ubx::MsgId{parser.cls(), parser.id()} == ubx::kRxmRawx && ubx::decode(parser.payload(), raw_msg))
+                  rawx[static_cast<std::uint32_t>(std::llround(raw_msg.rcv_tow_s * 1000.0))] = raw_msg;
               });
   ASSERT_GE(nav_sat.size(), 3590u);
+  ASSERT_GE(rawx.size(), 3590u);
 
-  std::map<GnssSystem, double> real_count, emulated_count;
+  std::map<GnssSystem, double> real_count, emulated_count, real_signals, emulated_signals;
   std::size_t epochs = 0;
   for (const ObsEpoch& epoch : obs.epochs) {
     const auto it = nav_sat.find(static_cast<std::uint32_t>(std::llround(to_week_tow(epoch.time).tow_s * 1000.0)));
     if (it == nav_sat.end()) continue;
     ++epochs;
+    std::set<std::pair<int, int>> above;  // (gnssId, svId) tracked above the mask
     for (const ubx::NavSatSv& sv : it->second.svs)
       if (const std::optional<SatId> sat = SatId::from_ubx(sv.gnss_id, sv.sv_id);
-          sat && sv.cno_dbhz > 0 && sv.elev_deg >= kF9pMaskDeg)
+          sat && sv.cno_dbhz > 0 && sv.elev_deg >= kF9pMaskDeg) {
         emulated_count[sat->system()] += 1.0;
+        above.insert({sv.gnss_id, sv.sv_id});
+      }
+    // RAWX is tagged with the receiver's time (its clock is within a millisecond of GPS time).
+    const auto raw = rawx.lower_bound(it->first > 5 ? it->first - 5 : 0);
+    ASSERT_TRUE(raw != rawx.end() && raw->first <= it->first + 5) << it->first;
+    for (const ubx::RxmRawxMeas& meas : raw->second.meas)
+      if (const std::optional<SatId> sat = SatId::from_ubx(meas.gnss_id, meas.sv_id);
+          sat && above.count({meas.gnss_id, meas.sv_id}))
+        emulated_signals[sat->system()] += 1.0;
     for (const SatObs& so_real : epoch.sats) {
       const std::optional<SatId> sat = so_real.sat();
       if (!sat || std::find(kSystems.begin(), kSystems.end(), sat->system()) == kSystems.end()) continue;
@@ -179,7 +201,12 @@ TEST(MultiGnssReceiver, TheEmulatedF9pTracksEachSystemLikeTheStation) {
       if (k < 0 || !std::isfinite(so_real.values[static_cast<std::size_t>(k)])) continue;
       const BroadcastRecord rec = select_record(nav, *sat, epoch.time);
       if (std::holds_alternative<std::monostate>(rec)) continue;
-      if (sat_geometry(rec, epoch.time, rx).dir.el_rad * kRadToDeg >= kF9pMaskDeg) real_count[sat->system()] += 1.0;
+      if (sat_geometry(rec, epoch.time, rx).dir.el_rad * kRadToDeg < kF9pMaskDeg) continue;
+      real_count[sat->system()] += 1.0;
+      const int k2 = sat->system() == GnssSystem::kBeidou
+                         ? -1
+                         : obs.header.index_of(sat->info().rinex_letter, l2_code(sat->system()));
+      real_signals[sat->system()] += k2 >= 0 && std::isfinite(so_real.values[static_cast<std::size_t>(k2)]) ? 2.0 : 1.0;
     }
   }
   ASSERT_GE(epochs, 110u);
@@ -188,6 +215,68 @@ TEST(MultiGnssReceiver, TheEmulatedF9pTracksEachSystemLikeTheStation) {
     std::printf("emulated F9P at ESBC, %-8s above %.0f deg: %.2f satellites per epoch (the station %.2f)\n",
                 system_info(s).name, kF9pMaskDeg, emulated, real);
     EXPECT_NEAR(emulated, real, 0.2 * real) << system_info(s).name;  // the issue's +-20 %
+  }
+  double real_total = 0.0, emulated_total = 0.0;
+  for (GnssSystem s : kSystems) {
+    const double real = real_signals[s] / static_cast<double>(epochs),
+                 emulated = emulated_signals[s] / static_cast<double>(epochs);
+    std::printf("emulated F9P at ESBC, %-8s above %.0f deg: %.2f signals per epoch (the station %.2f on the same signals)\n",
+                system_info(s).name, kF9pMaskDeg, emulated, real);
+    EXPECT_NEAR(emulated, real, 0.2 * real) << system_info(s).name;
+    real_total += real;
+    emulated_total += emulated;
+  }
+  std::printf("emulated F9P at ESBC, all: %.2f signals per epoch (the station %.2f)\n", emulated_total, real_total);
+  EXPECT_NEAR(emulated_total, real_total, 0.2 * real_total);
+}
+
+// Which satellites send GPS L2C and L5 and BeiDou B2I (core/signal.cpp broadcasts(), from the
+// satellites' blocks) against what the station tracks: above 15 deg, every satellite with the
+// station's L1 code has C2L / C5Q / C7I exactly when broadcasts() says it is sent, but for a
+// lost epoch or two.
+TEST(MultiGnssReceiver, TheSatellitesThatSendEachSignalAreThoseTheStationTracks) {
+  NAVEMU_REQUIRE_SHARED();
+  const NavData nav = test::rinex_nav_file(
+      test::shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01D_MN.rnx"));
+  const ObsData obs = test::rinex_obs_file(
+      test::shared_data("gnss/esbc_20200625/ESBC00DNK_R_20201770000_01H_30S_MO.rnx"));
+  const ReceiverPlace rx = receiver_place(esbc_arp());
+  struct Check {
+    SignalId signal;
+    const char* code;
+    int agree = 0, sent_not_tracked = 0, tracked_not_sent = 0;
+    std::set<int> senders, others;
+  };
+  std::array<Check, 3> checks{{{kGpsL2CL, "C2L", 0, 0, 0, {}, {}}, {kGpsL5Q, "C5Q", 0, 0, 0, {}, {}}, {kBeidouB2I, "C7I", 0, 0, 0, {}, {}}}};
+  for (const ObsEpoch& epoch : obs.epochs)
+    for (const SatObs& so : epoch.sats) {
+      const std::optional<SatId> sat = so.sat();
+      if (!sat || (sat->system() != GnssSystem::kGps && sat->system() != GnssSystem::kBeidou)) continue;
+      const auto has = [&](const char* code) {
+        const int k = obs.header.index_of(sat->info().rinex_letter, code);
+        return k >= 0 && std::isfinite(so.values[static_cast<std::size_t>(k)]);
+      };
+      const BroadcastRecord rec = select_record(nav, *sat, epoch.time);
+      if (!has(l1_code(sat->system())) || std::holds_alternative<std::monostate>(rec) ||
+          sat_geometry(rec, epoch.time, rx).dir.el_rad * kRadToDeg < kMaskDeg)
+        continue;
+      for (Check& c : checks) {
+        if (c.signal.system != sat->system()) continue;
+        const bool sent = broadcasts(*sat, c.signal, epoch.time), tracked = has(c.code);
+        (sent ? c.senders : c.others).insert(sat->number());
+        (sent == tracked ? c.agree : sent ? c.sent_not_tracked : c.tracked_not_sent) += 1;
+      }
+    }
+  for (const Check& c : checks) {
+    std::printf("%s: %zu satellites above %.0f deg send it, %zu do not; %d satellite-epochs agree with the "
+                "station, %d sent but not tracked, %d tracked but not sent\n",
+                signal_info(c.signal)->name, c.senders.size(), kMaskDeg, c.others.size(), c.agree,
+                c.sent_not_tracked, c.tracked_not_sent);
+    EXPECT_GE(c.senders.size(), 2u) << c.code;  // both kinds of satellite in the hour
+    EXPECT_GE(c.others.size(), 2u) << c.code;
+    EXPECT_GT(c.agree, 300) << c.code;
+    EXPECT_EQ(c.tracked_not_sent, 0) << c.code;
+    EXPECT_LE(c.sent_not_tracked, c.agree / 50) << c.code;
   }
 }
 

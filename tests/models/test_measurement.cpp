@@ -78,7 +78,7 @@ TEST(Measurement, PseudorangeIsTheSumOfItsTermsAndCarrierAndDopplerAgree) {
   NavData nav = nominal_constellation(kStart);
   MeasurementConfig c;
   c.errors.noise = false;
-  c.dual_frequency_signals = true;
+  c.bands = kAllBands;
   MeasurementGenerator gen(nav, c);
   const Vec3 p = ecef_from_geodetic(kSite);
   const EpochMeasurements e0 = gen.generate(kStart, p);
@@ -89,9 +89,13 @@ TEST(Measurement, PseudorangeIsTheSumOfItsTermsAndCarrierAndDopplerAgree) {
     const double rest = m.range_m + cc * e0.rx_clock_bias_s - m.sat_clock_m + m.tropo_hydro_m +
                         m.tropo_wet_m + m.sat_error_m + m.multipath_m;
     EXPECT_NEAR(m.signals[0]->pseudorange_m, rest + m.iono_l1_m, 1e-6);
-    // L2: the ionosphere and TGD scale with (f1/f2)^2 (IS-GPS-200 20.3.3.3.3.2).
+    // L2: the ionosphere and TGD scale with (f1/f2)^2 (IS-GPS-200 20.3.3.3.3.2); only from the
+    // satellites that send L2C.
     const double g2 = std::pow(kGpsL1_Hz / kGpsL2_Hz, 2);
-    EXPECT_NEAR(m.signals[1]->pseudorange_m, rest + g2 * m.iono_l1_m + (g2 - 1) * tgd_m, 1e-6);
+    ASSERT_EQ(m.signals[1].has_value(), broadcasts(m.sat, kGpsL2CL, kStart)) << m.sat.rinex();
+    if (m.signals[1]) {
+      EXPECT_NEAR(m.signals[1]->pseudorange_m, rest + g2 * m.iono_l1_m + (g2 - 1) * tgd_m, 1e-6);
+    }
     // Carrier: advanced by the ionosphere by as much as the code is delayed, plus N lambda;
     // code multipath (metres) does not reach the carrier (centimetres at most).
     const double lambda1 = cc / kGpsL1_Hz;
@@ -311,7 +315,7 @@ TEST(Measurement, RisingSatelliteIsTrackedAfterTheReacquisitionTime) {
 TEST(Measurement, JammingLowersCn0ByTheFormulaAndLosesWeakSignals) {
   const NavData nav = nominal_constellation(kStart);
   MeasurementConfig clear_cfg = all_off();
-  clear_cfg.dual_frequency_signals = true;
+  clear_cfg.bands = kAllBands;
   MeasurementGenerator clear(nav, clear_cfg);
   const auto ref = clear.generate(kStart, ecef_from_geodetic(kSite));
   ASSERT_GE(ref.sats.size(), 6u);
