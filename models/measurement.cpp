@@ -536,6 +536,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     m.eph = eph;
     m.glonass_channel = glonass_channel;
     m.dir = g.dir;
+    m.transmit = {g.t_transmit, g.sat_transmit};
     m.range_m = g.range_m;
     m.range_rate_mps = g.range_rate_mps;
     const double sin_el = std::sin(g.dir.el_rad);
@@ -730,7 +731,8 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
   out.clear();
   for (const SatMeasurement& m : e.sats)
     out.push_back(make_range_measurement(m.record, e.t_receiver, m.engine_pseudorange_m,
-                                         m.signals[0]->doppler_hz, state_->glonass_arcs.find(m.sat)));
+                                         m.signals[0]->doppler_hz, state_->glonass_arcs.find(m.sat),
+                                         &m.transmit));
 }
 
 }  // namespace navemu

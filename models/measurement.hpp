@@ -22,6 +22,7 @@
 #include "models/ephemeris.hpp"
 #include "models/geodesy.hpp"
 #include "models/interference.hpp"
+#include "models/orbit.hpp"
 #include "models/random.hpp"
 #include "models/receiver_clock.hpp"
 #include "models/sat_errors.hpp"
@@ -309,6 +310,7 @@ struct SatMeasurement {
   const GpsEphemeris* eph = nullptr;  // the same for GPS and QZSS (LNAV), else null
   int glonass_channel = 0;  // GLONASS frequency channel k
   AzEl dir;
+  SatStateAt transmit;           // the broadcast state at the true transmit time (its own frame)
   double range_m = 0.0;          // true geometric range (light time and Earth rotation)
   double range_rate_mps = 0.0;
   // The terms of the L1 pseudorange, metres (for inspection and tests).

@@ -385,7 +385,7 @@ SatGeometry sat_geometry(const BroadcastRecord& r, GpsTime t_receive, const Rece
   SatGeometry g;
   g.t_transmit = t_receive.plus_s(-tau_s);
   g.flight_time_s = tau_s;
-  g.sat = s;
+  g.sat = g.sat_transmit = s;
   g.sat.p_ecef_m = rotate_earth(s.p_ecef_m, tau_s);
   g.sat.v_ecef_mps = rotate_earth(s.v_ecef_mps, tau_s);
   const Vec3 los = g.sat.p_ecef_m - rx.p_ecef_m;

@@ -18,6 +18,12 @@ struct SatState {
   double relativistic_s = 0.0;     // F e sqrt(A) sin(E)
 };
 
+// A state and the time it is of.
+struct SatStateAt {
+  GpsTime t;
+  SatState state;
+};
+
 // State at GPS system time t (the satellite's transmit time).
 SatState gps_sat_state(const GpsEphemeris& eph, GpsTime t);
 
@@ -102,6 +108,7 @@ struct SatGeometry {
   GpsTime t_transmit;            // GPS system time of transmission
   double flight_time_s = 0.0;    // t_receive - t_transmit before rounding to the nanosecond
   SatState sat;                  // state at t_transmit, rotated into the ECEF frame at reception
+  SatState sat_transmit;         // the same in the ECEF frame at t_transmit (the ephemeris' own)
   double range_m = 0.0;          // |p_sat - p_rx| in the reception frame (includes Sagnac)
   double range_rate_mps = 0.0;   // d(range)/dt seen by the receiver
   AzEl dir;                      // azimuth/elevation on the geodetic normal

@@ -17,6 +17,7 @@
 namespace navemu {
 
 class GlonassArc;  // models/orbit.hpp
+struct SatStateAt;
 
 // One satellite's measurement, with the satellite's state already evaluated at its
 // transmit time, in the ECEF frame of that transmit time (the solver applies the Earth
@@ -156,9 +157,16 @@ RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_r
                                         std::optional<double> doppler_l1_hz = {},
                                         const GlonassArc* arc = nullptr);
 // The one of these for whichever record `r` holds (it must hold one).
+// `near`: for a Kepler record, its state at a time near the transmit time when the caller has it
+// (the measurement generator's, at the true transmit time, which the receiver's estimate
+// t_receive - P/c - dt_sat misses by the pseudorange's errors over c, microseconds). Within 1 ms
+// it is carried there to first order instead of solving Kepler's equation again: the
+// acceleration (0.6 m/s^2 for GPS) leaves 0.3 nm after 1 us and 0.3 um after 1 ms, the clock's
+// af2 less.
 RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_receive,
                                         double pseudorange_m, std::optional<double> doppler_hz = {},
-                                        const GlonassArc* glonass_arc = nullptr);
+                                        const GlonassArc* glonass_arc = nullptr,
+                                        const SatStateAt* near = nullptr);
 
 // The solver's matrices live on the stack up to this many satellites (no allocation per epoch);
 // measurements beyond it are not used.

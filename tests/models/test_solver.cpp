@@ -66,6 +66,39 @@ std::vector<RangeMeasurement> exact_measurements(const Scenario& s, double mask_
   return out;
 }
 
+// A state near the transmit time (the generator's, at the true one) carried there to first
+// order gives the measurement solving Kepler's equation at the receiver's estimate gives: for
+// pseudorange errors of metres to kilometres (microseconds) to well under a millimetre and a
+// picosecond; a state a millisecond or more away is not used.
+TEST(SolverInput, AStateNearTheTransmitTimeIsCarriedThere) {
+  const Scenario s;
+  const NavData nav = nominal_constellation(s.t_tag);
+  const Vec3 p = ecef_from_geodetic(s.rx);
+  const GpsTime t_true = s.t_tag.plus_s(-s.clock_m / kSpeedOfLight_mps);
+  for (int prn = 1; prn <= 24; ++prn) {
+    const GpsEphemeris* eph = select_ephemeris(nav, gps_sat(prn), s.t_tag);
+    const SatGeometry g = gps_sat_geometry(*eph, t_true, p);
+    const SatStateAt near{g.t_transmit, g.sat_transmit};
+    for (const double error_m : {0.0, 3.0, -250.0, 3000.0, 400e3}) {
+      SCOPED_TRACE(::testing::Message() << "G" << prn << " error " << error_m << " m");
+      const double pr_m = g.range_m + s.clock_m + error_m;
+      const RangeMeasurement direct = make_range_measurement(BroadcastRecord{eph}, s.t_tag, pr_m);
+      const RangeMeasurement carried = make_range_measurement(BroadcastRecord{eph}, s.t_tag, pr_m, {}, nullptr, &near);
+      const double tol_m = error_m > 100e3 ? 0.0 : 1e-4;  // 400 km: 1.3 ms away, solved again
+      EXPECT_LE((carried.sat_p_ecef_m - direct.sat_p_ecef_m).norm(), tol_m);
+      EXPECT_LE(std::abs(carried.sat_clock_m - direct.sat_clock_m), tol_m);
+      EXPECT_LE((carried.sat_v_ecef_mps - direct.sat_v_ecef_mps).norm(), tol_m * 10.0);  // a dt: 0.6 um/s per us
+      EXPECT_EQ(carried.sat_variance_m2, direct.sat_variance_m2);
+      // The given state is the one used (one moved by a metre moves the measurement's), unless
+      // too far.
+      SatStateAt moved = near;
+      moved.state.p_ecef_m.x() += 1.0;
+      const RangeMeasurement from_moved = make_range_measurement(BroadcastRecord{eph}, s.t_tag, pr_m, {}, nullptr, &moved);
+      EXPECT_NEAR((from_moved.sat_p_ecef_m - direct.sat_p_ecef_m).norm(), error_m > 100e3 ? 0.0 : 1.0, 1e-4);
+    }
+  }
+}
+
 TEST(SolverExact, RecoversPositionClockAndVelocity) {
   const Scenario s;
   const auto meas = exact_measurements(s, 5.0);
