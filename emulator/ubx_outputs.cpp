@@ -468,7 +468,8 @@ bdnav::BdsBroadcast beidou_broadcast(const NavData& nav, GpsTime t, int leap_s) 
 //   GPS, QZSS  LNAV subframes of 6 s from the start of the GPS week (IS-GPS-200 20.3.2);
 //   Galileo    E1-B page pairs of 2 s starting at odd GST seconds (OS SIS ICD 2.0 4.3.2), in
 //              9 words as the ZED-F9P sends them (the 9th undocumented, 0 here; RTKLIB's
-//              decoder requires it) on sigId 1, E1-B;
+//              decoder requires it) on sigId 1, E1-B; with the E5b band, E5b-I page pairs
+//              starting at even seconds on sigId 5, as the ZED-F9P capture has both;
 //   GLONASS    strings of 2 s from the start of the GLONASS day (ICD 5.1, 4.3);
 //   BeiDou     D1 subframes of 6 s from the start of the BDT week; D2 (GEO) subframes of
 //              0.6 s, those that ended within the last second (BDS-SIS-ICD-B1I 3.0 5.2.2, 5.3.1).
@@ -481,8 +482,8 @@ void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
   const auto ends_on = [&](std::int64_t period_s, std::int64_t offset_s) {
     return ((tow_s - offset_s) % period_s + period_s) % period_s == 0;
   };
-  const bool lnav_due = ends_on(6, 0), inav_due = ends_on(2, 1), gnav_due = ends_on(2, e.leap_s),
-             d1_due = ends_on(6, kGpsMinusBdt_s);
+  const bool lnav_due = ends_on(6, 0), inav_due = ends_on(2, 1), e5b_due = ends_on(2, 0),
+             gnav_due = ends_on(2, e.leap_s), d1_due = ends_on(6, kGpsMinusBdt_s);
   const auto send = [&](const SatMeasurement& s, std::uint8_t sig_id, std::uint8_t chn,
                         std::span<const std::uint32_t> words) {
     RxmSfrbx& m = reset_keeping_storage(e.lists.sfrbx, &RxmSfrbx::words);
@@ -509,12 +510,17 @@ void emit_rxm_sfrbx(const EpochView& e, std::vector<std::uint8_t>& out) {
       send(s, sig, ch,
            lnav::lnav_subframe(static_cast<int>(count_this % 5) + 1, count_next, to_lnav(*s.eph), *iono,
                                static_cast<int>((count_this / 5) % 25) + 1));
-    } else if (const auto* gal = std::get_if<const GalileoEphemeris*>(&s.record); gal != nullptr && inav_due) {
+    } else if (const auto* gal = std::get_if<const GalileoEphemeris*>(&s.record); gal != nullptr) {
+      const bool e5b = e5b_due && s.signals[1] && (e.status.bands & band_bit(Band::kL2));
+      if (!inav_due && !e5b) continue;
       if (!galileo) galileo = galileo_system_data(e.nav, t, e.leap_s);
       const WeekTow start = to_week_tow(t.plus_s(-2.0));
-      const inav::InavPage page = inav::inav_page(inav::inav_word_type_for(start.tow_s), start.week - kGstWeek0InGpsWeeks,
-                                                  start.tow_s, **gal, *galileo);
-      send(s, 1, ch, page);
+      const inav::InavSignal signal = e5b ? inav::InavSignal::kE5bI : inav::InavSignal::kE1B;
+      inav::InavPageExtras extras;
+      if (e5b) extras.ssp = inav::kE5bReserved2;
+      send(s, e5b ? 5 : 1, ch,
+           inav::inav_page(inav::inav_word_type_for(start.tow_s, signal), start.week - kGstWeek0InGpsWeeks,
+                           start.tow_s, **gal, *galileo, extras));
     } else if (const auto* glo = std::get_if<const GlonassEphemeris*>(&s.record); glo != nullptr && gnav_due) {
       if (!glonass) glonass = glonass_system_data(e.nav, t, e.leap_s);
       const gnav::GnavSlot slot = gnav::glonass_slot(t.plus_s(-gnav::kString_s), e.leap_s);

@@ -330,19 +330,23 @@ InavPage inav_page(int word_type, int gst_week, double gst_tow_s, const GalileoE
                              gst_tow_s, extras);
 }
 
-double inav_page_start_s(double gst_tow_s) {
+double inav_page_start_s(double gst_tow_s, InavSignal signal) {
   const double t = std::floor(reduce_tow(gst_tow_s));
-  return 1.0 + 2.0 * std::floor((t - 1.0) / 2.0);
+  const double first = signal == InavSignal::kE1B ? 1.0 : 0.0;
+  return first + 2.0 * std::floor((t - first) / 2.0);
 }
 
-int inav_word_type_for(double gst_tow_s) {
-  // Slots of the E1-B column of the nominal sub-frame (ICD 4.3.2), word types 16-22 as 0.
-  constexpr std::array<int, 15> kSlots = {2, 4, 6, 7, 8, 0, 0, 0, 0, 0, 1, 3, 5, 0, 0};
-  const auto start = static_cast<long long>(inav_page_start_s(gst_tow_s));
-  const long long s = start - 1;  // seconds since the E1-B sub-frame boundary (may be -2)
+int inav_word_type_for(double gst_tow_s, InavSignal signal) {
+  // Slots of the E1-B and E5b-I columns of the nominal sub-frame (ICD 4.3.2), word types 16-22
+  // as 0.
+  constexpr std::array<int, 15> kE1b = {2, 4, 6, 7, 8, 0, 0, 0, 0, 0, 1, 3, 5, 0, 0};
+  constexpr std::array<int, 15> kE5b = {1, 3, 5, 7, 8, 0, 0, 0, 0, 0, 2, 4, 6, 0, 0};
+  const bool e1b = signal == InavSignal::kE1B;
+  const auto start = static_cast<long long>(inav_page_start_s(gst_tow_s, signal));
+  const long long s = start - (e1b ? 1 : 0);  // seconds since the sub-frame boundary (may be -2)
   const long long subframe = s >= 0 ? s / 30 : -1;
   const long long in_sub = ((s % 30) + 30) % 30;
-  const int type = kSlots[static_cast<std::size_t>(in_sub / 2)];
+  const int type = (e1b ? kE1b : kE5b)[static_cast<std::size_t>(in_sub / 2)];
   if ((type == 7 || type == 8) && (subframe & 1) != 0) return type + 2;
   return type;
 }

@@ -131,20 +131,30 @@ InavPage inav_page_from_word(const InavWord& word, double gst_tow_s,
 InavPage inav_page(int word_type, int gst_week, double gst_tow_s, const GalileoEphemeris& eph,
                    const InavSystemData& sys, const InavPageExtras& extras = {});
 
-// ---- E1-B nominal sub-frame schedule (ICD 4.3.2, "I/NAV nominal sub-frame layout") ---------
+// ---- nominal sub-frame schedule (ICD 4.3.2, "I/NAV nominal sub-frame layout") ---------------
 
-// Start (GST seconds of week) of the E1-B page pair whose 2 s contain `gst_tow_s`: the odd
-// second at or before it (E1-B pages start at T0 = 1, 3, ..., 29 of every 30 s sub-frame).
-// May be -1 (the page that began in the previous week) for tow in [0, 1).
-double inav_page_start_s(double gst_tow_s);
+// The two signals that carry I/NAV, each with its own page timing.
+enum class InavSignal { kE1B, kE5bI };
 
-// Word type of the E1-B page pair containing `gst_tow_s`. Sub-frame slot k = 0..14 (page
+// Start (GST seconds of week) of the page pair whose 2 s contain `gst_tow_s`: on E1-B the odd
+// second at or before it (pages start at T0 = 1, 3, ..., 29 of every 30 s sub-frame; -1, the
+// page that began in the previous week, for tow in [0, 1)), on E5b-I the even one (T0 = 0, 2,
+// ..., 28).
+double inav_page_start_s(double gst_tow_s, InavSignal signal = InavSignal::kE1B);
+
+// Word type of the page pair containing `gst_tow_s`. E1-B sub-frame slot k = 0..14 (page
 // starting at T0 = 2k + 1): 2, 4, 6, 7|9, 8|10, 0, 0, 0, 0, 0, 1, 3, 5, 0, 0, with words 7, 8
 // in even sub-frames (floor((GST - 1 s) / 30 s) even; a 720 s frame is 24 sub-frames) and 9,
-// 10 in odd ones (ICD 4.3.2, "I/NAV nominal frame layout"). Issue 2.0 gives slots 5, 6, 7, 9 and 14
-// to word types 16-22 (reduced CED, FEC2 Reed-Solomon, ...), which this module does not
-// generate: they are spare words 0 here, as they were on the satellites of the 2020 capture.
-int inav_word_type_for(double gst_tow_s);
+// 10 in odd ones (ICD 4.3.2, "I/NAV nominal frame layout"). E5b-I (T0 = 2k) sends the same
+// with words 1, 3, 5 and 2, 4, 6 swapped, so that a dual-frequency receiver has words 1-6 in
+// 15 s (the ZED-F9P capture: E5b word 2 at T0 = 20, 4 at 22, 6 at 24, 1 at 0; E1-B word 1 at
+// 21). Issue 2.0 gives slots 5, 6, 7, 9 and 14 to word types 16-22 (reduced CED, FEC2
+// Reed-Solomon, ...), which this module does not generate: they are spare words 0 here, as
+// they were on the satellites of the 2020 capture.
+int inav_word_type_for(double gst_tow_s, InavSignal signal = InavSignal::kE1B);
+
+// "Reserved 2" in place of the SSP on E5b-I pages: 0xFD on every E5b-I page of the capture.
+inline constexpr std::uint8_t kE5bReserved2 = 0xFD;
 
 // ---- decoding ------------------------------------------------------------------------------
 

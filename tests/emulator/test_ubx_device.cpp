@@ -19,6 +19,7 @@
 #include <iterator>
 #include <map>
 #include <regex>
+#include <set>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -28,6 +29,7 @@
 #include "models/constellation.hpp"
 #include "models/ephemeris.hpp"
 #include "models/receiver.hpp"
+#include "protocols/galileo_inav.hpp"
 #include "protocols/gps_lnav.hpp"
 #include "protocols/nmea.hpp"
 #include "protocols/ubx.hpp"
@@ -1326,6 +1328,56 @@ TEST_F(UbxDeviceTest, RawxListsTheProfilesBandsOfEachSatellite) {
   EXPECT_GT(with_l2[GnssSystem::kGalileo], 3);  // E5b Q sigId 6
   EXPECT_GT(with_l2[GnssSystem::kGlonass], 3);  // L2OF sigId 2
   EXPECT_EQ(with_l2[GnssSystem::kBeidou], 0);
+}
+
+// RXM-SFRBX of the F9P's Galileo satellites on both of its I/NAV signals, as the ZED-F9P capture
+// in ../shared/data has them: E1-B page pairs (sigId 1) when an odd GST second ends one, E5b-I
+// page pairs (sigId 5) at the even ones, each with its signal's word schedule, a valid CRC and
+// E5b's "Reserved 2"; over 30 s E5b-I brings every ephemeris word.
+TEST_F(UbxDeviceTest, SfrbxSendsTheGalileoPagesOfBothSignals) {
+  const GpsTime t0 = gps_from_utc(CalendarTime{2024, 6, 1, 12, 0, 0.0});
+  const NavData nav = nominal_constellation(t0, system_bit(GnssSystem::kGalileo));
+  ReceiverParams rp;
+  rp.measurement.systems = system_bit(GnssSystem::kGalileo);
+  rp.measurement.bands = f9p_.bands;
+  Receiver rx(nav, rp);
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, nav);
+  set_items(d, {{"CFG-MSGOUT-UBX_RXM_SFRBX_UART1", 1}});
+  rx.set_engine(*d.engine_settings());
+  std::map<int, std::set<int>> e5b_words;  // svId -> word types
+  int e1b = 0, e5b = 0;
+  for (int k = 0; k <= 30; ++k) {
+    const GpsTime t = t0.plus_s(k);
+    ImuTruth truth;
+    truth.position = Geodetic{48.1, 11.6, 520.0};
+    truth.t = t;
+    const ReceiverFix fix = rx.update(t, &truth);
+    std::string out;
+    d.encode_epoch(fix, rx.measurements(), 0, out);
+    const double tow_s = to_week_tow(t).tow_s;
+    for (const Frame& fr : of_type(frames_of(out), ubx::kRxmSfrbx)) {
+      ubx::RxmSfrbx m;
+      ASSERT_TRUE(ubx::decode(fr.payload, m));
+      ASSERT_EQ(m.gnss_id, 2);
+      const bool on_e5b = m.sig_id == 5;
+      ASSERT_TRUE(on_e5b || m.sig_id == 1) << int{m.sig_id};
+      EXPECT_EQ(std::fmod(tow_s, 2.0), on_e5b ? 0.0 : 1.0) << tow_s;
+      const std::optional<inav::InavDecodedPage> page = inav::decode_inav_page(m.words);
+      ASSERT_TRUE(page.has_value());
+      const inav::InavSignal signal = on_e5b ? inav::InavSignal::kE5bI : inav::InavSignal::kE1B;
+      EXPECT_EQ(page->word_type, inav::inav_word_type_for(tow_s - 2.0, signal)) << tow_s;
+      if (on_e5b) {
+        EXPECT_EQ(page->extras.ssp, inav::kE5bReserved2);
+        e5b_words[m.sv_id].insert(page->word_type);
+      }
+      (on_e5b ? e5b : e1b) += 1;
+    }
+  }
+  EXPECT_GT(e1b, 40);
+  EXPECT_GT(e5b, 40);
+  ASSERT_FALSE(e5b_words.empty());
+  for (const auto& [sv, words] : e5b_words)
+    for (int w = 1; w <= 6; ++w) EXPECT_TRUE(words.count(w)) << "E" << sv << " word " << w;
 }
 
 // NAV-SIG of a dual-frequency F9P: one block per tracked L1 C/A and L2 CL signal (sigId 0 and

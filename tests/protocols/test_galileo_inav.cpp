@@ -18,6 +18,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <set>
 #include <vector>
 
 #include "core/time.hpp"
@@ -219,6 +220,33 @@ TEST(InavCapture, E1bPagesFollowTheNominalSubframeSchedule) {
       decode_word_into(e1b[i].word, kCaptureGstWeek, eph, sys, nullptr, &tow);
       EXPECT_DOUBLE_EQ(tow, start);
     }
+  }
+}
+
+// The same on E5b-I: pages at even seconds, words 1, 3, 5 and 2, 4, 6 in each other's slots,
+// "Reserved 2" 0xFD where E1-B has its SSP.
+TEST(InavCapture, E5bPagesFollowTheNominalSubframeSchedule) {
+  REQUIRE_SHARED_FILE(kF9pLog);
+  for (const int sv : {13, 21}) {
+    std::vector<InavDecodedPage> e5b;
+    for (const auto& s : galileo_pages())
+      if (s.sv_id == sv && s.sig_id == 5) e5b.push_back(*decode_inav_page(s.words));
+    ASSERT_EQ(e5b.size(), 10u) << sv;
+    ASSERT_EQ(e5b[0].word_type, 0);
+    GalileoEphemeris eph;
+    InavSystemData sys;
+    double t0 = 0.0;
+    decode_word_into(e5b[0].word, kCaptureGstWeek, eph, sys, nullptr, &t0);
+    EXPECT_EQ(std::fmod(t0, 2.0), 0.0);  // E5b-I pages start at even seconds
+    std::set<int> seen;
+    for (std::size_t i = 0; i < e5b.size(); ++i) {
+      const double start = t0 + 2.0 * static_cast<double>(i);
+      EXPECT_EQ(inav_word_type_for(start, InavSignal::kE5bI), e5b[i].word_type) << "page at " << start;
+      EXPECT_DOUBLE_EQ(inav_page_start_s(start + 1.5, InavSignal::kE5bI), start);
+      EXPECT_EQ(e5b[i].extras.ssp, kE5bReserved2);
+      seen.insert(e5b[i].word_type);
+    }
+    EXPECT_EQ(seen, (std::set<int>{0, 1, 2, 4, 6}));  // the capture's 20 s
   }
 }
 
@@ -494,6 +522,22 @@ TEST(InavSchedule, NominalE1bSubframe) {
   EXPECT_EQ(inav_word_type_for(604799.0), 0);
   EXPECT_EQ(inav_word_type_for(1.0), 2);
   EXPECT_EQ(inav_word_type_for(604800.0 + 7.0), 7);
+}
+
+TEST(InavSchedule, NominalE5bSubframe) {
+  const std::array<int, 15> even = {1, 3, 5, 7, 8, 0, 0, 0, 0, 0, 2, 4, 6, 0, 0};
+  const std::array<int, 15> odd = {1, 3, 5, 9, 10, 0, 0, 0, 0, 0, 2, 4, 6, 0, 0};
+  for (int sub = 0; sub < 4; ++sub) {
+    for (int k = 0; k < 15; ++k) {
+      const double start = 30.0 * sub + 2.0 * k;
+      const int want = (sub % 2 == 0 ? even : odd)[static_cast<std::size_t>(k)];
+      EXPECT_EQ(inav_word_type_for(start, InavSignal::kE5bI), want) << start;
+      EXPECT_EQ(inav_word_type_for(start + 1.999, InavSignal::kE5bI), want) << start;
+      EXPECT_DOUBLE_EQ(inav_page_start_s(start + 1.0, InavSignal::kE5bI), start);
+    }
+  }
+  EXPECT_DOUBLE_EQ(inav_page_start_s(0.5, InavSignal::kE5bI), 0.0);
+  EXPECT_EQ(inav_word_type_for(604798.5, InavSignal::kE5bI), 0);
 }
 
 TEST(InavSisa, IndexTable) {
