@@ -28,6 +28,16 @@ Mat3 R_rac_from_ecef(const Vec3& sat_p_ecef_m, const Vec3& sat_v_ecef_mps) {
   return r;
 }
 
+double sisre_relative_to_gps(GnssSystem system) {
+  constexpr double kGps_m = 0.6;
+  switch (system) {
+    case GnssSystem::kGalileo: return 0.2 / kGps_m;
+    case GnssSystem::kBeidou: return 1.0 / kGps_m;
+    case GnssSystem::kGlonass: return 2.0 / kGps_m;
+    default: return 1.0;
+  }
+}
+
 SatErrors::SatErrors(const SatErrorParams& p, std::uint64_t seed) : p_(p), seed_(seed) {}
 
 double SatErrors::range_error_m(SatId sat, double t_s, const Vec3& sat_p_ecef_m,
@@ -37,10 +47,11 @@ double SatErrors::range_error_m(SatId sat, double t_s, const Vec3& sat_p_ecef_m,
     // One stream per satellite; the four processes draw from it in a fixed order (radial,
     // along, cross, clock) so a satellite's errors do not depend on which others were seen.
     RandomStream rng(seed_, stream_id("sat_errors", sat.stream_index()));
-    GaussMarkov radial(p_.radial_sigma_m, p_.tau_s, rng);
-    GaussMarkov along(p_.along_sigma_m, p_.tau_s, rng);
-    GaussMarkov cross(p_.cross_sigma_m, p_.tau_s, rng);
-    GaussMarkov clock(p_.clock_sigma_m, p_.tau_s, rng);
+    const double k = sisre_relative_to_gps(sat.system());
+    GaussMarkov radial(k * p_.radial_sigma_m, p_.tau_s, rng);
+    GaussMarkov along(k * p_.along_sigma_m, p_.tau_s, rng);
+    GaussMarkov cross(k * p_.cross_sigma_m, p_.tau_s, rng);
+    GaussMarkov clock(k * p_.clock_sigma_m, p_.tau_s, rng);
     found = &sats_.try_emplace(sat, Sat{t_s, radial, along, cross, clock, rng}).first;
   } else {
     Sat& s = *found;

@@ -9,6 +9,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <vector>
 
 namespace navemu {
@@ -95,6 +97,7 @@ TEST(SatErrors, UnknownPrnHasZeroTerms) {
 
 // Stationary sigma of every term and of the projected range error, and the correlation at a
 // lag of tau (e^-1), over many independent PRN processes (10 seeds x 1000 PRNs).
+// Every system's satellites (normalised by their system's scale: sisre_relative_to_gps).
 TEST(SatErrors, StationarySigmasAndCorrelationTimeWithinSigmaBounds) {
   const SatErrorParams p;  // 0.2 / 1.0 / 0.6 / 0.5 m, tau 3600 s
   const Vec3 rx = ecef_from_geodetic({-33.0, 151.0, 50.0});
@@ -114,10 +117,12 @@ TEST(SatErrors, StationarySigmasAndCorrelationTimeWithinSigmaBounds) {
     SatErrors e(p, seed);
     for (const SatId sat : sats) {
       ++n;
-      const double r0 = e.range_error_m(sat, 1000.0, sat_p, sat_v, los);
-      const SatErrors::Terms t0 = e.terms(sat);
-      const double r1 = e.range_error_m(sat, 1000.0 + p.tau_s, sat_p, sat_v, los);
-      const SatErrors::Terms t1 = e.terms(sat);
+      const double k = sisre_relative_to_gps(sat.system());
+      const double r0 = e.range_error_m(sat, 1000.0, sat_p, sat_v, los) / k;
+      SatErrors::Terms t0 = e.terms(sat);
+      const double r1 = e.range_error_m(sat, 1000.0 + p.tau_s, sat_p, sat_v, los) / k;
+      SatErrors::Terms t1 = e.terms(sat);
+      for (SatErrors::Terms* t : {&t0, &t1}) *t = {t->radial_m / k, t->along_m / k, t->cross_m / k, t->clock_m / k};
       s_r += t0.radial_m * t0.radial_m;
       s_a += t0.along_m * t0.along_m;
       s_c += t0.cross_m * t0.cross_m;
@@ -142,6 +147,38 @@ TEST(SatErrors, StationarySigmasAndCorrelationTimeWithinSigmaBounds) {
   const double rho = s_r01 / std::sqrt(s_a * s_r1);
   const double expected = std::exp(-1.0);
   EXPECT_LT(std::abs(rho - expected), 5.0 * (1.0 - expected * expected) / std::sqrt(n)) << rho;
+}
+
+// Each system's global-average SISRE (Montenbruck et al. 2018, in sat_errors.hpp): 0.2 m
+// Galileo, 0.6 m GPS (the default parameters, 0.56 m), 1 m BeiDou, 2 m GLONASS, as the
+// stationary errors of 2,000 satellite draws each give it (the GPS weights of
+// SatErrorParams::sisre_m). The weighted sum of squares, dominated by the clock term, has a
+// relative sd of 1.14 per draw, its mean 1.14/sqrt(n), the RMS half that: 5 sigma is 3/sqrt(n).
+TEST(SatErrors, EachSystemsSisreIsItsPublishedShare) {
+  const SatErrorParams p;
+  std::map<GnssSystem, std::pair<double, int>> sum;  // of SISRE^2 terms, count
+  for (std::uint64_t seed = 1; seed <= 100; ++seed) {
+    SatErrors e(p, seed);
+    for (const GnssSystem system : {GnssSystem::kGps, GnssSystem::kGalileo, GnssSystem::kBeidou, GnssSystem::kGlonass})
+      for (int number = 1; number <= 20; ++number) {
+        const SatId sat(system, number);
+        e.range_error_m(sat, 0.0, Vec3(26'000e3, 0.0, 0.0), Vec3(0.0, 3'000.0, 1'000.0), Vec3::UnitX());
+        const SatErrors::Terms t = e.terms(sat);
+        auto& [s2, n] = sum[system];
+        s2 += 0.98 * 0.98 * t.radial_m * t.radial_m + t.clock_m * t.clock_m +
+              (t.along_m * t.along_m + t.cross_m * t.cross_m) / 49.0;
+        ++n;
+      }
+  }
+  const std::map<GnssSystem, double> published_m = {
+      {GnssSystem::kGps, p.sisre_m()}, {GnssSystem::kGalileo, 0.2 / 0.6 * p.sisre_m()},
+      {GnssSystem::kBeidou, 1.0 / 0.6 * p.sisre_m()}, {GnssSystem::kGlonass, 2.0 / 0.6 * p.sisre_m()}};
+  for (const auto& [system, s] : sum) {
+    const double rms = std::sqrt(s.first / s.second);
+    std::printf("%s SISRE %.3f m (expected %.3f m)\n", system_info(system).name, rms, published_m.at(system));
+    EXPECT_NEAR(rms / published_m.at(system), 1.0, 3.0 / std::sqrt(s.second)) << system_info(system).name;
+  }
+  EXPECT_NEAR(p.sisre_m(), 0.6, 0.05);  // the defaults: GPS of recent years
 }
 
 TEST(SatErrors, ProcessesAdvanceByTheTimeSinceThePrnsLastCall) {
