@@ -220,7 +220,14 @@ void put_significant(Line& l, std::optional<double> v, int sig) {
 }
 
 void put_int(Line& l, std::optional<int> v, int digits, int lo, int hi) {
-  if (v) l.format("{:0{}d}", std::clamp(*v, lo, hi), digits);
+  if (!v) return;
+  const int x = std::clamp(*v, lo, hi);
+  if (x < 0) {  // as "{:0{}d}": the sign counts in the width
+    l.put('-');
+    l.digits(static_cast<std::uint64_t>(-static_cast<std::int64_t>(x)), digits - 1);
+  } else {
+    l.digits(static_cast<std::uint64_t>(x), digits);
+  }
 }
 
 }  // namespace detail
@@ -367,18 +374,28 @@ void encode(const GsvFields& f, const Format& fmt, std::string& out) {
   for (std::size_t k = 0; k < sentences; ++k) {
     emit_fitted(out, std::array<int*, 0>{}, [&] {
       Line l(f.talker, "GSV");
-      l.format(",{},{},{:02d}", sentences, k + 1, n);
+      l.sep();
+      l.digits(sentences);
+      l.sep();
+      l.digits(k + 1);
+      l.sep();
+      l.digits(n, 2);
       for (std::size_t i = 4 * k; i < std::min(n, 4 * k + 4); ++i) {
         const GsvSatellite& s = f.satellites[i];
-        l.format(",{:02d},", std::clamp(s.sat_id, 0, 999));
+        l.sep();
+        l.digits(static_cast<std::uint64_t>(std::clamp(s.sat_id, 0, 999)), 2);
+        l.sep();
         put_int(l, s.elevation_deg, 2, 0, 90);
         l.sep();
-        if (s.azimuth_deg) l.format("{:03d}", (*s.azimuth_deg % 360 + 360) % 360);
+        if (s.azimuth_deg) l.digits(static_cast<std::uint64_t>((*s.azimuth_deg % 360 + 360) % 360), 3);
         l.sep();
         put_int(l, s.snr_dbhz, st.snr_digits, 0, 99);
       }
       // Signal ID 0 stands for all signals (NMEA 0183 4.11); u-blox sends it with no satellites.
-      if (st.ids) l.format(",{}", n == 0 ? 0 : std::clamp(f.signal_id, 0, 15));
+      if (st.ids) {
+        l.sep();
+        l.digits(static_cast<std::uint64_t>(n == 0 ? 0 : std::clamp(f.signal_id, 0, 15)));
+      }
       return l;
     });
   }

@@ -45,6 +45,18 @@ class Line {
     for (char c : s) put(c);
   }
   void sep() { put(','); }
+  // A non-negative integer with at least `min_digits` digits, zero-padded: what "{:0{}d}"
+  // gives, without the formatting library's parsing (GSV sends hundreds of these a second).
+  void digits(std::uint64_t v, int min_digits = 1) {
+    std::array<char, 20> tmp{};
+    std::size_t n = 0;
+    do {
+      tmp[n++] = static_cast<char>('0' + v % 10);
+      v /= 10;
+    } while (v != 0);
+    while (n < tmp.size() && n < static_cast<std::size_t>(std::max(min_digits, 0))) tmp[n++] = '0';
+    while (n > 0) put(tmp[--n]);
+  }
 
   template <typename... T>
   void format(fmt::format_string<T...> f, T&&... args) {
@@ -68,8 +80,11 @@ class Line {
   // `units` (a non-negative count of 10^-decimals) as "i.fff" with zero-padded integer part.
   void scaled(std::int64_t units, int decimals, int int_digits) {
     const std::int64_t scale = kPow10[static_cast<std::size_t>(decimals)];
-    format("{:0{}d}", units / scale, int_digits);
-    if (decimals > 0) format(".{:0{}d}", units % scale, decimals);
+    digits(static_cast<std::uint64_t>(units / scale), int_digits);
+    if (decimals > 0) {
+      put('.');
+      digits(static_cast<std::uint64_t>(units % scale), decimals);
+    }
   }
 
   bool fits() const { return n_ + kTail <= kMaxSentence; }
