@@ -51,7 +51,7 @@ struct UbxDeviceStatus {
   double odo_total_m = 0.0;      // since the last cold start
   std::uint8_t gnss_enabled = 0x01;  // MON-GNSS bits: GPS 0, GLONASS 1, BeiDou 2, Galileo 3
   std::string_view hw_version;   // MON-VER's, for MON-HW3
-  std::uint32_t bands = 1;       // the part's bands (band_bit): the signals RAWX and NAV-SIG list
+  std::uint32_t bands = band_bit(Band::kL1);  // the part's bands: the signals RAWX and NAV-SIG list
   SurveyInState svin;            // the time mode's survey-in (NAV-SVIN)
   bool time_only = false;        // the fix is time mode's time-only fix at the held position
   // The navigation output filters (CFG-NAVSPG-OUTFIL_PDOP, _PACC; CFG-NAV5 pDop, pAcc).

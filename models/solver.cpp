@@ -93,7 +93,7 @@ namespace {
 RangeMeasurement kepler_measurement(const KeplerEphemeris& eph, GpsTime t_receive,
                                     double pseudorange_m, double group_delay_s,
                                     double variance_m2, double carrier_hz,
-                                    std::optional<double> doppler_hz, const SatStateAt* near = nullptr) {
+                                    std::optional<double> doppler_hz, const SatStateAt* near) {
   GpsTime t_tx = t_receive.plus_s(-pseudorange_m / kSpeedOfLight_mps);
   t_tx = t_tx.plus_s(-gps_sat_clock_poly_s(eph, t_tx));
   constexpr double kCarryAtMost_s = 1e-3;
@@ -120,42 +120,25 @@ RangeMeasurement kepler_measurement(const KeplerEphemeris& eph, GpsTime t_receiv
 }
 }  // namespace
 
-namespace {
-RangeMeasurement record_measurement(const GpsEphemeris& eph, GpsTime t_receive, double pseudorange_m,
-                                    std::optional<double> doppler_l1_hz, const SatStateAt* near) {
+RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive, double pseudorange_m,
+                                        std::optional<double> doppler_l1_hz, const SatStateAt* near) {
   const double ura = ura_upper_bound_m(eph.ura_m);
   return kepler_measurement(eph, t_receive, pseudorange_m, eph.tgd_s, ura * ura, kGpsL1_Hz,
                             doppler_l1_hz, near);
 }
 
-RangeMeasurement record_measurement(const GalileoEphemeris& eph, GpsTime t_receive, double pseudorange_m,
-                                    std::optional<double> doppler_e1_hz, const SatStateAt* near) {
+RangeMeasurement make_range_measurement(const GalileoEphemeris& eph, GpsTime t_receive, double pseudorange_m,
+                                        std::optional<double> doppler_e1_hz, const SatStateAt* near) {
   const double sisa_m = eph.sisa_m > 0.0 ? eph.sisa_m : 500.0;
   return kepler_measurement(eph, t_receive, pseudorange_m, eph.bgd_e1_s(), sisa_m * sisa_m,
                             carrier_frequency_hz(kGalileoE1C), doppler_e1_hz, near);
 }
 
-RangeMeasurement record_measurement(const BeidouEphemeris& eph, GpsTime t_receive, double pseudorange_m,
-                                    std::optional<double> doppler_b1i_hz, const SatStateAt* near) {
+RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_receive, double pseudorange_m,
+                                        std::optional<double> doppler_b1i_hz, const SatStateAt* near) {
   const double ura = ura_upper_bound_m(eph.ura_m);
   return kepler_measurement(eph, t_receive, pseudorange_m, eph.tgd1_s, ura * ura,
                             carrier_frequency_hz(kBeidouB1I), doppler_b1i_hz, near);
-}
-}  // namespace
-
-RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive,
-                                        double pseudorange_m, std::optional<double> doppler_l1_hz) {
-  return record_measurement(eph, t_receive, pseudorange_m, doppler_l1_hz, nullptr);
-}
-
-RangeMeasurement make_range_measurement(const GalileoEphemeris& eph, GpsTime t_receive,
-                                        double pseudorange_m, std::optional<double> doppler_e1_hz) {
-  return record_measurement(eph, t_receive, pseudorange_m, doppler_e1_hz, nullptr);
-}
-
-RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_receive,
-                                        double pseudorange_m, std::optional<double> doppler_b1i_hz) {
-  return record_measurement(eph, t_receive, pseudorange_m, doppler_b1i_hz, nullptr);
 }
 
 RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_receive,
@@ -189,7 +172,7 @@ RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_rece
         else if constexpr (std::is_same_v<Record, const GlonassEphemeris*>)
           return make_range_measurement(*record, t_receive, pseudorange_m, doppler_hz, glonass_arc);
         else
-          return record_measurement(*record, t_receive, pseudorange_m, doppler_hz, near);
+          return make_range_measurement(*record, t_receive, pseudorange_m, doppler_hz, near);
       },
       r);
 }

@@ -133,9 +133,16 @@ double chi_square_quantile(double p, int dof);
 // at transmit time t_receive - P/c - dt_sat (IS-GPS-200 20.3.3.3.3.1), the L1 C/A clock
 // correction (dt_sat - TGD), URA^2 as orbit/clock variance, and the range rate from an L1
 // Doppler in Hz when given. GPS and QZSS (IS-QZSS-PNT: GPS's LNAV algorithms) records.
+// `near`: the record's state at a time near the transmit time when the caller has it (the
+// measurement generator's, at the true transmit time, which the receiver's estimate
+// t_receive - P/c - dt_sat misses by the pseudorange's errors over c, microseconds). Within 1 ms
+// it is carried there to first order instead of solving Kepler's equation again: the
+// acceleration (0.6 m/s^2 for GPS) leaves 0.3 nm after 1 us and 0.3 um after 1 ms, the clock's
+// af2 less.
 RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
-                                        std::optional<double> doppler_l1_hz = {});
+                                        std::optional<double> doppler_l1_hz = {},
+                                        const SatStateAt* near = nullptr);
 // The same for the single-frequency signal of each other system, with its group delay and
 // accuracy:
 // - Galileo E1: dt_sat - BGD(E1,E5b) for an I/NAV record, - BGD(E1,E5a) for F/NAV (OS SIS ICD
@@ -146,23 +153,19 @@ RangeMeasurement make_range_measurement(const GpsEphemeris& eph, GpsTime t_recei
 //   broadcast data have no accuracy in RINEX 3, so (5 m)^2 (RTKLIB's ERREPH_GLO).
 RangeMeasurement make_range_measurement(const GalileoEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
-                                        std::optional<double> doppler_e1_hz = {});
+                                        std::optional<double> doppler_e1_hz = {},
+                                        const SatStateAt* near = nullptr);
 RangeMeasurement make_range_measurement(const BeidouEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
-                                        std::optional<double> doppler_b1i_hz = {});
+                                        std::optional<double> doppler_b1i_hz = {},
+                                        const SatStateAt* near = nullptr);
 //   `arc`: the record's integrated arc when the caller keeps one (GlonassArc; the same state
 //   to the integration's sub-millimetre differences, without integrating from tb again).
 RangeMeasurement make_range_measurement(const GlonassEphemeris& eph, GpsTime t_receive,
                                         double pseudorange_m,
                                         std::optional<double> doppler_l1_hz = {},
                                         const GlonassArc* arc = nullptr);
-// The one of these for whichever record `r` holds (it must hold one).
-// `near`: for a Kepler record, its state at a time near the transmit time when the caller has it
-// (the measurement generator's, at the true transmit time, which the receiver's estimate
-// t_receive - P/c - dt_sat misses by the pseudorange's errors over c, microseconds). Within 1 ms
-// it is carried there to first order instead of solving Kepler's equation again: the
-// acceleration (0.6 m/s^2 for GPS) leaves 0.3 nm after 1 us and 0.3 um after 1 ms, the clock's
-// af2 less.
+// The one of these for whichever record `r` holds (it must hold one); `near` for Kepler records.
 RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_receive,
                                         double pseudorange_m, std::optional<double> doppler_hz = {},
                                         const GlonassArc* glonass_arc = nullptr,
