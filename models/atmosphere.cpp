@@ -17,22 +17,26 @@ double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, 
 
 double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const AzEl& dir,
                             double gps_tow_s) {
+  return klobuchar_delay_l1_s(k, rx, direction(dir), gps_tow_s);
+}
+
+double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const Direction& dir,
+                            double gps_tow_s) {
   // No line of sight below the horizon (as RTKLIB's ionmodel: zero delay).
-  if (dir.el_rad <= 0.0) return 0.0;
+  if (dir.az_el.el_rad <= 0.0) return 0.0;
 
   const double phi_u = rx.lat_deg / 180.0;  // user geodetic latitude, semicircles
   const double lambda_u = rx.lon_deg / 180.0;  // user geodetic longitude, semicircles
-  const double e = dir.el_rad / kPi;           // elevation angle E, semicircles
-  const double a = dir.az_rad;                 // azimuth A (cos/sin taken in radians)
+  const double e = dir.az_el.el_rad / kPi;     // elevation angle E, semicircles
 
   // Earth-centred angle between user and ionospheric pierce point, semicircles.
   const double psi = 0.0137 / (e + 0.11) - 0.022;
 
   // Geodetic latitude of the pierce point, limited to +-0.416 semicircles.
-  const double phi_i = std::clamp(phi_u + psi * std::cos(a), -0.416, 0.416);
+  const double phi_i = std::clamp(phi_u + psi * dir.cos_az, -0.416, 0.416);
 
   // Geodetic longitude of the pierce point, semicircles.
-  const double lambda_i = lambda_u + psi * std::sin(a) / std::cos(phi_i * kPi);
+  const double lambda_i = lambda_u + psi * dir.sin_az / std::cos(phi_i * kPi);
 
   // Geomagnetic latitude of the pierce point, semicircles.
   const double phi_m = phi_i + 0.064 * std::cos((lambda_i - 1.617) * kPi);

@@ -20,6 +20,9 @@ double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, 
 // satellites of an epoch.
 double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const AzEl& dir,
                             double gps_tow_s);
+// The same with the azimuth's sine and cosine known (direction()).
+double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const Direction& dir,
+                            double gps_tow_s);
 
 // Surface meteorology at the receiver.
 struct Meteo {

@@ -63,14 +63,32 @@ AzEl azimuth_elevation(const Geodetic& rx, const Vec3& p_rx_ecef_m, const Vec3& 
 
 AzEl azimuth_elevation(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m,
                        const Vec3& p_target_ecef_m) {
+  return direction(R_enu_from_ecef_rx, p_rx_ecef_m, p_target_ecef_m).az_el;
+}
+
+Direction direction(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m) {
   const Vec3 enu = R_enu_from_ecef_rx * (p_target_ecef_m - p_rx_ecef_m);
-  AzEl out;
-  out.el_rad = std::atan2(enu.z(), std::hypot(enu.x(), enu.y()));
+  const double horizontal = std::sqrt(enu.x() * enu.x() + enu.y() * enu.y());
+  const double range = std::sqrt(horizontal * horizontal + enu.z() * enu.z());
+  Direction d;
+  d.az_el.el_rad = std::atan2(enu.z(), horizontal);
   double az = std::atan2(enu.x(), enu.y());
   if (az < 0.0) az += kTwoPi;
   if (az >= kTwoPi) az = 0.0;  // a tiny negative angle rounded up to 2*pi
-  out.az_rad = az;
-  return out;
+  d.az_el.az_rad = az;
+  if (range > 0.0) {
+    d.sin_el = enu.z() / range;
+    d.cos_el = horizontal / range;
+  }
+  if (horizontal > 0.0) {
+    d.sin_az = enu.x() / horizontal;
+    d.cos_az = enu.y() / horizontal;
+  }
+  return d;
+}
+
+Direction direction(const AzEl& dir) {
+  return {dir, std::sin(dir.el_rad), std::cos(dir.el_rad), std::sin(dir.az_rad), std::cos(dir.az_rad)};
 }
 
 }  // namespace navemu

@@ -42,4 +42,15 @@ AzEl azimuth_elevation(const Geodetic& rx, const Vec3& p_rx_ecef_m, const Vec3& 
 AzEl azimuth_elevation(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m,
                        const Vec3& p_target_ecef_m);
 
+// A direction with the sines and cosines of its angles, read off the unit line of sight's
+// east, north and up components (sin el = u, cos el = sqrt(e^2 + n^2), sin az = e / cos el,
+// cos az = n / cos el; at the zenith az = 0): what the atmosphere models and the DOPs use.
+struct Direction {
+  AzEl az_el;
+  double sin_el = 0.0, cos_el = 1.0, sin_az = 0.0, cos_az = 1.0;
+};
+Direction direction(const Mat3& R_enu_from_ecef_rx, const Vec3& p_rx_ecef_m, const Vec3& p_target_ecef_m);
+// The same from the angles.
+Direction direction(const AzEl& dir);
+
 }  // namespace navemu

@@ -54,13 +54,13 @@ struct PiercePoint {
   double dlon_deg = 0.0;
   double obliquity = 1.0;
 };
-PiercePoint iono_pierce_point(const Geodetic& rx, const AzEl& dir) {
-  const double e_sc = std::max(dir.el_rad, 0.0) / kPi;
+PiercePoint iono_pierce_point(const Geodetic& rx, const Direction& dir) {
+  const double e_sc = std::max(dir.az_el.el_rad, 0.0) / kPi;
   const double psi_deg = (0.0137 / (e_sc + 0.11) - 0.022) * 180.0;
-  const double lat_i = std::clamp(rx.lat_deg + psi_deg * std::cos(dir.az_rad), -75.0, 75.0);
+  const double lat_i = std::clamp(rx.lat_deg + psi_deg * dir.cos_az, -75.0, 75.0);
   PiercePoint p;
   p.dlat_deg = lat_i - rx.lat_deg;
-  p.dlon_deg = psi_deg * std::sin(dir.az_rad) / std::cos(lat_i * kDegToRad);
+  p.dlon_deg = psi_deg * dir.sin_az / std::cos(lat_i * kDegToRad);
   const double d = 0.53 - e_sc;
   p.obliquity = 1.0 + 16.0 * (d * d * d);  // the cube by multiplication, as in the Klobuchar model
   return p;
@@ -539,16 +539,16 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     m.transmit = {g.t_transmit, g.sat_transmit};
     m.range_m = g.range_m;
     m.range_rate_mps = g.range_rate_mps;
-    const double sin_el = std::sin(g.dir.el_rad);
+    const double sin_el = g.direction.sin_el;
 
     // Ionosphere on L1: the broadcast (or the paper's) model, with the model's error.
     if (on.ionosphere) {
       double model_m = 0.0;
       if (cfg_.iono_model == IonoModel::kKlobuchar)
-        model_m = c * klobuchar_delay_l1_s(*nav_.klobuchar, geo, g.dir, tow_s);
+        model_m = c * klobuchar_delay_l1_s(*nav_.klobuchar, geo, g.direction, tow_s);
       else
         model_m = iono_paper_mapping(g.dir.el_rad) * iono_zenith_delay_m(cfg_.vtec_tecu, kGpsL1_Hz);
-      const PiercePoint ipp = iono_pierce_point(geo, g.dir);
+      const PiercePoint ipp = iono_pierce_point(geo, g.direction);
       const double gradient_m =
           ipp.obliquity * (st.iono_gradient_north.value() * ipp.dlat_deg +
                            st.iono_gradient_east.value() * ipp.dlon_deg * std::cos(geo.lat_deg * kDegToRad));

@@ -399,7 +399,8 @@ SatGeometry sat_geometry(const BroadcastRecord& r, GpsTime t_receive, const Rece
   const Vec3 v_rx_inertial = rx.v_ecef_mps + w.cross(rx.p_ecef_m);
   g.range_rate_mps =
       u.dot(v_sat_inertial - v_rx_inertial) / (1.0 + u.dot(v_sat_inertial) / kSpeedOfLight_mps);
-  g.dir = azimuth_elevation(rx.R_enu_from_ecef, rx.p_ecef_m, g.sat.p_ecef_m);
+  g.direction = direction(rx.R_enu_from_ecef, rx.p_ecef_m, g.sat.p_ecef_m);
+  g.dir = g.direction.az_el;
   return g;
 }
 

@@ -112,6 +112,7 @@ struct SatGeometry {
   double range_m = 0.0;          // |p_sat - p_rx| in the reception frame (includes Sagnac)
   double range_rate_mps = 0.0;   // d(range)/dt seen by the receiver
   AzEl dir;                      // azimuth/elevation on the geodetic normal
+  Direction direction;           // dir with its sines and cosines
 };
 
 // The receiver as every satellite's geometry needs it, computed once per epoch.

@@ -64,16 +64,22 @@ double ura_upper_bound_m(double ura_m) {
 }  // namespace
 
 Dops dops_from_directions(std::span<const AzEl> all) {
+  std::array<Direction, kMaxRows> dirs;
+  const std::size_t n = std::min<std::size_t>(all.size(), kMaxRows);
+  for (std::size_t i = 0; i < n; ++i) dirs[i] = direction(all[i]);
+  return dops_from_directions(std::span<const Direction>(dirs.data(), n));
+}
+
+Dops dops_from_directions(std::span<const Direction> all) {
   Dops d;
-  const std::span<const AzEl> dirs = all.first(std::min<std::size_t>(all.size(), kMaxRows));
+  const std::span<const Direction> dirs = all.first(std::min<std::size_t>(all.size(), kMaxRows));
   if (dirs.size() < 4) return d;
   MatN4 h(static_cast<Eigen::Index>(dirs.size()), 4);
   for (std::size_t i = 0; i < dirs.size(); ++i) {
-    const double ce = std::cos(dirs[i].el_rad);
     const auto r = static_cast<Eigen::Index>(i);
-    h(r, 0) = -ce * std::sin(dirs[i].az_rad);
-    h(r, 1) = -ce * std::cos(dirs[i].az_rad);
-    h(r, 2) = -std::sin(dirs[i].el_rad);
+    h(r, 0) = -dirs[i].cos_el * dirs[i].sin_az;
+    h(r, 1) = -dirs[i].cos_el * dirs[i].cos_az;
+    h(r, 2) = -dirs[i].sin_el;
     h(r, 3) = 1.0;
   }
   const Mat4 n = h.transpose() * h;
@@ -215,8 +221,8 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
   const double sb2 = opt.sigma_b_m * opt.sigma_b_m;
 
   std::array<Row, kMaxSolverSatellites> row_store;
-  // sin(elevation) of each satellite, with its directions (for the weights).
-  std::array<double, kMaxSolverSatellites> sin_el;
+  // Each satellite's direction (the weights use its sin(elevation), the DOPs all of it).
+  std::array<Direction, kMaxSolverSatellites> dirs;
   std::size_t n_sat_rows = 0;
   bool converged = false;
   Eigen::FullPivLU<MatX> lu;  // of the last iteration's normal equations
@@ -271,17 +277,16 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
       if (new_directions) {
         out = SatResidual{};
         out.sat = m.sat;
-        AzEl dir{0.0, kPi / 2.0};
-        if (known) dir = azimuth_elevation(r_enu, p, p_sat);
-        out.az_deg = dir.az_rad * kRadToDeg;
-        out.el_deg = dir.el_rad * kRadToDeg;
+        dirs[i] = known ? direction(r_enu, p, p_sat) : Direction{{0.0, kPi / 2.0}, 1.0, 0.0, 0.0, 1.0};
+        const Direction& dir = dirs[i];
+        out.az_deg = dir.az_el.az_rad * kRadToDeg;
+        out.el_deg = dir.az_el.el_rad * kRadToDeg;
         // The L1 delay scaled to the signal's frequency, 1/f^2 (IS-GPS-200 20.3.3.3.3.3).
         if (known && opt.klobuchar) {
           const double l1_over_f = kGpsL1_Hz / m.carrier_hz;
           out.iono_m = kSpeedOfLight_mps * klobuchar_delay_l1_s(*opt.klobuchar, geo, dir, tow_s) *
                        l1_over_f * l1_over_f;
         }
-        sin_el[i] = std::sin(out.el_deg * kDegToRad);
       }
       if (new_tropo && known && opt.saastamoinen)
         out.tropo_m = saastamoinen_delay(tropo_zenith, out.el_deg * kDegToRad).total_m();
@@ -294,9 +299,9 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
           m.pseudorange_m - (range + clk[group] - m.sat_clock_m + out.iono_m + out.tropo_m);
       out.used = true;
       const double f = code_sigma_factor(m.sat.system());
-      double var = f * f * (sa2 + sb2 / sin_el[i]) + m.sat_variance_m2;
+      double var = f * f * (sa2 + sb2 / dirs[i].sin_el) + m.sat_variance_m2;
       if (known && opt.klobuchar) var += 0.25 * out.iono_m * out.iono_m;
-      if (known && opt.saastamoinen) var += tropo_variance_m2(sin_el[i]);
+      if (known && opt.saastamoinen) var += tropo_variance_m2(dirs[i].sin_el);
       row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i, group};
     }
     // Unknowns: the position, then the clock of each group with a satellite in use.
@@ -373,12 +378,9 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
     sol.chi_square += row_store[k].residual_m * row_store[k].residual_m / row_store[k].variance_m2;
   sol.degrees_of_freedom = static_cast<int>(n_sat_rows + (hold_height ? 1 : 0)) - static_cast<int>(lu.rows());
   sol.fix = hold_height ? FixType::k2D : FixType::k3D;
-  std::array<AzEl, kMaxSolverSatellites> dirs;
-  for (std::size_t k = 0; k < n_sat_rows; ++k) {
-    const SatResidual& r = sol.sats[row_store[k].index];
-    dirs[k] = {r.az_deg * kDegToRad, r.el_deg * kDegToRad};
-  }
-  sol.dops = dops_from_directions(std::span<const AzEl>(dirs.data(), n_sat_rows));
+  std::array<Direction, kMaxSolverSatellites> used_dirs;
+  for (std::size_t k = 0; k < n_sat_rows; ++k) used_dirs[k] = dirs[row_store[k].index];
+  sol.dops = dops_from_directions(std::span<const Direction>(used_dirs.data(), n_sat_rows));
 
   // Velocity and clock drift from range rates (-lambda * Doppler), least squares. With the
   // satellite state rotated into the ECEF frame at reception (which accounts for the Earth's

@@ -184,5 +184,6 @@ void solve(std::span<const RangeMeasurement> meas, GpsTime t, const SolverOption
 // DOPs of a satellite set seen from a receiver (unit weights), from the line-of-sight unit
 // vectors in ENU. Needs at least 4 directions; all zero otherwise.
 Dops dops_from_directions(std::span<const AzEl> dirs);
+Dops dops_from_directions(std::span<const Direction> dirs);
 
 }  // namespace navemu
