@@ -88,6 +88,8 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   }
 
   double sum_sq = 0.0;
+  // The solver's satellites are a subsequence of e.sats (solver_input keeps their order).
+  std::size_t next_residual = 0;
   for (const SatMeasurement& m : e.sats) {
     ReceiverSatellite s;
     s.sat = m.sat;
@@ -97,12 +99,14 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
     for (std::size_t b = 0; b < m.signals.size(); ++b)
       if (m.signals[b]) s.band_cn0_dbhz[b] = m.signals[b]->cn0_dbhz;
     s.unhealthy = m.unhealthy;
-    for (const SatResidual& r : sol.sats)
-      if (r.sat == m.sat && r.used && sol.fix != FixType::kNone) {
+    if (next_residual < sol.sats.size() && sol.sats[next_residual].sat == m.sat) {
+      const SatResidual& r = sol.sats[next_residual++];
+      if (r.used && sol.fix != FixType::kNone) {
         s.used = true;
         s.residual_m = r.residual_m;
         sum_sq += r.residual_m * r.residual_m;
       }
+    }
     out.satellites.push_back(s);
   }
   if (p_.ideal_sigma_m) {
