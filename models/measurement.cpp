@@ -147,6 +147,34 @@ struct SatProcesses {
   double last_t_s = 0.0;
 };
 
+// A satellite's C/N0 departure from the elevation model (MeasurementConfig::cn0_*): an
+// offset drawn once and a Gauss-Markov fluctuation, from the satellite's own stream, seen
+// through the receiver's C/N0 estimator (a first-order average over cn0_estimator_tau_s).
+struct Cn0Departure {
+  Cn0Departure(std::uint64_t seed, SatId sat, const MeasurementConfig& cfg, double t_s)
+      : rng(seed, stream_id("cn0", sat.stream_index())),
+        offset_db(cfg.cn0_satellite_sigma_db * rng.normal()),
+        fluctuation(cfg.cn0_fluctuation_sigma_db, cfg.cn0_fluctuation_tau_s, rng),
+        estimate_db(fluctuation.value()),
+        estimator_tau_s(cfg.cn0_estimator_tau_s),
+        last_t_s(t_s) {}
+  double at(double t_s) {
+    if (const double dt = t_s - last_t_s; dt > 0.0) {
+      fluctuation.step(dt, rng);
+      const double keep = std::exp(-dt / estimator_tau_s);
+      estimate_db = keep * estimate_db + (1.0 - keep) * fluctuation.value();
+    }
+    last_t_s = t_s;
+    return offset_db + estimate_db;
+  }
+  RandomStream rng;
+  double offset_db;
+  GaussMarkov fluctuation;
+  double estimate_db;
+  double estimator_tau_s;
+  double last_t_s;
+};
+
 struct MeasurementGenerator::State {
   explicit State(const MeasurementConfig& cfg)
       : clock(cfg.clock, RandomStream(cfg.seed, stream_id("receiver_clock"))),
@@ -170,6 +198,7 @@ struct MeasurementGenerator::State {
   GaussMarkov tropo_wet;
   GaussMarkov dgps_tropo;
   SatTable<SatProcesses> sats;
+  SatTable<Cn0Departure> cn0_departure;  // of the satellites above the horizon so far
   // The Gauss-Markov transitions shared by processes of one correlation time and step.
   GaussMarkovTransition iono_common_tr, tropo_tr, sat_iono_tr, sat_multipath_tr;
   SatTable<double> receivable_since;  // time the satellite's signal became receivable, s
@@ -509,7 +538,9 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     if (cfg_.environment && g.dir.el_rad > 0.0)
       env = cfg_.environment->evaluate(p_rx, (g.sat.p_ecef_m - p_rx).normalized());
     // Without interference, and as tracked (the effective C/N0 under the jammers on L1).
-    const double cn0_clear_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db + spoof_gain_db;
+    double cn0_clear_l1 = cn0_dbhz(cfg_.cn0, g.dir.el_rad) + env.power_db + spoof_gain_db;
+    if (on.noise && g.dir.el_rad > 0.0)
+      cn0_clear_l1 += st.cn0_departure.try_emplace(sat, cfg_.seed, sat, cfg_, t_s).first.at(t_s);
     const BandSignal l1 = *band_signal(sat.system(), Band::kL1);
     const double cn0_l1 = effective_cn0_dbhz(cn0_clear_l1, out.interference[0], l1.chip_rate_hz);
     // Tracked while above the threshold; a signal that returns (rises, or comes back above the
