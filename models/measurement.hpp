@@ -360,7 +360,9 @@ void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc);
 
 class MeasurementGenerator {
  public:
+  // `nav` must outlive the generator (a temporary does not compile).
   MeasurementGenerator(const NavData& nav, const MeasurementConfig& cfg);
+  MeasurementGenerator(NavData&&, const MeasurementConfig&) = delete;
   ~MeasurementGenerator();
   MeasurementGenerator(const MeasurementGenerator&) = delete;
   MeasurementGenerator& operator=(const MeasurementGenerator&) = delete;

@@ -83,8 +83,9 @@ struct ReceiverFix {
 
 class Receiver {
  public:
-  // `nav` must outlive the receiver.
+  // `nav` must outlive the receiver (a temporary does not compile).
   Receiver(const NavData& nav, const ReceiverParams& p);
+  Receiver(NavData&&, const ReceiverParams&) = delete;
   // The fix at epoch t for a receiver at `truth` (position and velocity); without truth (its
   // stream was lost) the receiver reports no fix and keeps no satellites. The reference stays
   // valid until the next update; the receiver reuses its storage, so a steady run allocates
