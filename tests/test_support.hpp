@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,12 @@ inline std::filesystem::path shared_dir() {
   std::filesystem::path p = env != nullptr ? std::filesystem::path(env)
                                            : std::filesystem::path(NAVEMU_SHARED_DEFAULT);
   return std::filesystem::is_directory(p / "data") ? p : std::filesystem::path{};
+}
+
+// The whole content of a file ("" when it cannot be opened).
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 inline std::filesystem::path shared_data(const std::string& relative) {

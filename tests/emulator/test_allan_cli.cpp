@@ -83,8 +83,7 @@ TEST(AllanCli, CurvesAndFittedTermsOfAllSixColumns) {
   const std::string adev = temp_path("white_adev.csv");
   const CliRun r = navemu({"allan", csv, "--out", adev});
   ASSERT_EQ(r.code, 0) << r.err;
-  std::ifstream in(adev);
-  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string content = test::read_file(adev);
   const auto rows = lines_of(content);
   ASSERT_GT(rows.size(), 30u);
   EXPECT_EQ(rows[0], "tau_s,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps");

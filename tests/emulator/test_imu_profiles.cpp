@@ -152,11 +152,6 @@ TEST(ImuProfile, UnknownProfileListsAvailable) {
   }
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // The columns of navemu imu's CSV, found by name in its header, in this order in each row.
 enum Col : std::size_t { kT, kFx, kFy, kFz, kWx, kWy, kWz, kTemp, kColumns };
 constexpr const char* kColumnNames[kColumns] = {"time_s",    "f_x_mps2",  "f_y_mps2",  "f_z_mps2",
@@ -200,8 +195,8 @@ TEST(ImuCli, SameSeedByteIdenticalOtherSeedDifferent) {
                              "--out", file});
     ASSERT_EQ(r.code, 0) << r.err;
   }
-  EXPECT_EQ(slurp(a), slurp(b));
-  EXPECT_NE(slurp(a), slurp(c));
+  EXPECT_EQ(test::read_file(a), test::read_file(b));
+  EXPECT_NE(test::read_file(a), test::read_file(c));
 }
 
 // A static, level, north-facing IMU with white noise only: mean specific force (0, 0, -g) and
@@ -290,8 +285,8 @@ TEST(ImuCli, TruthFileSameSeedByteIdentical) {
                              "--seed", seed, "--out", file});
     ASSERT_EQ(r.code, 0) << r.err;
   }
-  EXPECT_EQ(slurp(a), slurp(b));
-  EXPECT_NE(slurp(a), slurp(c));
+  EXPECT_EQ(test::read_file(a), test::read_file(b));
+  EXPECT_NE(test::read_file(a), test::read_file(c));
   std::string header;
   EXPECT_EQ(read_rows(a, header).size(), 4000u);  // 20 s at bmi160's 200 Hz
 }

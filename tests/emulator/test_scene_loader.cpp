@@ -22,6 +22,7 @@
 
 #include "core/errors.hpp"
 #include "tests/emulator/cli_runner.hpp"
+#include "tests/test_support.hpp"
 
 namespace navemu {
 namespace {
@@ -40,11 +41,6 @@ std::filesystem::path write_temp(const std::string& name, const std::string& con
   const auto p = temp_path(name);
   std::ofstream(p, std::ios::binary) << content;
   return p;
-}
-
-std::string read_all(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // The message of the InputError that loading `obj` throws ("" if none).
@@ -298,7 +294,7 @@ TEST(SceneGenerator, DefaultCityIsAMissionSizedGrid) {
   EXPECT_EQ(t.crowded_edges, 0u);
   EXPECT_GT(t.volume_m3, 0.0);
   // The header records the full command.
-  const std::string text = read_all(obj);
+  const std::string text = test::read_file(obj);
   EXPECT_NE(text.find("# command: navemu scene city --size-m 1000 --block-m 100 "
                       "--street-width-m 20 --lots 2 --alley-m 4 --min-height-m 10 "
                       "--max-height-m 60 --facade-cell-m 0 --seed 1\n"),
@@ -327,7 +323,7 @@ TEST(SceneGenerator, SameSeedSameBytes) {
     a.push_back(temp_path(name).string());
     const CliRun r = navemu(a);
     EXPECT_EQ(r.code, 0) << r.err;
-    return read_all(temp_path(name));
+    return test::read_file(temp_path(name));
   };
   const std::string a = with_out("seed_a.obj", "7");
   const std::string b = with_out("seed_b.obj", "7");
@@ -339,7 +335,7 @@ TEST(SceneGenerator, SameSeedSameBytes) {
   const CliRun c2 = navemu({"scene", "city", "--seed", "3", "--out", temp_path("c2.obj").string()});
   ASSERT_EQ(c1.code, 0);
   ASSERT_EQ(c2.code, 0);
-  EXPECT_EQ(read_all(temp_path("c1.obj")), read_all(temp_path("c2.obj")));
+  EXPECT_EQ(test::read_file(temp_path("c1.obj")), test::read_file(temp_path("c2.obj")));
 }
 
 TEST(SceneGenerator, HelpAndUsageErrors) {

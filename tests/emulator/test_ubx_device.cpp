@@ -1221,8 +1221,7 @@ bool well_formed(const Frame& f) {
 // parameter was fitted to this file.
 TEST(RawxQuality, StdevFieldsFollowTheRealF9tByCn0) {
   NAVEMU_REQUIRE_SHARED();
-  std::ifstream in(test::shared_data("receiver_logs/nav-solutions/F9T-L2-5min.ubx"), std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = test::read_file(test::shared_data("receiver_logs/nav-solutions/F9T-L2-5min.ubx"));
   MeasurementConfig cfg;
   apply_receiver_class(cfg, ReceiverClass::kGeodetic);
   struct Field {
@@ -1323,8 +1322,7 @@ Cn0Spread cn0_spread(const Cn0Tracks& tracks) {
 // the emulated values were 1.4-2.9 dB across (mean 2.1), 0.51-0.59 dB and 0.40-0.53 along.
 TEST(Cn0Spread, SatellitesDifferAndDriftLikeTheRealF9t) {
   NAVEMU_REQUIRE_SHARED();
-  std::ifstream in(test::shared_data("receiver_logs/nav-solutions/F9T-L2-5min.ubx"), std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = test::read_file(test::shared_data("receiver_logs/nav-solutions/F9T-L2-5min.ubx"));
   Cn0Tracks real;
   for (const Frame& f : of_type(frames_of(bytes), ubx::kNavSat)) {
     ubx::NavSat s;
@@ -2373,8 +2371,7 @@ TEST_F(UbxDeviceTest, TheUblox8AppliesItsLegacyCfgNmea) {
   EXPECT_EQ(sentence("RMC").size(), 13u) << out;
   EXPECT_EQ(sentence("GSA").size(), 18u) << out;
   if (const std::filesystem::path capture = test::shared_data("receiver_logs/gpsd/ublox8-uniqid-monhw.log"); std::filesystem::exists(capture)) {
-    std::ifstream in(capture, std::ios::binary);
-    const std::string real((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string real = test::read_file(capture);
     for (const char* type : {"RMC", "GSA"}) {
       const std::size_t at = real.find(std::string("$GN") + type + ",");
       ASSERT_NE(at, std::string::npos) << type;

@@ -158,8 +158,7 @@ TEST(MultiGnssReceiver, TheEmulatedF9pTracksEachSystemLikeTheStation) {
   // NAV-SAT and RXM-RAWX by GPS time of week (ms).
   std::map<std::uint32_t, ubx::NavSat> nav_sat;
   std::map<std::uint32_t, ubx::RxmRawx> rawx;
-  std::ifstream in(dir / "out" / "ubx.bin", std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = test::read_file(dir / "out" / "ubx.bin");
   ubx::Parser parser(65535);
   parser.feed(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()),
               [&](ubx::Parser::Result res) {
