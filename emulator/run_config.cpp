@@ -343,6 +343,16 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
   }
   p.antenna_lhcp_rejection_db = ant.positive("lhcp_rejection_db", true).value_or(p.antenna_lhcp_rejection_db);
   ant.reject_unknown_keys();
+  YamlMap clk = m.map("clock");
+  if (auto b = clk.positive("initial_bias_max_ms", true)) {
+    if (*b > 1000.0) clk.fail("initial_bias_max_ms", "at most 1000 (one second)");
+    p.clock.initial_bias_max_s = *b * 1e-3;
+  }
+  if (auto f = clk.positive("frequency_offset_sigma_ppb", true)) {
+    if (*f > 1e5) clk.fail("frequency_offset_sigma_ppb", "at most 100000 (100 ppm)");
+    p.clock.frequency_offset_sigma_sps = *f * 1e-9;
+  }
+  clk.reject_unknown_keys();
 
   YamlMap s = m.map("sentences");
   if (!m.has("sentences")) m.fail("sentences", "required: sentence names with divisors, e.g. {RMC: 1, GSV: 5}");

@@ -55,6 +55,10 @@ struct GnssProfile {
   // (models/tracking.hpp). LHCP rejection applies to cross-polar reflections.
   std::vector<std::pair<double, double>> antenna_gain_db_by_el_deg;
   double antenna_lhcp_rejection_db = 15.0;
+  // The receiver clock (models/receiver_clock.hpp); YAML `clock: {initial_bias_max_ms,
+  // frequency_offset_sigma_ppb}` draws its start-up state: a bias uniform in +-max and a
+  // free-running oscillator's frequency offset. Unset: an ideal start (no bias, no offset).
+  ReceiverClockParams clock;
   std::optional<UbxSettings> ubx;  // a u-blox receiver: UBX output and configuration
 };
 

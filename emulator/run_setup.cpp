@@ -73,6 +73,7 @@ ReceiverParams receiver_params(const RunConfig& cfg, std::ostream& log) {
   rp.measurement.elevation_mask_deg = prof.elevation_mask_deg;
   rp.measurement.systems = prof.systems;
   rp.measurement.bands = prof.bands;
+  rp.measurement.clock = prof.clock;
   AntennaPattern antenna = patch_antenna_pattern();
   if (!prof.antenna_gain_db_by_el_deg.empty()) {
     rp.measurement.cn0.gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;

@@ -121,6 +121,9 @@ struct EpochView {
   const UbxDeviceStatus& status;
   UbxListScratch& lists;
   WeekTow wt = to_week_tow(fix.t);
+  // The GPS time of the clock tick that took the epoch (within 0.5 ms of fix.t, iTOW's whole
+  // milliseconds): what the fractional fields (NAV-PVT nano, NAV-SOL fTOW, ...) complete.
+  GpsTime t_nav = fix.t.plus_s(fix.time_offset_s);
   std::uint32_t i_tow = static_cast<std::uint32_t>(std::llround(wt.tow_s * 1000.0)) % 604'800'000u;
   bool valid = fix.fix != FixType::kNone;
   // NAV-PVT fixType, NAV-STATUS / NAV-SOL gpsFix: 5 "time only fix" in time mode.
@@ -146,10 +149,53 @@ namespace {
 
 // ---- Output messages -------------------------------------------------------------------------
 
+// A system time as whole seconds of week (rounded) and the remainder in ns (-5e8..5e8).
+struct SystemTow {
+  int week;
+  std::uint32_t tow_s;
+  std::int32_t f_tow_ns;
+};
+// Seconds into a period (a week, a day) as whole seconds, rounded, the remainder in ns
+// (-5e8..5e8), and the carry into the next period when they round up to its end.
+struct RoundedSeconds {
+  int carry;
+  std::uint32_t whole_s;
+  std::int32_t frac_ns;
+};
+RoundedSeconds round_in_period(double t_s, std::int64_t period_s) {
+  double whole = std::round(t_s);
+  const auto frac_ns = clamp_cast<std::int32_t>((t_s - whole) * 1e9);
+  const bool carry = whole >= static_cast<double>(period_s);
+  if (carry) whole -= static_cast<double>(period_s);
+  return {carry ? 1 : 0, static_cast<std::uint32_t>(whole), frac_ns};
+}
+
+SystemTow system_tow(GpsTime t, int week_offset) {
+  const WeekTow wt = to_week_tow(t);
+  const RoundedSeconds r = round_in_period(wt.tow_s, kSecondsPerWeek);
+  return {wt.week - week_offset + r.carry, r.whole_s, r.frac_ns};
+}
+
+// UTC date and time fields with `nano` completing them (NAV-PVT, NAV-TIMEUTC): the fields are
+// the time rounded to the nearest hundredth of a second, so nano runs from -5 ms to +995 ms
+// (u-blox integration manuals, "UTC representation", e.g. MAX-M10S 2.8.6).
+struct UtcFields {
+  CalendarTime c;  // second: whole
+  std::int32_t nano_ns;
+};
+UtcFields utc_fields(GpsTime t) {
+  constexpr std::int64_t kHundredth_ns = 10'000'000;
+  const GpsTime rounded{(t.ns + kHundredth_ns / 2) / kHundredth_ns * kHundredth_ns};
+  CalendarTime c = utc_from_gps(rounded);
+  const double whole = std::floor(c.second + 1e-9);
+  const double frac_s = c.second - whole;
+  c.second = whole;
+  return {c, static_cast<std::int32_t>(std::lround(frac_s * 1e9)) + static_cast<std::int32_t>(t.ns - rounded.ns)};
+}
+
 void emit_nav_pvt(const EpochView& e, std::vector<std::uint8_t>& out) {
   const ReceiverFix& fix = e.fix;
-  const CalendarTime c = utc_from_gps(fix.t);
-  const double whole = std::floor(c.second);
+  const auto [c, nano_ns] = utc_fields(e.t_nav);
   NavPvt m;
   m.i_tow_ms = e.i_tow;
   m.year = static_cast<std::uint16_t>(c.year);
@@ -157,8 +203,8 @@ void emit_nav_pvt(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.day = static_cast<std::uint8_t>(c.day);
   m.hour = static_cast<std::uint8_t>(c.hour);
   m.min = static_cast<std::uint8_t>(c.minute);
-  m.sec = static_cast<std::uint8_t>(whole);
-  m.nano_ns = static_cast<std::int32_t>(std::lround((c.second - whole) * 1e9));
+  m.sec = static_cast<std::uint8_t>(c.second);
+  m.nano_ns = nano_ns;
   m.valid = NavPvt::kValidDate | NavPvt::kValidTime | NavPvt::kFullyResolved;
   m.t_acc_ns = 20;
   m.fix_type = e.gps_fix;
@@ -247,7 +293,7 @@ void emit_nav_status(const EpochView& e, std::vector<std::uint8_t>& out) {
 }
 
 void emit_nav_sol(const EpochView& e, std::vector<std::uint8_t>& out) {
-  const double tow_ms = e.wt.tow_s * 1000.0;
+  const double tow_ms = to_week_tow(e.t_nav).tow_s * 1000.0;
   const EcefCm p = to_cm(e.fix.p_ecef_m);
   const EcefCm v = to_cm(e.v_ecef);
   NavSol m;
@@ -283,6 +329,7 @@ void emit_nav_dop(const EpochView& e, std::vector<std::uint8_t>& out) {
 void emit_nav_timegps(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavTimegps m;
   m.i_tow_ms = e.i_tow;
+  m.f_tow_ns = system_tow(e.t_nav, 0).f_tow_ns;
   m.week = static_cast<std::int16_t>(e.wt.week);
   m.leap_s = static_cast<std::int8_t>(e.leap_s);
   m.valid = NavTimegps::kTowValid | NavTimegps::kWeekValid | NavTimegps::kLeapSValid;
@@ -291,18 +338,17 @@ void emit_nav_timegps(const EpochView& e, std::vector<std::uint8_t>& out) {
 }
 
 void emit_nav_timeutc(const EpochView& e, std::vector<std::uint8_t>& out) {
-  const CalendarTime c = utc_from_gps(e.fix.t);
-  const double whole = std::floor(c.second);
+  const auto [c, nano_ns] = utc_fields(e.t_nav);
   NavTimeutc m;
   m.i_tow_ms = e.i_tow;
   m.t_acc_ns = 20;
-  m.nano_ns = static_cast<std::int32_t>(std::lround((c.second - whole) * 1e9));
+  m.nano_ns = nano_ns;
   m.year = static_cast<std::uint16_t>(c.year);
   m.month = static_cast<std::uint8_t>(c.month);
   m.day = static_cast<std::uint8_t>(c.day);
   m.hour = static_cast<std::uint8_t>(c.hour);
   m.min = static_cast<std::uint8_t>(c.minute);
-  m.sec = static_cast<std::uint8_t>(whole);
+  m.sec = static_cast<std::uint8_t>(c.second);
   m.valid = NavTimeutc::kValidTow | NavTimeutc::kValidWkn | NavTimeutc::kValidUtc | (3 << 4);
   append(m, out);
 }
@@ -826,37 +872,10 @@ bool tracks(const EpochView& e, std::uint8_t gnss_id) {
                      [&](const SatMeasurement& s) { return s.sat.ubx_gnss_id() == gnss_id; });
 }
 
-// A system time as whole seconds of week (rounded) and the remainder in ns (-5e8..5e8).
-struct SystemTow {
-  int week;
-  std::uint32_t tow_s;
-  std::int32_t f_tow_ns;
-};
-// Seconds into a period (a week, a day) as whole seconds, rounded, the remainder in ns
-// (-5e8..5e8), and the carry into the next period when they round up to its end.
-struct RoundedSeconds {
-  int carry;
-  std::uint32_t whole_s;
-  std::int32_t frac_ns;
-};
-RoundedSeconds round_in_period(double t_s, std::int64_t period_s) {
-  double whole = std::round(t_s);
-  const auto frac_ns = clamp_cast<std::int32_t>((t_s - whole) * 1e9);
-  const bool carry = whole >= static_cast<double>(period_s);
-  if (carry) whole -= static_cast<double>(period_s);
-  return {carry ? 1 : 0, static_cast<std::uint32_t>(whole), frac_ns};
-}
-
-SystemTow system_tow(GpsTime t, int week_offset) {
-  const WeekTow wt = to_week_tow(t);
-  const RoundedSeconds r = round_in_period(wt.tow_s, kSecondsPerWeek);
-  return {wt.week - week_offset + r.carry, r.whole_s, r.frac_ns};
-}
-
 // NAV-TIMEBDS (M8 32.17.25, F9 5.14.18): BDT = GPST - 14 s, BDS week 0 = GPS week 1356 (BDS
 // ICD 2.0, 4.3.2 and 5.2.4.5); BDS - UTC = (GPS - UTC) - 14 s.
 void emit_nav_timebds(const EpochView& e, std::vector<std::uint8_t>& out) {
-  const SystemTow st = system_tow(e.fix.t.plus_s(-kGpsMinusBdt_s), kBdtWeek0InGpsWeeks);
+  const SystemTow st = system_tow(e.t_nav.plus_s(-kGpsMinusBdt_s), kBdtWeek0InGpsWeeks);
   NavTimebds m;
   m.i_tow_ms = e.i_tow;
   m.sow_s = st.tow_s;
@@ -872,7 +891,7 @@ void emit_nav_timebds(const EpochView& e, std::vector<std::uint8_t>& out) {
 // give it (Galileo OS SIS ICD 2.0 5.1.8), Galileo week 0 = GPS week 1024 (5.1.2); Galileo - UTC =
 // GPS - UTC in whole seconds.
 void emit_nav_timegal(const EpochView& e, std::vector<std::uint8_t>& out) {
-  const SystemTow st = system_tow(e.fix.t.plus_s(e.nav.time_offset_s("GAGP", e.fix.t)), kGstWeek0InGpsWeeks);
+  const SystemTow st = system_tow(e.t_nav.plus_s(e.nav.time_offset_s("GAGP", e.t_nav)), kGstWeek0InGpsWeeks);
   NavTimegal m;
   m.i_tow_ms = e.i_tow;
   m.gal_tow_s = st.tow_s;
@@ -887,7 +906,7 @@ void emit_nav_timegal(const EpochView& e, std::vector<std::uint8_t>& out) {
 // NAV-TIMEGLO (M8 32.17.27, F9 5.14.20): GLONASS time = UTC(SU) + 3 h (GLONASS ICD 5.1, 3.3.3),
 // as time of day, day in the four-year interval (1..1461) and the interval from 1996 (1).
 void emit_nav_timeglo(const EpochView& e, std::vector<std::uint8_t>& out) {
-  const GpsTime moscow = e.fix.t.plus_s(3.0 * 3600.0 - e.leap_s);  // read as a calendar time
+  const GpsTime moscow = e.t_nav.plus_s(3.0 * 3600.0 - e.leap_s);  // read as a calendar time
   const double since_1996_s = seconds_between(moscow, gps_from_calendar({1996, 1, 1, 0, 0, 0.0}));
   const auto day = static_cast<std::int64_t>(std::floor(since_1996_s / kSecondsPerDay));
   const double tod_s = since_1996_s - static_cast<double>(day * kSecondsPerDay);

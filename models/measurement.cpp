@@ -383,20 +383,20 @@ void MeasurementGenerator::add_events(const GnssEvents& e) {
   if (state_->event_origin) set_event_origin(*state_->event_origin);
 }
 
-EpochMeasurements MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx,
+EpochMeasurements MeasurementGenerator::generate(GpsTime t_epoch, const Vec3& p_rx,
                                                  const Vec3& v_rx) {
   EpochMeasurements out;
-  generate(t_receiver, p_rx, v_rx, out);
+  generate(t_epoch, p_rx, v_rx, out);
   return out;
 }
 
-void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const Vec3& v_rx,
+void MeasurementGenerator::generate(GpsTime t_epoch, const Vec3& p_rx, const Vec3& v_rx,
                                     EpochMeasurements& out) {
   State& st = *state_;
   const ErrorSwitches& on = cfg_.errors;
-  const double dt = st.last ? seconds_between(t_receiver, *st.last) : 0.0;
+  const double dt = st.last ? seconds_between(t_epoch, *st.last) : 0.0;
   const bool first = !st.last;
-  st.last = t_receiver;
+  st.last = t_epoch;
 
   if (!first) {
     st.clock.step(dt);
@@ -410,19 +410,26 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   }
 
   out.sats.clear();
-  out.t_receiver = t_receiver;
   out.rx_clock_bias_s = on.receiver_clock ? st.clock.bias_s() : 0.0;
   out.rx_clock_drift_sps = on.receiver_clock ? st.clock.drift_sps() : 0.0;
-  // The receiver's time tag runs ahead of GPS time by its clock bias.
-  out.t_true = t_receiver.plus_s(-out.rx_clock_bias_s);
+  // The receiver's clock runs ahead of GPS time by its bias. Its measurements are synchronised
+  // with its 1 kHz clock, and each epoch is the tick nearest the desired time in GNSS time
+  // (u-blox ZED-F9P integration manual UBX-18010802 3.10.1 "Receiver local time", 3.10.2
+  // "Navigation epochs"; the M8 receiver description alike): the time tag is the nominal epoch
+  // plus the bias in whole milliseconds, the true time within 0.5 ms of the nominal epoch.
+  out.t_receiver = t_epoch.plus_s(std::round(out.rx_clock_bias_s * 1e3) * 1e-3);
+  out.t_true = out.t_receiver.plus_s(-out.rx_clock_bias_s);
   const double t_s = out.t_true.seconds();
+  // The receiver counts its tracking times (re-acquisition, lock time) in epochs: on the nominal
+  // epoch, not on the true time, which drifts with the clock by up to 0.5 ms.
+  const double t_epoch_s = t_epoch.seconds();
   // The events on at this epoch (by its time tag: they follow the scenario's epochs).
-  if (!st.event_origin) set_event_origin(t_receiver);
+  if (!st.event_origin) set_event_origin(t_epoch);
   out.interference = {};
   out.antenna_fault.reset();
   out.spoofed = out.spoofing_indicated = false;
   out.spoofed_time_s = 0.0;
-  const double t_event_s = seconds_between(t_receiver, *st.event_origin);
+  const double t_event_s = seconds_between(t_epoch, *st.event_origin);
   const Geodetic geo = geodetic_from_ecef(p_rx);
   const Mat3 R_enu = R_enu_from_ecef(geo);
   const GnssEvents& ev = cfg_.events;
@@ -463,7 +470,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   // signals stamped so), which the receiver, locked to it, takes for now: its time tag moves
   // with it and its fix stays where it is.
   const GpsTime t_signal = out.t_true.plus_s(out.spoofed_time_s);
-  out.t_receiver = t_receiver.plus_s(out.spoofed_time_s);
+  out.t_receiver = out.t_receiver.plus_s(out.spoofed_time_s);
   const Meteo meteo = cfg_.meteo ? *cfg_.meteo : standard_atmosphere(std::max(geo.h_m, 0.0), 0.5);
   const TropoDelay tropo_zenith = tropo_zenith_delay(geo, meteo);
   // What the atmosphere models need of the receiver and the epoch, for every satellite.
@@ -490,7 +497,7 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
   for (SatId sat : st.sat_ids) {
     if (!(active_systems_ & system_bit(sat.system()))) {  // switched off: not tracked
       st.receivable_since.erase(sat);
-      st.arcs.update(sat, t_s, false);
+      st.arcs.update(sat, t_epoch_s, false);
       continue;
     }
     if (const double* until = st.below_horizon_until_s.find(sat); until && t_s < *until) continue;
@@ -551,11 +558,11 @@ void MeasurementGenerator::generate(GpsTime t_receiver, const Vec3& p_rx, const 
     if (!receivable) {
       st.receivable_since.erase(sat);
     } else {
-      auto [since, fresh] = st.receivable_since.try_emplace(sat, t_s);
-      if (fresh && first) since = t_s - cfg_.tracking.reacquisition_s;  // in track at the start
-      tracked = t_s - since >= cfg_.tracking.reacquisition_s - 1e-9;
+      auto [since, fresh] = st.receivable_since.try_emplace(sat, t_epoch_s);
+      if (fresh && first) since = t_epoch_s - cfg_.tracking.reacquisition_s;  // in track at the start
+      tracked = t_epoch_s - since >= cfg_.tracking.reacquisition_s - 1e-9;
     }
-    const CarrierArcs::Arc arc = st.arcs.update(sat, t_s, tracked);
+    const CarrierArcs::Arc arc = st.arcs.update(sat, t_epoch_s, tracked);
     if (!tracked) continue;
 
     auto [sp, inserted] = st.sats.try_emplace(sat, cfg_.seed, sat, cfg_, t_s);

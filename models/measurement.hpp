@@ -340,7 +340,8 @@ struct SatMeasurement {
 };
 
 struct EpochMeasurements {
-  GpsTime t_receiver;           // the receiver's time tag (GPS time + clock bias + a spoofer's pull)
+  // The receiver's time tag: its clock's millisecond tick nearest the epoch (+ a spoofer's pull).
+  GpsTime t_receiver;
   GpsTime t_true;               // true GPS time of reception
   double rx_clock_bias_s = 0.0;
   double rx_clock_drift_sps = 0.0;
@@ -367,12 +368,13 @@ class MeasurementGenerator {
   MeasurementGenerator(const MeasurementGenerator&) = delete;
   MeasurementGenerator& operator=(const MeasurementGenerator&) = delete;
 
-  // Measurements at receiver time tag `t_receiver` for a receiver at `p_rx_ecef_m` moving with
-  // `v_rx_ecef_mps`. Calls must come in increasing time.
-  EpochMeasurements generate(GpsTime t_receiver, const Vec3& p_rx_ecef_m,
+  // Measurements of the navigation epoch `t_epoch` (the desired time: the receiver tags them at
+  // its clock's nearest millisecond tick, EpochMeasurements::t_receiver) for a receiver at
+  // `p_rx_ecef_m` moving with `v_rx_ecef_mps`. Calls must come in increasing time.
+  EpochMeasurements generate(GpsTime t_epoch, const Vec3& p_rx_ecef_m,
                              const Vec3& v_rx_ecef_mps = Vec3::Zero());
   // The same into `out`, reusing its storage (the real-time loop's form).
-  void generate(GpsTime t_receiver, const Vec3& p_rx_ecef_m, const Vec3& v_rx_ecef_mps,
+  void generate(GpsTime t_epoch, const Vec3& p_rx_ecef_m, const Vec3& v_rx_ecef_mps,
                 EpochMeasurements& out);
 
   // The measurements the receiver's position engine uses in the configured mode, with the

@@ -41,6 +41,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   gen_.generate(t, p_ecef, v_ecef, e);
   // The receiver keeps its time by its clock solution: a time spoofer's pull moves it.
   out.t = t.plus_s(e.spoofed_time_s);
+  out.time_offset_s = seconds_between(e.t_true, t);
 
   // Channels: the highest satellites when more are in view than the receiver can track.
   if (static_cast<int>(e.sats.size()) > p_.max_channels) {

@@ -64,7 +64,10 @@ struct ReceiverSatellite {
 };
 
 struct ReceiverFix {
-  GpsTime t;  // the measurement epoch, GPS time
+  GpsTime t;  // the navigation epoch, GPS time (the nominal one: a whole period)
+  // GPS time of the receiver's clock tick that took the epoch minus t: within +-0.5 ms, the
+  // remainder of its clock bias (models/measurement.cpp; UBX NAV-PVT nano, NAV-SOL fTOW).
+  double time_offset_s = 0.0;
   FixType fix = FixType::kNone;
   Geodetic position;
   Vec3 p_ecef_m = Vec3::Zero();

@@ -10,7 +10,10 @@ constexpr double kPiClock = 3.14159265358979323846;
 }  // namespace
 
 ReceiverClock::ReceiverClock(const ReceiverClockParams& p, RandomStream rng)
-    : p_(p), rng_(rng), bias_s_(p.initial_bias_s), drift_sps_(p.initial_drift_sps) {}
+    : p_(p), rng_(rng), bias_s_(p.initial_bias_s), drift_sps_(p.initial_drift_sps) {
+  if (p.initial_bias_max_s > 0.0) bias_s_ += p.initial_bias_max_s * (2.0 * rng_.uniform() - 1.0);
+  if (p.frequency_offset_sigma_sps > 0.0) drift_sps_ += p.frequency_offset_sigma_sps * rng_.normal();
+}
 
 void ReceiverClock::step(double dt_s) {
   if (!(dt_s > 0.0)) return;

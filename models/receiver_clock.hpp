@@ -16,6 +16,11 @@ struct ReceiverClockParams {
   double h_minus2 = 2e-20;
   double initial_bias_s = 0.0;     // clock offset at the start
   double initial_drift_sps = 0.0;  // frequency offset at the start (s/s)
+  // A part's start-up state drawn once from the clock's own stream, added to the two above
+  // (0: not drawn): a bias uniform in +-initial_bias_max_s and a frequency offset with standard
+  // deviation frequency_offset_sigma_sps (a free-running TCXO's, receiver profiles' `clock`).
+  double initial_bias_max_s = 0.0;
+  double frequency_offset_sigma_sps = 0.0;
 };
 
 class ReceiverClock {

@@ -180,7 +180,7 @@ int run_obs(const ObsOptions& opt, std::ostream& out, std::ostream& err) {
     const GpsTime t = start.plus_s(static_cast<double>(k) * opt.interval_s);
     const EpochMeasurements e = gen.generate(t, p_rx);
     ObsEpoch oe;
-    oe.time = t;
+    oe.time = e.t_receiver;  // the receiver clock's tick (RINEX 3.04: epochs are receiver clock time)
     for (const SatMeasurement& m : e.sats) {
       SatObs so;
       so.system = m.sat.info().rinex_letter;
