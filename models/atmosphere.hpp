@@ -24,6 +24,16 @@ double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, 
 double klobuchar_delay_l1_s(const KlobucharCoefficients& k, const Geodetic& rx, const Direction& dir,
                             double gps_tow_s);
 
+// Ionospheric pierce point offset from the receiver and the obliquity factor, with the
+// single-layer geometry of IS-GPS-200 20.3.3.5.2.5 (Figure 20-4): earth-centred angle
+// psi = 0.0137 / (E + 0.11) - 0.022 semicircles, F = 1 + 16 (0.53 - E)^3.
+struct PiercePoint {
+  double dlat_deg = 0.0;
+  double dlon_deg = 0.0;
+  double obliquity = 1.0;
+};
+PiercePoint iono_pierce_point(const Geodetic& rx, const Direction& dir);
+
 // Surface meteorology at the receiver.
 struct Meteo {
   double pressure_hpa = 1013.25;

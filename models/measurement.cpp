@@ -46,24 +46,17 @@ double group_delay_s(const BroadcastRecord& r, Band band, double carrier_hz) {
 // Table 3-Va minimum powers -158.5 vs -158.5 dBW with the pilot/data split), L5 ~+0.5 dB.
 constexpr std::array<double, 3> kCn0OffsetDb = {0.0, -3.0, 0.5};
 
-// Ionospheric pierce point offset from the receiver and the obliquity factor, with the
-// single-layer geometry of IS-GPS-200 20.3.3.5.2.5 (Figure 20-4): earth-centred angle
-// psi = 0.0137 / (E + 0.11) - 0.022 semicircles, F = 1 + 16 (0.53 - E)^3.
-struct PiercePoint {
-  double dlat_deg = 0.0;
-  double dlon_deg = 0.0;
-  double obliquity = 1.0;
-};
-PiercePoint iono_pierce_point(const Geodetic& rx, const Direction& dir) {
-  const double e_sc = std::max(dir.az_el.el_rad, 0.0) / kPi;
-  const double psi_deg = (0.0137 / (e_sc + 0.11) - 0.022) * 180.0;
-  const double lat_i = std::clamp(rx.lat_deg + psi_deg * dir.cos_az, -75.0, 75.0);
-  PiercePoint p;
-  p.dlat_deg = lat_i - rx.lat_deg;
-  p.dlon_deg = psi_deg * dir.sin_az / std::cos(lat_i * kDegToRad);
-  const double d = 0.53 - e_sc;
-  p.obliquity = 1.0 + 16.0 * (d * d * d);  // the cube by multiplication, as in the Klobuchar model
-  return p;
+// The receiver's tropospheric model error, zenith (SolverOptions::tropo_sigma_m): the wet delay's
+// variability (MeasurementConfig::tropo_wet_sigma_m, 3 cm) and the wet delay the receiver's
+// standard atmosphere (70 % humidity) mistakes, a few cm.
+constexpr double kTropoModelSigma_m = 0.06;
+
+// The error the ionosphere's horizontal gradients (MeasurementConfig::iono_gradient_sigma_m_per_deg,
+// north and east alike) put on a satellite's delay, 1-sigma: the gradient times the pierce
+// point's offset from the receiver, mapped with the obliquity.
+double iono_gradient_error_sigma_m(double sigma_m_per_deg, double el_rad) {
+  const PiercePoint p = iono_pierce_point(Geodetic{}, direction(AzEl{0.0, el_rad}));
+  return sigma_m_per_deg * p.dlat_deg * p.obliquity;
 }
 
 }  // namespace
@@ -747,9 +740,20 @@ SolverOptions MeasurementGenerator::solver_options() const {
     case ReceiverMode::kStandalone:
       o.klobuchar = nav_.klobuchar;
       o.saastamoinen = true;
+      // The receiver knows its own error budget (solver_input): the broadcast ionosphere's
+      // error is the model error fraction here, the troposphere's the wet delay's variability.
+      o.iono_error_fraction = std::hypot(cfg_.iono_common_error_fraction, cfg_.iono_satellite_error_fraction);
+      o.tropo_sigma_m = kTropoModelSigma_m;
+      // The ionosphere's common scale error and gradients are the same for every satellite:
+      // the covariance carries the correlations they make.
+      if (cfg_.errors.ionosphere) {
+        o.iono_shared_scale_sigma = cfg_.iono_common_error_fraction;
+        o.iono_shared_gradient_sigma_m_per_deg = cfg_.iono_gradient_sigma_m_per_deg;
+      }
       break;
     case ReceiverMode::kDualFrequency:
       o.saastamoinen = true;
+      o.tropo_sigma_m = kTropoModelSigma_m;
       break;
     case ReceiverMode::kDgps:
     case ReceiverMode::kRtkFixed:
@@ -767,10 +771,58 @@ std::vector<RangeMeasurement> MeasurementGenerator::solver_input(const EpochMeas
 void MeasurementGenerator::solver_input(const EpochMeasurements& e,
                                         std::vector<RangeMeasurement>& out) const {
   out.clear();
-  for (const SatMeasurement& m : e.sats)
-    out.push_back(make_range_measurement(m.record, e.t_receiver, m.engine_pseudorange_m,
-                                         m.signals[0]->doppler_hz, state_->glonass_arcs.find(m.sat),
-                                         &m.transmit));
+  // The variances are the receiver's own error budget, as a real receiver's accuracy
+  // estimates are calibrated to its errors: per mode, what remains of the terms generate()
+  // puts into the engine's pseudorange, each at its configured size.
+  const ErrorSwitches& on = cfg_.errors;
+  const double sisre_gps_m = on.satellite ? cfg_.sat_errors.sisre_m() : 0.0;
+  for (const SatMeasurement& m : e.sats) {
+    RangeMeasurement& r = out.emplace_back(make_range_measurement(
+        m.record, e.t_receiver, m.engine_pseudorange_m, m.signals[0]->doppler_hz,
+        state_->glonass_arcs.find(m.sat), &m.transmit));
+    const double sin_el = std::max(std::sin(m.dir.el_rad), 0.05);
+    // The signal-in-space range error of the system (not the broadcast URA, a bound); the
+    // code's tracking noise at its C/N0; multipath as the statistical model sizes it here.
+    const double sisre_m = sisre_gps_m * sisre_relative_to_gps(m.sat.system());
+    const double noise1_m = on.noise ? m.signals[0]->sigma.code_m : 0.0;
+    const double multipath_m = on.multipath ? cfg_.multipath_zenith_sigma_m / sin_el : 0.0;
+    double variance_m2 = 0.0;
+    switch (cfg_.mode) {
+      case ReceiverMode::kStandalone: {
+        // And the ionosphere's gradients (its model error proper is
+        // SolverOptions::iono_error_fraction).
+        const double gradient_m =
+            on.ionosphere ? iono_gradient_error_sigma_m(cfg_.iono_gradient_sigma_m_per_deg, m.dir.el_rad) : 0.0;
+        r.sat_variance_m2 = sisre_m * sisre_m;
+        variance_m2 = noise1_m * noise1_m + multipath_m * multipath_m + gradient_m * gradient_m;
+        break;
+      }
+      case ReceiverMode::kDualFrequency: {
+        // The iono-free combination weighs the bands' noise by g12 / (g12 - 1) and
+        // 1 / (g12 - 1); the multipath both bands share passes unchanged.
+        const SignalObs& s2 = *m.signals[1];
+        const double g12 = gamma(s2.carrier_hz) / gamma(m.signals[0]->carrier_hz);
+        const double noise2_m = on.noise ? s2.sigma.code_m : 0.0;
+        r.sat_variance_m2 = sisre_m * sisre_m;
+        variance_m2 = (g12 * g12 * noise1_m * noise1_m + noise2_m * noise2_m) / ((g12 - 1.0) * (g12 - 1.0)) +
+                      multipath_m * multipath_m;
+        break;
+      }
+      case ReceiverMode::kDgps: {
+        // Both receivers' noise, the rover's multipath and the troposphere difference.
+        const double dtropo_m = on.troposphere ? cfg_.dgps_tropo_residual_sigma_m / sin_el : 0.0;
+        r.sat_variance_m2 = 0.0;
+        variance_m2 = 2.0 * noise1_m * noise1_m + multipath_m * multipath_m + dtropo_m * dtropo_m;
+        break;
+      }
+      case ReceiverMode::kRtkFixed:
+        r.sat_variance_m2 = 0.0;
+        variance_m2 = on.noise ? cfg_.rtk_noise_sigma_m * cfg_.rtk_noise_sigma_m : 0.0;
+        break;
+    }
+    // (At least a millimetre: a receiver whose errors are all switched off still weighs.)
+    r.code_variance_m2 = std::max(variance_m2, 1e-6);
+  }
 }
 
 }  // namespace navemu

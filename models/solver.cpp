@@ -27,10 +27,10 @@ using VecX = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxUnkno
 // An ECEF position is taken as known once it is away from the Earth's centre.
 bool position_known(const Vec3& p) { return p.norm() > 1e3; }
 
-// Variance of the tropospheric model error (RTKLIB's ERR_SAAS: 0.3 m at zenith, growing
-// toward the horizon) and of the broadcast ionosphere (half the correction, 1-sigma).
-double tropo_variance_m2(double sin_el) {
-  const double s = 0.3 / (sin_el + 0.1);
+// Variance of the tropospheric model error, sigma_m / (sin(el) + 0.1) (RTKLIB's ERR_SAAS with
+// sigma_m = 0.3 m), growing toward the horizon.
+double tropo_variance_m2(double sigma_m, double sin_el) {
+  const double s = sigma_m / (sin_el + 0.1);
   return s * s;
 }
 
@@ -299,9 +299,12 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
           m.pseudorange_m - (range + clk[group] - m.sat_clock_m + out.iono_m + out.tropo_m);
       out.used = true;
       const double f = code_sigma_factor(m.sat.system());
-      double var = f * f * (sa2 + sb2 / dirs[i].sin_el) + m.sat_variance_m2;
-      if (known && opt.klobuchar) var += 0.25 * out.iono_m * out.iono_m;
-      if (known && opt.saastamoinen) var += tropo_variance_m2(dirs[i].sin_el);
+      double var = m.code_variance_m2.value_or(f * f * (sa2 + sb2 / dirs[i].sin_el)) + m.sat_variance_m2;
+      if (known && opt.klobuchar) {
+        const double iono_sigma_m = opt.iono_error_fraction * out.iono_m;
+        var += iono_sigma_m * iono_sigma_m;
+      }
+      if (known && opt.saastamoinen) var += tropo_variance_m2(opt.tropo_sigma_m, dirs[i].sin_el);
       row_store[n_sat_rows++] = Row{los / range, out.residual_m, var, i, group};
     }
     // Unknowns: the position, then the clock of each group with a satellite in use.
@@ -372,7 +375,34 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
     if (!reference_set) sol.clock_m = clk[g];
     reference_set = true;
   }
-  sol.cov_ecef_m2 = lu.inverse().topLeftCorner<3, 3>();
+  const MatX n_inv = lu.inverse();
+  sol.cov_ecef_m2 = n_inv.topLeftCorner<3, 3>();
+  // Errors the satellites share (SolverOptions::iono_shared_*) correlate theirs; the weights
+  // hold their variances only, so the position's covariance is the estimator's propagation
+  // A C A^T, A = N^-1 H^T W, of the full covariance C = W^-1 + the shared errors' products
+  // between different satellites, C_jk = l_j . l_k (l: a satellite's loading on the shared
+  // errors, 1-sigma each; Teunissen, Adjustment Theory, 4.2 "propagation of covariances"):
+  // (N^-1 + sum_jk a_j l_j . l_k a_k^T - sum_k |l_k|^2 a_k a_k^T) with a_k = N^-1 h_k / var_k.
+  if (opt.klobuchar && (opt.iono_shared_scale_sigma > 0.0 || opt.iono_shared_gradient_sigma_m_per_deg > 0.0)) {
+    const Geodetic g = geodetic_of(p);
+    const double cos_lat = std::cos(g.lat_deg * kDegToRad);
+    Mat3 al = Mat3::Zero();    // sum_k a_k l_k^T (position rows)
+    Mat3 self = Mat3::Zero();  // sum_k |l_k|^2 a_k a_k^T
+    for (std::size_t k = 0; k < n_sat_rows; ++k) {
+      const Row& r = row_store[k];
+      const RangeMeasurement& m = meas[r.index];
+      const double l1_over_f = kGpsL1_Hz / m.carrier_hz;
+      const PiercePoint ipp = iono_pierce_point(g, dirs[r.index]);
+      const double grad_m = opt.iono_shared_gradient_sigma_m_per_deg * ipp.obliquity * l1_over_f * l1_over_f;
+      const Vec3 l(opt.iono_shared_scale_sigma * sol.sats[r.index].iono_m, grad_m * ipp.dlat_deg,
+                   grad_m * ipp.dlon_deg * cos_lat);
+      const Vec3 a = (n_inv.topLeftCorner<3, 3>() * -r.u + n_inv.block<3, 1>(0, clock_column[r.group])) /
+                     r.variance_m2;
+      al.noalias() += a * l.transpose();
+      self.noalias() += l.squaredNorm() * a * a.transpose();
+    }
+    sol.cov_ecef_m2 += al * al.transpose() - self;
+  }
   sol.num_used = static_cast<int>(n_sat_rows);
   for (std::size_t k = 0; k < n_sat_rows; ++k)
     sol.chi_square += row_store[k].residual_m * row_store[k].residual_m / row_store[k].variance_m2;

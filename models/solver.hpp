@@ -29,9 +29,13 @@ struct RangeMeasurement {
   double sat_clock_m = 0.0;       // c * (satellite clock bias incl. relativistic, minus TGD)
   double sat_clock_drift_mps = 0.0;
   double pseudorange_m = 0.0;
-  double sat_variance_m2 = 0.0;          // orbit and clock error variance (URA bound^2)
+  double sat_variance_m2 = 0.0;          // orbit and clock error variance (URA bound^2, or a SISRE^2)
   std::optional<double> range_rate_mps;  // -lambda * Doppler, when Doppler is measured
   double carrier_hz = kGpsL1_Hz;  // of the ranging signal: scales the L1 ionospheric delay
+  // The receiver's own variance of this measurement's errors besides the orbit and clock and the
+  // models' (code noise, multipath, ...: a receiver model's error budget,
+  // MeasurementGenerator::solver_input); unset: SolverOptions' sigma_a/sigma_b.
+  std::optional<double> code_variance_m2;
 };
 
 // The receiver clocks the solver estimates: one per time scale of the systems in the solution
@@ -69,6 +73,16 @@ struct SolverOptions {
   // ionospheric (half the correction) and tropospheric (0.3 m / (sin(el) + 0.1)) corrections.
   double sigma_a_m = 0.3;
   double sigma_b_m = 0.3;
+  // The model variances' sizes: the ionospheric correction's error as a fraction of it (RTKLIB:
+  // half) and the tropospheric one's, tropo_sigma_m / (sin(el) + 0.1) (RTKLIB: 0.3 m).
+  double iono_error_fraction = 0.5;
+  double tropo_sigma_m = 0.3;
+  // Errors every satellite shares, which make theirs correlated (0: none, RTKLIB): a common
+  // scale error of the broadcast ionosphere (1-sigma, a fraction of each correction) and the
+  // north and east gradients of the vertical delay it lacks (1-sigma, m per degree at the
+  // pierce point). The weights keep their variances; the covariance adds the correlations.
+  double iono_shared_scale_sigma = 0.0;
+  double iono_shared_gradient_sigma_m_per_deg = 0.0;
   // GLONASS's code noise variance is scaled by 1.5^2 (its C/A code chips at half GPS's rate;
   // RTKLIB's EFACT_GLO), SBAS's by 3^2 (EFACT_SBS).
   Vec3 initial_p_ecef_m = Vec3::Zero();  // zero: start at the Earth's centre

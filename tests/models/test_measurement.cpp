@@ -175,12 +175,14 @@ TEST(Measurement, StationaryReceiverDriftsSmoothlyRatherThanJumpingWhite) {
   c.errors.multipath = false;
   const auto err = position_errors(c, 600.0, 1.0);
   ASSERT_GT(err.size(), 590u);
-  // Epoch-to-epoch change far below the error itself: a drift, as in the paper's Fig. 4-5.
+  // Epoch-to-epoch change far below the error itself: a drift, as in the paper's Fig. 4-5
+  // (white errors would step by sqrt(2) times their RMS; what steps here are satellites rising
+  // and setting, which change the solution's geometry and weights).
   double step2 = 0;
   for (std::size_t i = 1; i < err.size(); ++i) step2 += (err[i] - err[i - 1]).squaredNorm();
   const double step_rms = std::sqrt(step2 / static_cast<double>(err.size() - 1));
   EXPECT_GT(rms(err), 0.3);
-  EXPECT_LT(step_rms, 0.05 * rms(err));
+  EXPECT_LT(step_rms, 0.06 * rms(err));
 }
 
 TEST(Measurement, ModesOrderTheAccuracyAsThePaperDescribes) {
