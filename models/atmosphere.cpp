@@ -319,16 +319,17 @@ TropoDelay tropo_slant_delay(const Geodetic& rx, double el_rad, GpsTime t, const
   return d;
 }
 
-PiercePoint iono_pierce_point(const Geodetic& rx, const Direction& dir) {
-  const double e_sc = std::max(dir.az_el.el_rad, 0.0) / kPi;
-  const double psi_deg = (0.0137 / (e_sc + 0.11) - 0.022) * 180.0;
-  const double lat_i = std::clamp(rx.lat_deg + psi_deg * dir.cos_az, -75.0, 75.0);
-  PiercePoint p;
-  p.dlat_deg = lat_i - rx.lat_deg;
-  p.dlon_deg = psi_deg * dir.sin_az / std::cos(lat_i * kDegToRad);
+PierceOffset iono_pierce_offset(double el_rad) {
+  const double e_sc = std::max(el_rad, 0.0) / kPi;
   const double d = 0.53 - e_sc;
-  p.obliquity = 1.0 + 16.0 * (d * d * d);  // the cube by multiplication, as in the Klobuchar model
-  return p;
+  // (The cube by multiplication, as in the Klobuchar model.)
+  return {(0.0137 / (e_sc + 0.11) - 0.022) * 180.0, 1.0 + 16.0 * (d * d * d)};
+}
+
+PiercePoint iono_pierce_point(const Geodetic& rx, const Direction& dir) {
+  const PierceOffset o = iono_pierce_offset(dir.az_el.el_rad);
+  const double lat_i = std::clamp(rx.lat_deg + o.psi_deg * dir.cos_az, -75.0, 75.0);
+  return {lat_i - rx.lat_deg, o.psi_deg * dir.sin_az / std::cos(lat_i * kDegToRad), o.obliquity};
 }
 
 }  // namespace navemu

@@ -33,6 +33,12 @@ struct PiercePoint {
   double obliquity = 1.0;
 };
 PiercePoint iono_pierce_point(const Geodetic& rx, const Direction& dir);
+// Of that geometry, what depends on the elevation alone: psi (degrees) and F.
+struct PierceOffset {
+  double psi_deg = 0.0;
+  double obliquity = 1.0;
+};
+PierceOffset iono_pierce_offset(double el_rad);
 
 // Surface meteorology at the receiver.
 struct Meteo {

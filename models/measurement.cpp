@@ -55,8 +55,8 @@ constexpr double kTropoModelSigma_m = 0.06;
 // north and east alike) put on a satellite's delay, 1-sigma: the gradient times the pierce
 // point's offset from the receiver, mapped with the obliquity.
 double iono_gradient_error_sigma_m(double sigma_m_per_deg, double el_rad) {
-  const PiercePoint p = iono_pierce_point(Geodetic{}, direction(AzEl{0.0, el_rad}));
-  return sigma_m_per_deg * p.dlat_deg * p.obliquity;
+  const PierceOffset p = iono_pierce_offset(el_rad);
+  return sigma_m_per_deg * p.psi_deg * p.obliquity;
 }
 
 }  // namespace
