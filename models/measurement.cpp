@@ -703,7 +703,10 @@ void MeasurementGenerator::generate(GpsTime t_epoch, const Vec3& p_rx, const Vec
       case ReceiverMode::kDualFrequency: {
         // Iono-free combination of L1 and L2 (IS-GPS-200 20.3.3.3.3.3): the ionosphere cancels
         // and the noise grows ~3x; the combination's own group delay (zero for GPS, whose TGD
-        // is defined so) is replaced by the L1 one the solver's clock correction removes.
+        // is defined so) is replaced by the L1 one the solver's clock correction removes. A
+        // satellite whose second band is switched off (the signal-enable items) has no
+        // combination and is left out.
+        if (!m.signals[1]) continue;
         const SignalObs& s1 = *m.signals[0];
         const SignalObs& s2 = *m.signals[1];
         const double g12 = gamma(s2.carrier_hz) / gamma(s1.carrier_hz);  // (f1 / f2)^2

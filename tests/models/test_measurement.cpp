@@ -568,3 +568,33 @@ TEST(Measurement, EditedBuiltInDataKeepTheirSatellitesWhenRenewed) {
 
 }  // namespace
 }  // namespace navemu
+
+namespace navemu {
+namespace {
+
+// Dual-frequency mode uses the iono-free combination, so a satellite whose second band is
+// switched off (the signal-enable items: here BeiDou's B2I) cannot be used: it is left out,
+// and the other systems still give a fix (before, its missing L2 was read: no fix at all).
+TEST(Measurement, DualFrequencyLeavesOutSatellitesWithoutTheirSecondBand) {
+  MeasurementConfig c;
+  apply_receiver_class(c, ReceiverClass::kGeodetic);
+  c.mode = ReceiverMode::kDualFrequency;
+  c.systems = system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kBeidou);
+  const NavData nav = nominal_constellation(kStart, c.systems);
+  MeasurementGenerator gen(nav, c);
+  gen.set_active_systems(c.systems, system_bit(GnssSystem::kGps));
+  const Vec3 p = ecef_from_geodetic(kSite);
+  const EpochMeasurements e = gen.generate(kStart, p);
+  ASSERT_GE(e.sats.size(), 6u);
+  for (const SatMeasurement& m : e.sats) {
+    EXPECT_EQ(m.sat.system(), GnssSystem::kGps);
+    EXPECT_TRUE(m.signals[1].has_value());
+  }
+  SolverOptions o = gen.solver_options();
+  const Solution s = solve(gen.solver_input(e), e.t_receiver, o);
+  ASSERT_EQ(s.fix, FixType::k3D);
+  EXPECT_LT((s.p_ecef_m - p).norm(), 10.0);
+}
+
+}  // namespace
+}  // namespace navemu
