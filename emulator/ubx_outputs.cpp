@@ -125,6 +125,9 @@ struct EpochView {
   // milliseconds): what the fractional fields (NAV-PVT nano, NAV-SOL fTOW, ...) complete.
   GpsTime t_nav = fix.t.plus_s(fix.time_offset_s);
   std::uint32_t i_tow = static_cast<std::uint32_t>(std::llround(wt.tow_s * 1000.0)) % 604'800'000u;
+  // NAV-SOL / NAV-TIMEGPS fTOW: t_nav minus iTOW, ns (+-500000).
+  std::int32_t f_tow_ns =
+      clamp_cast<std::int32_t>((wt.tow_s * 1000.0 - std::round(wt.tow_s * 1000.0)) * 1e6 + fix.time_offset_s * 1e9);
   bool valid = fix.fix != FixType::kNone;
   // NAV-PVT fixType, NAV-STATUS / NAV-SOL gpsFix: 5 "time only fix" in time mode.
   std::uint8_t gps_fix = status.time_only && valid ? kFixTimeOnly : fix_type(fix.fix);
@@ -293,12 +296,11 @@ void emit_nav_status(const EpochView& e, std::vector<std::uint8_t>& out) {
 }
 
 void emit_nav_sol(const EpochView& e, std::vector<std::uint8_t>& out) {
-  const double tow_ms = to_week_tow(e.t_nav).tow_s * 1000.0;
   const EcefCm p = to_cm(e.fix.p_ecef_m);
   const EcefCm v = to_cm(e.v_ecef);
   NavSol m;
   m.i_tow_ms = e.i_tow;
-  m.f_tow_ns = clamp_cast<std::int32_t>((tow_ms - std::round(tow_ms)) * 1e6);
+  m.f_tow_ns = e.f_tow_ns;
   m.week = static_cast<std::int16_t>(e.wt.week);
   m.gps_fix = e.gps_fix;
   m.flags = e.status_flags;
@@ -329,7 +331,7 @@ void emit_nav_dop(const EpochView& e, std::vector<std::uint8_t>& out) {
 void emit_nav_timegps(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavTimegps m;
   m.i_tow_ms = e.i_tow;
-  m.f_tow_ns = system_tow(e.t_nav, 0).f_tow_ns;
+  m.f_tow_ns = e.f_tow_ns;
   m.week = static_cast<std::int16_t>(e.wt.week);
   m.leap_s = static_cast<std::int8_t>(e.leap_s);
   m.valid = NavTimegps::kTowValid | NavTimegps::kWeekValid | NavTimegps::kLeapSValid;

@@ -1486,6 +1486,41 @@ TEST_F(UbxDeviceTest, TheClockRunsFreeAndEpochsFallOnTheNearestMillisecondLikeRe
   EXPECT_GT(e.back().nano_ns, 499'000);
 }
 
+// The fractional time fields complete iTOW (NAV-SOL and NAV-TIMEGPS fTOW: to the clock tick's
+// GPS time, +-0.5 ms) or the date and time rounded to 10 ms (NAV-PVT and NAV-TIMEUTC nano), also
+// at an epoch between whole seconds (5 Hz: .2 s).
+TEST_F(UbxDeviceTest, FractionalTimeFieldsCompleteTheirWholeParts) {
+  UbxDevice d(m8_, ReceiverMode::kStandalone, empty_nav());  // the M8 has NAV-SOL
+  for (const ubx::MsgId id : {ubx::kNavPvt, ubx::kNavSol, ubx::kNavTimegps, ubx::kNavTimeutc})
+    ASSERT_TRUE(only_ack(send(d, frame(ubx::CfgMsgCurrentPort{id.cls, id.id, 1})), ubx::kCfgMsg));
+  ReceiverFix fix = a_fix(kT0.plus_s(0.2));
+  fix.time_offset_s = -123.456e-6;
+  std::string out;
+  d.encode_epoch(fix, EpochMeasurements{}, 0, out);
+  const auto i_tow = static_cast<std::uint32_t>(std::llround(to_week_tow(kT0).tow_s * 1000.0)) + 200;
+  int seen = 0;
+  for (const Frame& f : frames_of(out)) {
+    if (ubx::NavSol m; f.id == ubx::kNavSol && ubx::decode(f.payload, m)) {
+      EXPECT_EQ(m.i_tow_ms, i_tow);
+      EXPECT_EQ(m.f_tow_ns, -123456);
+      ++seen;
+    } else if (ubx::NavTimegps g; f.id == ubx::kNavTimegps && ubx::decode(f.payload, g)) {
+      EXPECT_EQ(g.i_tow_ms, i_tow);
+      EXPECT_EQ(g.f_tow_ns, -123456);
+      ++seen;
+    } else if (ubx::NavPvt p; f.id == ubx::kNavPvt && ubx::decode(f.payload, p)) {
+      EXPECT_EQ(p.sec, 0);  // 13:00:00.2 UTC, less the offset
+      EXPECT_EQ(p.nano_ns, 200'000'000 - 123'456);
+      ++seen;
+    } else if (ubx::NavTimeutc u; f.id == ubx::kNavTimeutc && ubx::decode(f.payload, u)) {
+      EXPECT_EQ(u.sec, 0);
+      EXPECT_EQ(u.nano_ns, 200'000'000 - 123'456);
+      ++seen;
+    }
+  }
+  EXPECT_EQ(seen, 4);
+}
+
 TEST_F(UbxDeviceTest, EveryOutputMessageOfThePartAnswersAPoll) {
   for (const GnssProfile* p : {&m8_, &f9p_}) {
     SCOPED_TRACE(p->name);
