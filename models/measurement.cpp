@@ -54,6 +54,11 @@ constexpr double kTropoModelSigma_m = 0.06;
 // The error the ionosphere's horizontal gradients (MeasurementConfig::iono_gradient_sigma_m_per_deg,
 // north and east alike) put on a satellite's delay, 1-sigma: the gradient times the pierce
 // point's offset from the receiver, mapped with the obliquity.
+// The statistical code multipath's size at an elevation (MeasurementConfig::
+// multipath_zenith_sigma_m growing as 1 / sin(el), held from ~3 deg down): the generator's
+// process and the receiver's budget for it.
+double multipath_sigma_m(double zenith_sigma_m, double sin_el) { return zenith_sigma_m / std::max(sin_el, 0.05); }
+
 double iono_gradient_error_sigma_m(double sigma_m_per_deg, double el_rad) {
   const PierceOffset p = iono_pierce_offset(el_rad);
   return sigma_m_per_deg * p.psi_deg * p.obliquity;
@@ -638,7 +643,7 @@ void MeasurementGenerator::generate(GpsTime t_epoch, const Vec3& p_rx, const Vec
         doppler_mp_mps = step_m / (t_s - prev.first);
       prev = {t_s, phase_mp_m};
     } else if (on.multipath) {
-      m.multipath_m = multipath_scale * cfg_.multipath_zenith_sigma_m / std::max(sin_el, 0.05) * sp.multipath.value();
+      m.multipath_m = multipath_scale * multipath_sigma_m(cfg_.multipath_zenith_sigma_m, sin_el) * sp.multipath.value();
     }
 
     // Satellite clock as the broadcast record gives it (relativistic term included): what a
@@ -788,7 +793,7 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
     // code's tracking noise at its C/N0; multipath as the statistical model sizes it here.
     const double sisre_m = sisre_gps_m * sisre_relative_to_gps(m.sat.system());
     const double noise1_m = on.noise ? m.signals[0]->sigma.code_m : 0.0;
-    const double multipath_m = on.multipath ? cfg_.multipath_zenith_sigma_m / sin_el : 0.0;
+    const double multipath_m = on.multipath ? multipath_sigma_m(cfg_.multipath_zenith_sigma_m, sin_el) : 0.0;
     double variance_m2 = 0.0;
     switch (cfg_.mode) {
       case ReceiverMode::kStandalone: {
