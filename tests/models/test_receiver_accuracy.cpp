@@ -15,8 +15,8 @@ namespace {
 struct ErrorAndSigma {
   double err_h_sq = 0.0, err_v_sq = 0.0, sigma_h_sq = 0.0, sigma_v_sq = 0.0;
   int n = 0;
-  void add(const ReceiverFix& fix, const Vec3& truth_ecef_m, const Geodetic& truth) {
-    const Vec3 e = R_enu_from_ecef(truth) * (fix.p_ecef_m - truth_ecef_m);
+  void add(const ReceiverFix& fix, const Geodetic& truth) {
+    const Vec3 e = enu_from_ecef(fix.p_ecef_m, truth);
     err_h_sq += e.x() * e.x() + e.y() * e.y();
     err_v_sq += e.z() * e.z();
     sigma_h_sq += fix.sigma_h_m * fix.sigma_h_m;
@@ -47,7 +47,6 @@ struct Ratios {
 };
 Ratios pooled_ratios(const ReceiverKind& kind) {
   const Geodetic site{48.78, 9.18, 300.0};
-  const Vec3 p_site = ecef_from_geodetic(site);
   ImuTruth truth;
   truth.position = site;
   Ratios out;
@@ -69,7 +68,7 @@ Ratios pooled_ratios(const ReceiverKind& kind) {
     for (int k = 0; k <= 360; ++k) {
       const ReceiverFix& fix = rx.update(start.plus_s(10.0 * k), &truth);
       if (fix.fix == FixType::kNone) continue;
-      (k * 10 < 1800 ? out.open : out.masked).add(fix, p_site, site);
+      (k * 10 < 1800 ? out.open : out.masked).add(fix, site);
     }
   }
   return out;
