@@ -353,6 +353,8 @@ GnssProfile load_gnss_profile(const std::string& name_or_path) {
     p.clock.frequency_offset_sigma_sps = *f * 1e-9;
   }
   clk.reject_unknown_keys();
+  p.carrier_smoothing_s = m.positive("carrier_smoothing_s", true).value_or(0.0);
+  if (p.carrier_smoothing_s > 3600.0) m.fail("carrier_smoothing_s", "at most 3600 (one hour)");
 
   YamlMap s = m.map("sentences");
   if (!m.has("sentences")) m.fail("sentences", "required: sentence names with divisors, e.g. {RMC: 1, GSV: 5}");

@@ -60,6 +60,9 @@ struct GnssProfile {
   // free-running oscillator's frequency offset. Unset: an ideal start (no bias, no offset).
   ReceiverClockParams clock;
   std::optional<UbxSettings> ubx;  // a u-blox receiver: UBX output and configuration
+  // The position engine's carrier smoothing of the code, s (MeasurementConfig::
+  // carrier_smoothing_s); YAML `carrier_smoothing_s`, 0 or unset: raw code.
+  double carrier_smoothing_s = 0.0;
 };
 
 // The sentence names a profile may list, and the UBX messages a u-blox profile may output.

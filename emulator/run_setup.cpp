@@ -74,6 +74,7 @@ ReceiverParams receiver_params(const RunConfig& cfg, std::ostream& log) {
   rp.measurement.systems = prof.systems;
   rp.measurement.bands = prof.bands;
   rp.measurement.clock = prof.clock;
+  rp.measurement.carrier_smoothing_s = prof.carrier_smoothing_s;
   AntennaPattern antenna = patch_antenna_pattern();
   if (!prof.antenna_gain_db_by_el_deg.empty()) {
     rp.measurement.cn0.gain_db_by_el_deg = prof.antenna_gain_db_by_el_deg;

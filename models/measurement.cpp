@@ -143,6 +143,7 @@ struct SatProcesses {
   GaussMarkov iono_fraction;
   GaussMarkov multipath;  // unit variance, scaled by the elevation-dependent sigma
   double last_t_s = 0.0;
+  CarrierSmoother smoother;  // of the engine's pseudorange
 };
 
 // A satellite's C/N0 departure from the elevation model (MeasurementConfig::cn0_*): an
@@ -737,6 +738,24 @@ void MeasurementGenerator::generate(GpsTime t_epoch, const Vec3& p_rx, const Vec
             geometric_m + (on.noise ? cfg_.rtk_noise_sigma_m * sp.rtk_rng.normal() : 0.0);
         break;
     }
+    // Carrier smoothing with the carrier that shares every term of the engine's code but its
+    // noise and multipath (and, on L1 alone, the ionosphere's sign): L1's in standalone, the
+    // iono-free combination's in dual-frequency. DGPS and RTK ranges are left as they are.
+    m.smoothed_pseudorange_m = m.engine_pseudorange_m;
+    if (cfg_.carrier_smoothing_s > 0.0 &&
+        (cfg_.mode == ReceiverMode::kStandalone || cfg_.mode == ReceiverMode::kDualFrequency)) {
+      const SignalObs& s1 = *m.signals[0];
+      double carrier_m = s1.carrier_cycles * kSpeedOfLight_mps / s1.carrier_hz;
+      if (cfg_.mode == ReceiverMode::kDualFrequency) {
+        const SignalObs& s2 = *m.signals[1];
+        const double g12 = gamma(s2.carrier_hz) / gamma(s1.carrier_hz);
+        carrier_m = (g12 * carrier_m - s2.carrier_cycles * kSpeedOfLight_mps / s2.carrier_hz) / (g12 - 1.0);
+      }
+      m.smoothed_pseudorange_m = sp.smoother.update(t_s, m.engine_pseudorange_m, carrier_m, arc.new_arc,
+                                                    cfg_.carrier_smoothing_s, cfg_.multipath_tau_s);
+      m.smoothed_noise_fraction = sp.smoother.noise_fraction();
+      m.smoothed_multipath_fraction = sp.smoother.multipath_fraction();
+    }
     out.sats.push_back(std::move(m));
   }
 }
@@ -786,14 +805,18 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
   const double sisre_gps_m = on.satellite ? cfg_.sat_errors.sisre_m() : 0.0;
   for (const SatMeasurement& m : e.sats) {
     RangeMeasurement& r = out.emplace_back(make_range_measurement(
-        m.record, e.t_receiver, m.engine_pseudorange_m, m.signals[0]->doppler_hz,
+        m.record, e.t_receiver, m.smoothed_pseudorange_m, m.signals[0]->doppler_hz,
         state_->glonass_arcs.find(m.sat), &m.transmit));
     const double sin_el = std::max(std::sin(m.dir.el_rad), 0.05);
     // The signal-in-space range error of the system (not the broadcast URA, a bound); the
     // code's tracking noise at its C/N0; multipath as the statistical model sizes it here.
     const double sisre_m = sisre_gps_m * sisre_relative_to_gps(m.sat.system());
-    const double noise1_m = on.noise ? m.signals[0]->sigma.code_m : 0.0;
-    const double multipath_m = on.multipath ? multipath_sigma_m(cfg_.multipath_zenith_sigma_m, sin_el) : 0.0;
+    // (Both as much as the carrier smoothing leaves of them.)
+    const double noise_fraction = m.smoothed_noise_fraction;
+    const double noise1_m = on.noise ? m.signals[0]->sigma.code_m * std::sqrt(noise_fraction) : 0.0;
+    const double multipath_m = on.multipath ? multipath_sigma_m(cfg_.multipath_zenith_sigma_m, sin_el) *
+                                                  std::sqrt(m.smoothed_multipath_fraction)
+                                            : 0.0;
     double variance_m2 = 0.0;
     switch (cfg_.mode) {
       case ReceiverMode::kStandalone: {
@@ -810,7 +833,7 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
         // 1 / (g12 - 1); the multipath both bands share passes unchanged.
         const SignalObs& s2 = *m.signals[1];
         const double g12 = gamma(s2.carrier_hz) / gamma(m.signals[0]->carrier_hz);
-        const double noise2_m = on.noise ? s2.sigma.code_m : 0.0;
+        const double noise2_m = on.noise ? s2.sigma.code_m * std::sqrt(noise_fraction) : 0.0;
         r.sat_variance_m2 = sisre_m * sisre_m;
         variance_m2 = (g12 * g12 * noise1_m * noise1_m + noise2_m * noise2_m) / ((g12 - 1.0) * (g12 - 1.0)) +
                       multipath_m * multipath_m;

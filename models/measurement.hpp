@@ -277,6 +277,10 @@ struct MeasurementConfig {
   // and antenna faults block signals; satellite faults add to one satellite's ranges.
   GnssEvents events;
   std::uint64_t seed = 1;
+  // The position engine's code smoothed by the carrier (CarrierSmoother, models/tracking.hpp)
+  // over this window, s, in the standalone and dual-frequency modes (the L1 carrier, the
+  // iono-free one); 0: raw code. Raw measurements (SignalObs) are never smoothed.
+  double carrier_smoothing_s = 0.0;
 };
 
 inline constexpr std::array<SignalId, 3> kBandSignals = {kGpsL1CA, kGpsL2CL, kGpsL5Q};
@@ -337,6 +341,11 @@ struct SatMeasurement {
   // The pseudorange the position engine uses in the configured mode (L1 in standalone, the
   // iono-free combination in dual-frequency, the differentially corrected one in DGPS/RTK).
   double engine_pseudorange_m = 0.0;
+  // That pseudorange smoothed by its carrier (MeasurementConfig::carrier_smoothing_s; equal to
+  // it when not smoothed), and the fractions of the code noise's and code multipath's variance
+  // the smoothing leaves in it (CarrierSmoother; 1: none).
+  double smoothed_pseudorange_m = 0.0;
+  double smoothed_noise_fraction = 1.0, smoothed_multipath_fraction = 1.0;
 };
 
 struct EpochMeasurements {

@@ -1,5 +1,6 @@
 #include "models/tracking.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -97,6 +98,32 @@ CarrierArcs::Arc CarrierArcs::update(SatId sat, double t_s, bool tracked) {
   }
   s.last_s = t_s;
   return Arc{s.ambiguity, t_s - s.start_s, new_arc};
+}
+
+double CarrierSmoother::update(double t_s, double code_m, double carrier_m, bool new_arc, double window_s,
+                               double multipath_tau_s) {
+  const double dt = t_s - last_t_s_;
+  // The code against the smoothed code carried forward by the carrier.
+  const double predicted_m = smoothed_m_ + carrier_m - carrier_m_;
+  const bool restart = !started_ || new_arc || dt <= 0.0 || dt > window_s ||
+                       std::abs(code_m - predicted_m) > kMaxStepDisagreement_m;
+  if (restart) {
+    started_ = true;
+    epochs_ = 1.0;
+    smoothed_m_ = code_m;
+    v_noise_ = v_multipath_ = c_multipath_ = 1.0;
+  } else {
+    epochs_ += 1.0;
+    const double w = std::max(1.0 / epochs_, dt / window_s);
+    const double a = std::exp(-dt / multipath_tau_s);
+    smoothed_m_ = w * code_m + (1.0 - w) * predicted_m;
+    v_noise_ = w * w + (1.0 - w) * (1.0 - w) * v_noise_;
+    v_multipath_ = w * w + (1.0 - w) * (1.0 - w) * v_multipath_ + 2.0 * w * (1.0 - w) * a * c_multipath_;
+    c_multipath_ = w + (1.0 - w) * a * c_multipath_;
+  }
+  last_t_s_ = t_s;
+  carrier_m_ = carrier_m;
+  return smoothed_m_;
 }
 
 std::vector<std::pair<double, double>> patch_antenna_gain_table() {

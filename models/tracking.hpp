@@ -92,4 +92,36 @@ class CarrierArcs {
   SatTable<State> state_;
 };
 
+// Carrier-smoothed code: the Hatch filter (R. Hatch, "The synergism of GPS code and carrier
+// measurements", 3rd Int. Geodetic Symposium on Satellite Doppler Positioning, 1982) in its
+// time-constant form (T = 100 s in the SBAS and GBAS airborne standards, RTCA DO-229, DO-253):
+//   rho_s(k) = w rho(k) + (1 - w) (rho_s(k-1) + Phi(k) - Phi(k-1)),  w = max(1/k, dt/T),
+// rho the code, Phi the carrier range of the same arc (metres), k the epochs since the arc
+// began, T the window. Code noise and code multipath are averaged down; what code and carrier
+// share passes unchanged (and the ionosphere, which they see with opposite signs, diverges by
+// twice its change over about T). The same recursion in variance gives what it leaves of the
+// code's white noise and of a Gauss-Markov multipath of correlation time tau (unit variances;
+// c = E[rho_s m], a = exp(-dt/tau)):
+//   v_n(k) = w^2 + (1-w)^2 v_n(k-1)
+//   v_m(k) = w^2 + (1-w)^2 v_m(k-1) + 2 w (1-w) a c(k-1),   c(k) = w + (1-w) a c(k-1).
+class CarrierSmoother {
+ public:
+  // A code further than this from the smoothed code carried forward by the carrier means a
+  // slip the arcs did not catch: the filter restarts.
+  static constexpr double kMaxStepDisagreement_m = 30.0;
+  // The smoothed code at t_s. Restarts with `new_arc`, after a gap longer than the window, and
+  // at a disagreement as above.
+  double update(double t_s, double code_m, double carrier_m, bool new_arc, double window_s,
+                double multipath_tau_s);
+  double noise_fraction() const { return v_noise_; }
+  double multipath_fraction() const { return v_multipath_; }
+
+ private:
+  bool started_ = false;
+  double last_t_s_ = 0.0;
+  double smoothed_m_ = 0.0, carrier_m_ = 0.0;
+  double epochs_ = 0.0;
+  double v_noise_ = 1.0, v_multipath_ = 1.0, c_multipath_ = 1.0;
+};
+
 }  // namespace navemu
