@@ -109,6 +109,12 @@ void apply_receiver_class(MeasurementConfig& cfg, ReceiverClass rc) {
   }
 }
 
+// The ionosphere's errors (the broadcast model's scale and gradients, each satellite's own part)
+// vary smoothly over minutes (medium-scale travelling disturbances have periods of 10-60 min):
+// Gauss-Markov processes drawn 30 s apart and interpolated (InterpolatedGaussMarkov). At epochs
+// on the knots (30 s RINEX files) the values are the first-order process's own.
+constexpr double kIonoKnot_s = 30.0;
+
 // Per-satellite processes, created when the satellite is first seen. One random stream per
 // term and satellite, so switching one term (or a band) leaves the others' numbers unchanged.
 struct SatProcesses {
@@ -127,20 +133,22 @@ struct SatProcesses {
         code_rng(band_streams(seed, "code_noise", sat)),
         phase_rng(band_streams(seed, "phase_noise", sat)),
         doppler_rng(band_streams(seed, "doppler_noise", sat)),
-        iono_fraction(cfg.iono_satellite_error_fraction, cfg.iono_error_tau_s, iono_rng),
+        iono_fraction(cfg.iono_satellite_error_fraction, cfg.iono_error_tau_s, kIonoKnot_s, iono_rng),
         multipath(1.0, cfg.multipath_tau_s, multipath_rng),
-        last_t_s(t_s) {}
-  // `iono_tr` and `multipath_tr`: the transitions every satellite's processes share.
-  void advance(double t_s, GaussMarkovTransition& iono_tr, GaussMarkovTransition& multipath_tr) {
+        last_t_s(t_s) {
+    iono_fraction.at(t_s, iono_rng);
+  }
+  // `multipath_tr`: the transition every satellite's multipath shares.
+  void advance(double t_s, GaussMarkovTransition& multipath_tr) {
     const double dt = t_s - last_t_s;
-    iono_fraction.step(iono_tr.at(dt, iono_fraction.tau_s()), iono_rng);
+    iono_fraction.at(t_s, iono_rng);
     multipath.step(multipath_tr.at(dt, multipath.tau_s()), multipath_rng);
     last_t_s = t_s;
   }
 
   RandomStream iono_rng, multipath_rng, rtk_rng;
   BandStreams code_rng, phase_rng, doppler_rng;
-  GaussMarkov iono_fraction;
+  InterpolatedGaussMarkov iono_fraction;
   GaussMarkov multipath;  // unit variance, scaled by the elevation-dependent sigma
   double last_t_s = 0.0;
   CarrierSmoother smoother;  // of the engine's pseudorange
@@ -183,9 +191,9 @@ struct MeasurementGenerator::State {
         tropo_wet_rng(cfg.seed, stream_id("tropo_wet")),
         dgps_tropo_rng(cfg.seed, stream_id("dgps_tropo")),
         iono_gradient_rng(cfg.seed, stream_id("iono_gradient")),
-        iono_common(cfg.iono_common_error_fraction, cfg.iono_error_tau_s, iono_common_rng),
-        iono_gradient_north(cfg.iono_gradient_sigma_m_per_deg, cfg.iono_error_tau_s, iono_gradient_rng),
-        iono_gradient_east(cfg.iono_gradient_sigma_m_per_deg, cfg.iono_error_tau_s, iono_gradient_rng),
+        iono_common(cfg.iono_common_error_fraction, cfg.iono_error_tau_s, kIonoKnot_s, iono_common_rng),
+        iono_gradient_north(cfg.iono_gradient_sigma_m_per_deg, cfg.iono_error_tau_s, kIonoKnot_s, iono_gradient_rng),
+        iono_gradient_east(cfg.iono_gradient_sigma_m_per_deg, cfg.iono_error_tau_s, kIonoKnot_s, iono_gradient_rng),
         tropo_wet(cfg.tropo_wet_sigma_m, cfg.tropo_wet_tau_s, tropo_wet_rng),
         dgps_tropo(cfg.dgps_tropo_residual_sigma_m, cfg.tropo_wet_tau_s, dgps_tropo_rng) {}
 
@@ -193,13 +201,13 @@ struct MeasurementGenerator::State {
   SatErrors sat_errors;
   CarrierArcs arcs;
   RandomStream iono_common_rng, tropo_wet_rng, dgps_tropo_rng, iono_gradient_rng;
-  GaussMarkov iono_common, iono_gradient_north, iono_gradient_east;
+  InterpolatedGaussMarkov iono_common, iono_gradient_north, iono_gradient_east;
   GaussMarkov tropo_wet;
   GaussMarkov dgps_tropo;
   SatTable<SatProcesses> sats;
   SatTable<Cn0Departure> cn0_departure;  // of the satellites above the horizon so far
   // The Gauss-Markov transitions shared by processes of one correlation time and step.
-  GaussMarkovTransition iono_common_tr, tropo_tr, sat_iono_tr, sat_multipath_tr;
+  GaussMarkovTransition tropo_tr, sat_multipath_tr;
   SatTable<double> receivable_since;  // time the satellite's signal became receivable, s
   SatTable<std::pair<double, double>> scene_phase;  // (t s, carrier multipath m)
   // The last light-time solution (t s, flight time s, its rate): the next one starts from its
@@ -397,13 +405,11 @@ void MeasurementGenerator::generate(GpsTime t_epoch, const Vec3& p_rx, const Vec
   const bool first = !st.last;
   st.last = t_epoch;
 
+  st.iono_common.at(t_epoch.seconds(), st.iono_common_rng);
+  st.iono_gradient_north.at(t_epoch.seconds(), st.iono_gradient_rng);
+  st.iono_gradient_east.at(t_epoch.seconds(), st.iono_gradient_rng);
   if (!first) {
     st.clock.step(dt);
-    st.iono_common.step(st.iono_common_tr.at(dt, st.iono_common.tau_s()), st.iono_common_rng);
-    st.iono_gradient_north.step(st.iono_common_tr.at(dt, st.iono_gradient_north.tau_s()),
-                                st.iono_gradient_rng);
-    st.iono_gradient_east.step(st.iono_common_tr.at(dt, st.iono_gradient_east.tau_s()),
-                               st.iono_gradient_rng);
     st.tropo_wet.step(st.tropo_tr.at(dt, st.tropo_wet.tau_s()), st.tropo_wet_rng);
     st.dgps_tropo.step(st.tropo_tr.at(dt, st.dgps_tropo.tau_s()), st.dgps_tropo_rng);
   }
@@ -565,7 +571,7 @@ void MeasurementGenerator::generate(GpsTime t_epoch, const Vec3& p_rx, const Vec
     if (!tracked) continue;
 
     auto [sp, inserted] = st.sats.try_emplace(sat, cfg_.seed, sat, cfg_, t_s);
-    if (!inserted) sp.advance(t_s, st.sat_iono_tr, st.sat_multipath_tr);
+    if (!inserted) sp.advance(t_s, st.sat_multipath_tr);
 
     SatMeasurement m;
     m.sat = sat;

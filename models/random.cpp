@@ -72,4 +72,21 @@ double GaussMarkov::step(const GaussMarkovTransition& tr, RandomStream& rng) {
   return x_;
 }
 
+double InterpolatedGaussMarkov::at(double t_s, RandomStream& rng) {
+  if (!anchored_) {
+    anchored_ = true;
+    t_knot_s_ = t_s;
+    x1_ = gm_.step(knot_s_, rng);
+  }
+  if (const double behind = std::floor((t_s - t_knot_s_) / knot_s_); behind >= 1.0) {
+    // The knots passed: x0 moves to the last one at or before t_s (one step over any gap).
+    if (behind >= 2.0) gm_.step((behind - 1.0) * knot_s_, rng);
+    x0_ = gm_.value();
+    x1_ = gm_.step(knot_s_, rng);
+    t_knot_s_ += behind * knot_s_;
+  }
+  value_ = x0_ + (x1_ - x0_) * (t_s - t_knot_s_) / knot_s_;
+  return value_;
+}
+
 }  // namespace navemu

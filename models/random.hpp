@@ -65,4 +65,28 @@ class GaussMarkov {
   GaussMarkovTransition last_;
 };
 
+// A first-order Gauss-Markov process drawn at knots `knot_s` apart and linearly interpolated
+// in between: its variance at the knots (a little less between them) and its correlation over
+// times longer than the spacing, but smooth within it, as slowly varying physical errors are.
+// (A first-order process is a random walk at short times, its change over dt having the sigma
+// sqrt(2 dt / tau): for tau = 30 min 3 % of its sigma every second, which a carrier-smoothed
+// fix shows as jitter that real receivers do not have.) The first call anchors the knots.
+class InterpolatedGaussMarkov {
+ public:
+  InterpolatedGaussMarkov() = default;
+  InterpolatedGaussMarkov(double sigma, double tau_s, double knot_s, RandomStream& rng)
+      : gm_(sigma, tau_s, rng), knot_s_(knot_s), x0_(gm_.value()), x1_(x0_), value_(x0_) {}
+  // The value at t_s; calls come in increasing time.
+  double at(double t_s, RandomStream& rng);
+  double value() const { return value_; }
+  double sigma() const { return gm_.sigma(); }
+
+ private:
+  GaussMarkov gm_;
+  double knot_s_ = 1.0;
+  bool anchored_ = false;
+  double t_knot_s_ = 0.0;  // of x0_; x1_ is one knot later
+  double x0_ = 0.0, x1_ = 0.0, value_ = 0.0;
+};
+
 }  // namespace navemu

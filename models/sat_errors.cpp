@@ -48,24 +48,18 @@ double SatErrors::range_error_m(SatId sat, double t_s, const Vec3& sat_p_ecef_m,
     // along, cross, clock) so a satellite's errors do not depend on which others were seen.
     RandomStream rng(seed_, stream_id("sat_errors", sat.stream_index()));
     const double k = sisre_relative_to_gps(sat.system());
-    GaussMarkov radial(k * p_.radial_sigma_m, p_.tau_s, rng);
-    GaussMarkov along(k * p_.along_sigma_m, p_.tau_s, rng);
-    GaussMarkov cross(k * p_.cross_sigma_m, p_.tau_s, rng);
-    GaussMarkov clock(k * p_.clock_sigma_m, p_.tau_s, rng);
-    found = &sats_.try_emplace(sat, Sat{t_s, radial, along, cross, clock, rng}).first;
-  } else {
-    Sat& s = *found;
-    const double dt = t_s - s.t_s;
-    if (dt > 0.0) {
-      const GaussMarkovTransition& tr = transition_.at(dt, p_.tau_s);
-      s.radial.step(tr, s.rng);
-      s.along.step(tr, s.rng);
-      s.cross.step(tr, s.rng);
-      s.clock.step(tr, s.rng);
-      s.t_s = t_s;
-    }
+    InterpolatedGaussMarkov radial(k * p_.radial_sigma_m, p_.tau_s, p_.knot_s, rng);
+    InterpolatedGaussMarkov along(k * p_.along_sigma_m, p_.tau_s, p_.knot_s, rng);
+    InterpolatedGaussMarkov cross(k * p_.cross_sigma_m, p_.tau_s, p_.knot_s, rng);
+    InterpolatedGaussMarkov clock(k * p_.clock_sigma_m, p_.tau_s, p_.knot_s, rng);
+    found = &sats_.try_emplace(sat, Sat{t_s - 1.0, radial, along, cross, clock, rng}).first;
   }
-  const Sat& s = *found;
+  // (The first call anchors the knots.) A time not after the last leaves the values alone.
+  Sat& s = *found;
+  if (t_s > s.t_s) {
+    for (InterpolatedGaussMarkov* x : {&s.radial, &s.along, &s.cross, &s.clock}) x->at(t_s, s.rng);
+    s.t_s = t_s;
+  }
 
   // Orbit error of the broadcast position (broadcast - true) in ECEF: the radial / along /
   // cross components on the frame's unit vectors (rows of R_rac_from_ecef).

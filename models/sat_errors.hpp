@@ -30,6 +30,9 @@ struct SatErrorParams {
   double cross_sigma_m = 0.6;
   double clock_sigma_m = 0.5;
   double tau_s = 3600.0;
+  // Drawn this far apart and interpolated (InterpolatedGaussMarkov): broadcast orbit and clock
+  // errors vary over the orbit and between uploads, smoothly from one second to the next.
+  double knot_s = 30.0;
 
   // Global-average signal-in-space range error of these parameters (Montenbruck et al. 2015,
   // GPS Solutions 19: SISRE^2 = (w_r sigma_r - sigma_clk)^2 + w_ac^2 (sigma_a^2 + sigma_c^2) with
@@ -82,14 +85,12 @@ class SatErrors {
  private:
   struct Sat {
     double t_s = 0.0;
-    GaussMarkov radial, along, cross, clock;
+    InterpolatedGaussMarkov radial, along, cross, clock;
     RandomStream rng;
   };
   SatErrorParams p_;
   std::uint64_t seed_;
   SatTable<Sat> sats_;
-  // Every satellite's four processes share tau_s and, in an epoch, the step length.
-  GaussMarkovTransition transition_;
 };
 
 }  // namespace navemu
