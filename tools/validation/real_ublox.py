@@ -8,8 +8,10 @@ pDOP U2 0.01 at 76) of the real u-blox captures under ../shared/data/receiver_lo
 `navemu simulate` runs of the matching u-blox profile (ublox-m8 for u-blox 8/M8/M10, ublox-f9p
 for ZED-F9P/F9T, with NAV-PVT enabled at 1 Hz), stationary at the capture's mean position,
 starting at the capture's first NAV-PVT time, for the same duration. Compares the median and
-95th percentile of hAcc, vAcc, pDOP and numSV; band: navemu's median hAcc and median vAcc within
-a factor 2 of the real receiver's, for the captures with an ordinary navigation fix.
+95th percentile of hAcc, vAcc, pDOP and numSV, and of the 3D jump between consecutive fixes
+(ECEF distance, WGS 84); band: navemu's median hAcc and median vAcc within a factor 2 of the real
+receiver's, for the captures with an ordinary navigation fix, and its median fix-to-fix jump for
+those of them at least JUMP_MIN_EPOCHS long.
 
 Usage: tools/validation/real_ublox.py --navemu PATH --out DIR [--quick]
 Writes DIR/real_ublox.md and DIR/real_ublox_medians.png; one "BAND ..." line per check; exit 1
@@ -38,6 +40,7 @@ NAME = "real_ublox"
 FACTOR = 2.0
 SEEDS_FULL, SEEDS_QUICK = 20, 1
 QUICK_MAX_S = 180
+JUMP_MIN_EPOCHS = 100  # shorter captures give no median jump worth a band
 
 # file under receiver_logs, short label, receiver, navemu profile, band-checked, note
 CAPTURES = [
@@ -103,6 +106,22 @@ def nav_pvt(path):
                         lon=lon * 1e-7, h=height * 1e-3, hacc=hacc * 1e-3, vacc=vacc * 1e-3,
                         pdop=pdop * 0.01))
     return out
+
+
+def ecef_m(p):
+    """WGS 84 geodetic (deg, deg, m) to ECEF (m)."""
+    a, f = 6378137.0, 1 / 298.257223563
+    e2 = f * (2 - f)
+    lat, lon = math.radians(p["lat"]), math.radians(p["lon"])
+    n = a / math.sqrt(1 - e2 * math.sin(lat) ** 2)
+    return ((n + p["h"]) * math.cos(lat) * math.cos(lon), (n + p["h"]) * math.cos(lat) * math.sin(lon),
+            (n * (1 - e2) + p["h"]) * math.sin(lat))
+
+
+def fix_jumps(pvts):
+    """3D distances between consecutive 3D fixes (m): how a navigation filter moves a fix."""
+    fixes = [ecef_m(p) for p in pvts if p["fix_ok"] and p["fix"] == 3]
+    return [math.dist(a, b) for a, b in zip(fixes, fixes[1:])]
 
 
 def pct(values, q):
@@ -215,11 +234,13 @@ def main():
             start = datetime.datetime(*first["utc"]).strftime("%Y-%m-%dT%H:%M:%SZ")
             span = (real[-1]["itow"] - first["itow"]) / 1000.0 + 1.0
             duration = min(span, QUICK_MAX_S) if a.quick else span
-            sim, rows = [], []
+            sim, rows, sim_jumps = [], [], []
             for seed in range(1, seeds + 1):
                 p, r = simulate(a.navemu, profile, lat, lon, h, start, duration, seed, work)
                 sim += p
                 rows += r
+                sim_jumps += fix_jumps(p)
+            real_jumps = fix_jumps(real)
             res = dict(label=label, receiver=receiver, profile=profile, checked=checked, note=note,
                        rel=rel, n_real=len(real), n_sim=len(sim), start=start, span=span,
                        duration=duration, lat=lat, lon=lon, h=h,
@@ -234,9 +255,15 @@ def main():
             for src, lst in (("real", real), ("sim", sim)):
                 res[src] = {k: (pct([p[k] for p in lst], 0.5), pct([p[k] for p in lst], 0.95))
                             for k, _, _ in QUANTITIES}
+            res["n_jumps"] = len(real_jumps)
+            res["jump"] = (pct(real_jumps, 0.5), pct(real_jumps, 0.95), pct(sim_jumps, 0.5),
+                           pct(sim_jumps, 0.95))
             res["bands"] = []
-            for k in ("hacc", "vacc"):
-                ratio = res["sim"][k][0] / res["real"][k][0]
+            for k in ("hacc", "vacc", "jump"):
+                ratio = (res["jump"][2] / res["jump"][0] if k == "jump"
+                         else res["sim"][k][0] / res["real"][k][0])
+                if k == "jump" and len(real_jumps) < JUMP_MIN_EPOCHS:
+                    continue
                 if checked:
                     status = common.print_band(f"real_ublox {label.replace(' ', '_')} median {k} ratio",
                                                ratio, 1 / FACTOR, FACTOR)
@@ -248,7 +275,7 @@ def main():
                     res["bands"].append((k, ratio, "not checked"))
             results.append(res)
     png = plot(a.out, results)
-    print(f"{NAME}: {checks - failures - gaps} of {checks} median hAcc/vAcc checks within a factor "
+    print(f"{NAME}: {checks - failures - gaps} of {checks} median hAcc/vAcc/jump checks within a factor "
           f"{FACTOR:g}, {gaps} known gaps, {failures} OUT ({time.time() - t0:.1f} s)")
 
     md = ["## Real u-blox receivers' accuracy reports against navemu's", "",
@@ -261,7 +288,8 @@ def main():
           "the profile tracks at power-up (ublox-m8: GPS, GLONASS, QZSS; ublox-f9p: GPS, GLONASS, "
           "Galileo, BeiDou, QZSS; no broadcast file of those days is in ../shared). Band: navemu's "
           "median hAcc and vAcc "
-          "within a factor 2 of the real receiver's (ratio navemu / real).", "",
+          "within a factor 2 of the real receiver's (ratio navemu / real), and its median 3D jump "
+          f"between consecutive fixes for captures of at least {JUMP_MIN_EPOCHS} epochs.", "",
           "| capture | receiver | profile | start (UTC) | s | real epochs | navemu epochs | "
           "quantity | real median | real 95 % | navemu median | navemu 95 % | band |",
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -274,6 +302,13 @@ def main():
                       f"{r['duration']:g} | {r['n_real']} | {r['n_sim']} | {label}{u} | "
                       f"{fmt.format(r['real'][k][0])} | {fmt.format(r['real'][k][1])} | "
                       f"{fmt.format(r['sim'][k][0])} | {fmt.format(r['sim'][k][1])} | {b} |")
+    md += ["", "Fix-to-fix 3D jumps (m; a real receiver's navigation filter keeps them to centimetres "
+           "when stationary; both sides quantised by NAV-PVT's 1e-7 deg and 1 mm):", "",
+           "| capture | real jumps | real 50 % / 95 % | navemu 50 % / 95 % | band |", "|---|---|---|---|---|"]
+    for r in results:
+        b = next((f"{x[1]:.2f}: {x[2]}" for x in r["bands"] if x[0] == "jump"), "")
+        j = ["-" if math.isnan(x) else f"{x:.3f}" for x in r["jump"]]
+        md.append(f"| {r['label']} | {r['n_jumps']} | {j[0]} / {j[1]} | {j[2]} / {j[3]} | {b} |")
     md.append("")
     if png:
         md += [f"![NAV-PVT hAcc, vAcc, pDOP, numSV: real vs navemu]({png})", "",
