@@ -61,6 +61,10 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   const NavEngineSettings& eng = engine_;
   SolverOptions opt = gen_.solver_options();
   opt.initial_p_ecef_m = last_fix_ecef_m_;
+  // Fault detection and exclusion on the residuals, as receivers do (SolverOptions::raim): a
+  // satellite whose range is off (a satellite fault, a reflection tracked alone) is left out,
+  // and a fix that no exclusion makes consistent is no fix.
+  opt.raim = true;
   opt.elevation_mask_deg = eng.elevation_mask_deg;
   opt.fix_mode = eng.fix_mode;
   if (eng.fix_mode == SolverFixMode::k2DOnly)  // the fixed height is above mean sea level
@@ -76,7 +80,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   }
   solver_input_.resize(kept);
   if (strong < eng.cn0_threshold_sats) solver_input_.clear();
-  solve(solver_input_, e.t_receiver, opt, solution_);
+  solve(solver_input_, e.t_receiver, opt, solution_, solver_scratch_);
   Solution& sol = solution_;
   // The dynamic platform model's sanity check (3.1.7.1 "Dynamic platform model details"): a
   // solution beyond its altitude or velocity limits is invalid.

@@ -115,6 +115,7 @@ class Receiver {
   EpochMeasurements meas_;
   std::vector<RangeMeasurement> solver_input_;
   Solution solution_;
+  SolverScratch solver_scratch_{kMaxSolverSatellites};
   ReceiverFix fix_;
   RandomStream ideal_rng_;
 };

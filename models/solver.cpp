@@ -504,8 +504,21 @@ double chi_square_quantile(double p, int dof) {
   return 0.5 * (lo + hi);
 }
 
+SolverScratch::SolverScratch(std::size_t satellites) {
+  kept.reserve(satellites);
+  excluded.reserve(satellites);
+  without.reserve(satellites);
+  for (Solution* s : {&trial, &best, &current}) s->sats.reserve(satellites);
+}
+
 void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions& opt,
            Solution& sol) {
+  SolverScratch scratch;
+  solve(all, t, opt, sol, scratch);
+}
+
+void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions& opt,
+           Solution& sol, SolverScratch& scratch) {
   solve_least_squares(all, t, opt, sol);
   if (!opt.raim || passes(sol, opt)) return;
   const std::span<const RangeMeasurement> meas =
@@ -513,13 +526,17 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
   // Fault detection failed (or there was no fix): exclusion, one satellite at a time (RTKLIB
   // raim_fde for the first): each satellite still in use left out in turn, the fix with the
   // smallest sum kept; it ends when that fix passes, and fails when none is left to test.
-  std::vector<std::size_t> kept(meas.size());  // indices into meas still in the solution
+  std::vector<std::size_t>& kept = scratch.kept;  // indices into meas still in the solution
+  kept.resize(meas.size());
   for (std::size_t i = 0; i < kept.size(); ++i) kept[i] = i;
-  std::vector<std::size_t> excluded;
-  std::vector<RangeMeasurement> without;
-  Solution trial, best;
+  std::vector<std::size_t>& excluded = scratch.excluded;
+  excluded.clear();
+  std::vector<RangeMeasurement>& without = scratch.without;
+  Solution& trial = scratch.trial;
+  Solution& best = scratch.best;
   // `sol` keeps the failed fix over every satellite until an exclusion passes.
-  Solution current = sol;  // the fix over `kept` (its sats in that order)
+  Solution& current = scratch.current;  // the fix over `kept` (its sats in that order)
+  current = sol;
   for (int round = 0; round < opt.raim_max_exclusions; ++round) {
     std::optional<std::size_t> out;  // position in kept of the best exclusion
     for (std::size_t k = 0; k < kept.size(); ++k) {
@@ -554,7 +571,7 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
       r.excluded = true;
       best.sats.insert(best.sats.begin() + static_cast<std::ptrdiff_t>(i), r);
     }
-    sol = std::move(best);
+    std::swap(sol, best);  // (both keep their storage)
     return;
   }
   sol.integrity_failed = sol.fix != FixType::kNone;  // a fix that failed, not too few satellites

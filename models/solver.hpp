@@ -190,8 +190,18 @@ RangeMeasurement make_range_measurement(const BroadcastRecord& r, GpsTime t_rece
 inline constexpr std::size_t kMaxSolverSatellites = 127;
 
 Solution solve(const std::vector<RangeMeasurement>& meas, GpsTime t, const SolverOptions& opt);
-// The same into `sol`, reusing its storage: the real-time loop's form (no allocation once
-// sol.sats has grown to the satellites in view).
+// The storage the exclusion step (SolverOptions::raim) works in, kept between epochs; room for
+// `satellites` from the start (no allocation when the first exclusion comes).
+struct SolverScratch {
+  explicit SolverScratch(std::size_t satellites = 0);
+  std::vector<std::size_t> kept, excluded;
+  std::vector<RangeMeasurement> without;
+  Solution trial, best, current;
+};
+// The same into `sol`, reusing its storage and the scratch's: the real-time loop's form (no
+// allocation once sol.sats has grown to the satellites in view).
+void solve(std::span<const RangeMeasurement> meas, GpsTime t, const SolverOptions& opt,
+           Solution& sol, SolverScratch& scratch);
 void solve(std::span<const RangeMeasurement> meas, GpsTime t, const SolverOptions& opt,
            Solution& sol);
 

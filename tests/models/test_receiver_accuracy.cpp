@@ -2,6 +2,7 @@
 // NAV-PVT hAcc/vAcc, GST and PGRME report) against the errors of its own fixes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -96,6 +97,57 @@ TEST(ReceiverAccuracy, ErrorsMatchTheReportedSigmaInOpenSkyAndWithHalfTheSkyMask
       EXPECT_LE(e->ratio_v(), 1.25);
     }
   }
+}
+
+
+// Integrity (Kaplan & Hegarty 3rd ed. 10.4, as SolverOptions::raim): a satellite whose clock
+// steps by 100 m (a satellite fault event, ramped over 10 s) is left out by the receiver's
+// residual test once its error shows, and the fix stays where the same receiver without the
+// fault puts it (one satellite fewer of some twenty: centimetres to decimetres), never
+// carrying the 100 m into it.
+TEST(ReceiverIntegrity, AFaultySatelliteIsExcludedAndTheFixStaysWhereItWas) {
+  const Geodetic site{48.78, 9.18, 300.0};
+  ImuTruth truth;
+  truth.position = site;
+  const std::uint32_t systems = system_bit(GnssSystem::kGps) | system_bit(GnssSystem::kGalileo);
+  const GpsTime start = gps_from_utc(CalendarTime{2024, 6, 1, 6, 0, 0.0});
+  const NavData nav = nominal_constellation(start, systems);
+  ReceiverParams rp;
+  apply_receiver_class(rp.measurement, ReceiverClass::kGeodetic);
+  rp.measurement.systems = systems;
+  rp.measurement.elevation_mask_deg = 10.0;
+  rp.max_channels = 32;
+  NavEngineSettings engine;
+  engine.elevation_mask_deg = 10.0;
+  engine.systems = systems;
+  Receiver clean(nav, rp);
+  clean.set_engine(engine);
+  const SatId faulty = clean.update(start, &truth).satellites.at(2).sat;
+  rp.measurement.events.satellites.push_back(SatelliteFaultEvent{EventWindow(100.0, 200.0, 10.0), faulty, 100.0});
+  Receiver rx(nav, rp);
+  rx.set_engine(engine);
+  rx.set_event_origin(start);
+  clean.set_event_origin(start);
+  int excluded = 0, faulted = 0;
+  for (int k = 1; k <= 400; ++k) {
+    const GpsTime t = start.plus_s(k);
+    const ReceiverFix& reference = clean.update(t, &truth);
+    const ReceiverFix& fix = rx.update(t, &truth);
+    ASSERT_NE(fix.fix, FixType::kNone) << "t " << k;
+    const auto it = std::find_if(fix.satellites.begin(), fix.satellites.end(),
+                                 [&](const ReceiverSatellite& s) { return s.sat == faulty; });
+    ASSERT_NE(it, fix.satellites.end());
+    const bool full_fault = k >= 110 && k <= 290;
+    if (full_fault) {
+      ++faulted;
+      excluded += !it->used;
+      EXPECT_LT((fix.p_ecef_m - reference.p_ecef_m).norm(), 1.0) << "t " << k;
+    }
+    if (k < 100 || k > 310) {
+      EXPECT_TRUE(it->used) << "t " << k;
+    }
+  }
+  EXPECT_EQ(excluded, faulted);
 }
 
 }  // namespace
