@@ -42,12 +42,18 @@ std::uint8_t fix_type(FixType f) {
 // Accuracy estimates of the receiver (1-sigma), wire units.
 struct Accuracy {
   double h_m, v_m, p_m, s_mps;
+  double cross_track_mps;  // the horizontal velocity's 1-sigma across the track (heading)
 };
 Accuracy accuracy(const ReceiverFix& fix) {
-  if (fix.fix == FixType::kNone) return {9999.0, 9999.0, 9999.0, 20.0};
+  if (fix.fix == FixType::kNone) return {9999.0, 9999.0, 9999.0, 20.0, 20.0};
   const double p = std::hypot(fix.sigma_h_m, fix.sigma_v_m);
-  // Doppler velocity: about 5 cm/s of range-rate noise times the PDOP.
-  return {fix.sigma_h_m, fix.sigma_v_m, p, 0.05 * std::max(fix.dops.pdop, 1.0)};
+  // The velocity's own 1-sigma when the receiver has its covariance (across the track: one of
+  // the two axes of the horizontal one); otherwise (the ideal receiver, a stationary platform's
+  // held velocity) about 5 cm/s of range-rate noise times the PDOP.
+  if (fix.sigma_speed_mps > 0.0)
+    return {fix.sigma_h_m, fix.sigma_v_m, p, fix.sigma_speed_mps, fix.sigma_h_speed_mps / std::sqrt(2.0)};
+  const double s = 0.05 * std::max(fix.dops.pdop, 1.0);
+  return {fix.sigma_h_m, fix.sigma_v_m, p, s, s};
 }
 
 }  // namespace
@@ -232,8 +238,9 @@ void emit_nav_pvt(const EpochView& e, std::vector<std::uint8_t>& out) {
   m.g_speed_mmps = clamp_cast<std::int32_t>(e.g_speed * 1e3);
   m.head_mot_1e5deg = clamp_cast<std::int32_t>(e.heading_deg * 1e5);
   m.s_acc_mmps = clamp_cast<std::uint32_t>(e.acc.s_mps * 1e3);
+  // The heading of motion's 1-sigma: the velocity's across the track over the ground speed.
   const double head_acc_deg =
-      e.g_speed > e.acc.s_mps ? std::atan2(e.acc.s_mps, e.g_speed) * kRadToDeg : 180.0;
+      e.g_speed > e.acc.cross_track_mps ? std::atan2(e.acc.cross_track_mps, e.g_speed) * kRadToDeg : 180.0;
   m.head_acc_1e5deg = clamp_cast<std::uint32_t>(head_acc_deg * 1e5);
   m.p_dop_0p01 = clamp_cast<std::uint16_t>(e.valid ? fix.dops.pdop * 100.0 : 9999.0);
   append(m, out);
@@ -384,7 +391,8 @@ void emit_nav_svinfo(const EpochView& e, std::vector<std::uint8_t>& out) {
 }
 
 // NAV-SAT (interface description, UBX-NAV-SAT flags): health (bits 4..5: 1 healthy, 2 unhealthy) as the
-// broadcast data say; an unhealthy satellite is tracked and not used.
+// broadcast data say; an unhealthy satellite is tracked and not used. smoothed (bit 7) on a used
+// satellite whose pseudorange the engine smoothed by its carrier (NAV-SIG prSmoothed alike).
 void emit_nav_sat(const EpochView& e, std::vector<std::uint8_t>& out) {
   NavSat& m = reset_keeping_storage(e.lists.sat, &NavSat::svs);
   m.i_tow_ms = e.i_tow;
@@ -396,8 +404,9 @@ void emit_nav_sat(const EpochView& e, std::vector<std::uint8_t>& out) {
     v.elev_deg = clamp_cast<std::int8_t>(s.el_deg);
     v.azim_deg = clamp_cast<std::int16_t>(s.az_deg);
     v.pr_res_dm = clamp_cast<std::int16_t>(s.residual_m * 10.0);
-    v.flags = 7u | (s.used ? NavSatSv::kSvUsed : 0u) | ((s.unhealthy ? 2u : 1u) << NavSatSv::kHealthShift) |
-              (1u << NavSatSv::kOrbitSourceShift) | NavSatSv::kEphAvail;
+    v.flags = 7u | (s.used ? NavSatSv::kSvUsed : 0u) | (s.smoothed ? NavSatSv::kSmoothed : 0u) |
+              ((s.unhealthy ? 2u : 1u) << NavSatSv::kHealthShift) | (1u << NavSatSv::kOrbitSourceShift) |
+              NavSatSv::kEphAvail;
     m.svs.push_back(v);
   }
   append(m, out);
@@ -834,6 +843,7 @@ void emit_nav_sig(const EpochView& e, std::vector<std::uint8_t>& out) {
       if (used) {
         g.pr_res_dm = clamp_cast<std::int16_t>(residual_m * 10.0);
         flags |= NavSigSignal::kPrUsed | NavSigSignal::kDoUsed;
+        if (it->smoothed) flags |= NavSigSignal::kPrSmoothed;
         if (e.mode == ReceiverMode::kRtkFixed) flags |= NavSigSignal::kCrUsed | NavSigSignal::kCrCorrUsed;
         if (corrected) {
           flags |= NavSigSignal::kPrCorrUsed;

@@ -859,6 +859,10 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
     }
     // (At least a millimetre: a receiver whose errors are all switched off still weighs.)
     r.code_variance_m2 = std::max(variance_m2, 1e-6);
+    // The range rate's: the Doppler's tracking noise (at least a millimetre per second).
+    const SignalObs& l1 = *m.signals[0];
+    const double doppler_mps = on.noise ? l1.sigma.doppler_hz * kSpeedOfLight_mps / l1.carrier_hz : 0.0;
+    r.range_rate_variance_m2ps2 = std::max(doppler_mps * doppler_mps, 1e-6);
   }
 }
 

@@ -62,9 +62,10 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   SolverOptions opt = gen_.solver_options();
   opt.initial_p_ecef_m = last_fix_ecef_m_;
   // Fault detection and exclusion on the residuals, as receivers do (SolverOptions::raim): a
-  // satellite whose range is off (a satellite fault, a reflection tracked alone) is left out,
-  // and a fix that no exclusion makes consistent is no fix.
+  // satellite whose range is off (a satellite fault, a reflection tracked alone) is left out;
+  // a fix that no exclusion makes consistent is kept with its accuracy scaled to its residuals.
   opt.raim = true;
+  opt.raim_keeps_failed_fix = true;
   opt.elevation_mask_deg = eng.elevation_mask_deg;
   opt.fix_mode = eng.fix_mode;
   if (eng.fix_mode == SolverFixMode::k2DOnly)  // the fixed height is above mean sea level
@@ -108,6 +109,7 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
       const SatResidual& r = sol.sats[next_residual++];
       if (r.used && sol.fix != FixType::kNone) {
         s.used = true;
+        s.smoothed = m.smoothed_noise_fraction < 1.0;
         s.residual_m = r.residual_m;
         sum_sq += r.residual_m * r.residual_m;
       }
@@ -143,6 +145,11 @@ const ReceiverFix& Receiver::update(GpsTime t, const ImuTruth* truth) {
   out.sigma_h_m = std::hypot(out.sigma_n_m, out.sigma_e_m);
   out.sigma_v_m = std::sqrt(std::max(cov_ned(2, 2), 0.0));
   out.range_rms_m = sol.num_used > 0 ? std::sqrt(sum_sq / sol.num_used) : 0.0;
+  if (out.v_ned_mps && !eng.zero_velocity) {
+    const Mat3 cov_v_ned = r * sol.cov_v_ecef_m2ps2 * r.transpose();
+    out.sigma_speed_mps = std::sqrt(std::max(cov_v_ned.trace(), 0.0));
+    out.sigma_h_speed_mps = std::sqrt(std::max(cov_v_ned(0, 0) + cov_v_ned(1, 1), 0.0));
+  }
   out.geoid_separation_m = separation_m(p_.geoid, out.position);
   last_fix_ecef_m_ = sol.p_ecef_m;
   return out;

@@ -61,6 +61,7 @@ struct ReceiverSatellite {
   bool unhealthy = false;   // flagged so by its broadcast data: tracked, not used
   double residual_m = 0.0;  // pseudorange residual of the fix (used satellites), else 0
   std::array<double, 3> band_cn0_dbhz{};  // of each Band's signal; 0: not tracked on it
+  bool smoothed = false;  // used with a carrier-smoothed pseudorange (past its arc's first epoch)
 };
 
 struct ReceiverFix {
@@ -79,6 +80,9 @@ struct ReceiverFix {
   // horizontal (root sum of squares) and vertical.
   double sigma_n_m = 0.0, sigma_e_m = 0.0, sigma_h_m = 0.0, sigma_v_m = 0.0;
   double range_rms_m = 0.0;                   // RMS of the used pseudorange residuals
+  // 1-sigma of the velocity from its covariance (models/solver.hpp), 3D and horizontal (root
+  // sums of squares); 0 without a velocity covariance.
+  double sigma_speed_mps = 0.0, sigma_h_speed_mps = 0.0;
   // Geoid undulation N at the fix (ReceiverParams::geoid): the height above mean sea level is
   // position.h_m - geoid_separation_m. 0 without a fix or a geoid.
   double geoid_separation_m = 0.0;

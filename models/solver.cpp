@@ -425,6 +425,9 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
     MatN4 hv(static_cast<Eigen::Index>(n_rate), 4);
     VecN vv(static_cast<Eigen::Index>(n_rate));
     const Vec3 w(0.0, 0.0, kOmegaEarth_radps);
+    // Weighted by the range rates' variances when every one has one (rows scaled by 1/sigma).
+    bool weighted = true;
+    for (std::size_t k = 0; k < n_rate; ++k) weighted = weighted && meas[with_rate[k]].range_rate_variance_m2ps2;
     for (std::size_t k = 0; k < n_rate; ++k) {
       const RangeMeasurement& m = meas[with_rate[k]];
       const double tau_s = (m.sat_p_ecef_m - p).norm() / kSpeedOfLight_mps;
@@ -433,12 +436,17 @@ void solve_least_squares(std::span<const RangeMeasurement> all, GpsTime t, const
       const Vec3 u = (ps - p).normalized();
       const double light_time = 1.0 + u.dot(vs + w.cross(ps)) / kSpeedOfLight_mps;
       const auto r = static_cast<Eigen::Index>(k);
-      hv.row(r) << -u.transpose() / light_time, 1.0;
-      vv(r) = *m.range_rate_mps - (u.dot(vs) / light_time - m.sat_clock_drift_mps);
+      const double scale = weighted ? 1.0 / std::sqrt(*m.range_rate_variance_m2ps2) : 1.0;
+      hv.row(r) << -u.transpose() / light_time * scale, scale;
+      vv(r) = (*m.range_rate_mps - (u.dot(vs) / light_time - m.sat_clock_drift_mps)) * scale;
     }
     const Eigen::Vector4d x = Eigen::ColPivHouseholderQR<MatN4>(hv).solve(vv);
     sol.v_ecef_mps = x.head<3>();
     sol.clock_drift_mps = x(3);
+    if (weighted) {
+      const Eigen::Matrix4d normal = hv.transpose() * hv;
+      sol.cov_v_ecef_m2ps2 = normal.inverse().topLeftCorner<3, 3>();
+    }
   }
 }
 
@@ -575,6 +583,10 @@ void solve(std::span<const RangeMeasurement> all, GpsTime t, const SolverOptions
     return;
   }
   sol.integrity_failed = sol.fix != FixType::kNone;  // a fix that failed, not too few satellites
+  if (sol.integrity_failed && opt.raim_keeps_failed_fix) {
+    if (sol.degrees_of_freedom > 0) sol.cov_ecef_m2 *= sol.chi_square / sol.degrees_of_freedom;
+    return;
+  }
   sol.fix = FixType::kNone;
 }
 

@@ -36,6 +36,9 @@ struct RangeMeasurement {
   // models' (code noise, multipath, ...: a receiver model's error budget,
   // MeasurementGenerator::solver_input); unset: SolverOptions' sigma_a/sigma_b.
   std::optional<double> code_variance_m2;
+  // The receiver's variance of range_rate_mps (its Doppler noise, m^2/s^2): the velocity's
+  // weights and covariance; unset for any one: equal weights and no velocity covariance.
+  std::optional<double> range_rate_variance_m2ps2;
 };
 
 // The receiver clocks the solver estimates: one per time scale of the systems in the solution
@@ -102,6 +105,11 @@ struct SolverOptions {
   bool raim = false;
   double raim_probability = 0.999;  // RTKLIB's chisqr table: alpha = 0.001
   int raim_max_exclusions = 3;
+  // A receiver's way instead of "no fix" when no exclusion passes (errors no single satellite
+  // explains: a storm, multipath everywhere): the fix over every satellite is kept, flagged
+  // integrity_failed, its covariance scaled by the a-posteriori variance factor chi^2 / dof
+  // (the variances were that much too small), so the accuracy it reports grows with its errors.
+  bool raim_keeps_failed_fix = false;
 };
 
 struct SatResidual {
@@ -122,6 +130,9 @@ struct Solution {
   // Each clock group's (kClockGroups) that has a satellite in the solution.
   std::array<std::optional<double>, kClockGroups> group_clock_m{};
   std::optional<Vec3> v_ecef_mps;
+  // Its covariance (H^T W H)^-1 with the range rates' variances as weights, ECEF, m^2/s^2; zero
+  // when a range rate has no variance (RangeMeasurement::range_rate_variance_m2ps2).
+  Mat3 cov_v_ecef_m2ps2 = Mat3::Zero();
   double clock_drift_mps = 0.0;
   Dops dops;
   // Covariance of the position from the weighted least squares, (H^T W H)^-1 with the

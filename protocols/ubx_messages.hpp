@@ -328,7 +328,7 @@ struct NavSatSv {
   // bit 7, orbitSource bits 8..10, ephAvail bit 11, almAvail bit 12, anoAvail 13, aopAvail 14,
   // sbasCorrUsed 16, rtcmCorrUsed 17, (slasCorrUsed 18, spartnCorrUsed 19), prCorrUsed 20,
   // crCorrUsed 21, doCorrUsed 22.
-  static constexpr std::uint32_t kQualityMask = 0x7, kSvUsed = 0x8, kEphAvail = 0x800,
+  static constexpr std::uint32_t kQualityMask = 0x7, kSvUsed = 0x8, kSmoothed = 0x80, kEphAvail = 0x800,
                                  kAlmAvail = 0x1000;
   static constexpr unsigned kHealthShift = 4, kOrbitSourceShift = 8;
   std::uint8_t gnss_id = 0;  // 0 GPS, 1 SBAS, 2 Galileo, 3 BeiDou, 5 QZSS, 6 GLONASS
@@ -556,8 +556,8 @@ struct NavCov {
 struct NavSigSignal {
   // sigFlags: health bits 0..1, prSmoothed 2, prUsed 3, crUsed 4, doUsed 5, prCorrUsed 6,
   // crCorrUsed 7, doCorrUsed 8.
-  static constexpr std::uint16_t kPrUsed = 0x08, kCrUsed = 0x10, kDoUsed = 0x20, kPrCorrUsed = 0x40,
-                                 kCrCorrUsed = 0x80;
+  static constexpr std::uint16_t kPrSmoothed = 0x04, kPrUsed = 0x08, kCrUsed = 0x10, kDoUsed = 0x20,
+                                 kPrCorrUsed = 0x40, kCrCorrUsed = 0x80;
   std::uint8_t gnss_id = 0, sv_id = 0, sig_id = 0;
   std::uint8_t freq_id = 0;    // GLONASS frequency slot + 7
   std::int16_t pr_res_dm = 0;  // pseudorange residual, 0.1 m

@@ -1685,6 +1685,48 @@ TEST_F(UbxDeviceTest, NavSigListsEveryTrackedSignalAndItsUse) {
   EXPECT_EQ(used, 2 * fix.num_used) << "both bands of every used satellite";
 }
 
+// A receiver whose engine smooths its code by the carrier (the F9P profile's 100 s) says so per
+// used satellite: NAV-SAT smoothed (flags bit 7) and NAV-SIG prSmoothed (sigFlags bit 2), from
+// the second epoch of each carrier arc on (the first is the raw code); unused ones never.
+TEST_F(UbxDeviceTest, CarrierSmoothedPseudorangesAreFlaggedInNavSatAndNavSig) {
+  const NavData nav = nominal_constellation(kT0);
+  ReceiverParams rp;
+  rp.measurement.carrier_smoothing_s = f9p_.carrier_smoothing_s;
+  ASSERT_GT(rp.measurement.carrier_smoothing_s, 0.0);
+  Receiver rx(nav, rp);
+  UbxDevice d(f9p_, ReceiverMode::kStandalone, nav);
+  set_items(d, {{"CFG-MSGOUT-UBX_NAV_SIG_UART1", 1}, {"CFG-MSGOUT-UBX_NAV_SAT_UART1", 1}});
+  ImuTruth truth;
+  truth.position = Geodetic{32.3, -90.9, 60.0};
+  for (int k = 0; k < 3; ++k) {
+    SCOPED_TRACE("epoch " + std::to_string(k));
+    truth.t = kT0.plus_s(k);
+    const ReceiverFix fix = rx.update(truth.t, &truth);
+    std::string out;
+    d.encode_epoch(fix, rx.measurements(), k, out);
+    const std::vector<Frame> f = frames_of(out);
+    ubx::NavSat sat;
+    ubx::NavSig sig;
+    ASSERT_TRUE(ubx::decode(of_type(f, ubx::kNavSat).at(0).payload, sat));
+    ASSERT_TRUE(ubx::decode(of_type(f, ubx::kNavSig).at(0).payload, sig));
+    ASSERT_EQ(sat.svs.size(), fix.satellites.size());
+    int smoothed = 0;
+    for (std::size_t i = 0; i < sat.svs.size(); ++i) {
+      const bool expected = k > 0 && fix.satellites[i].used;
+      EXPECT_EQ((sat.svs[i].flags & ubx::NavSatSv::kSmoothed) != 0, expected) << i;
+      smoothed += expected;
+    }
+    int flagged = 0;
+    for (const ubx::NavSigSignal& g : sig.signals)
+      if (g.sig_flags & ubx::NavSigSignal::kPrSmoothed) {
+        EXPECT_TRUE(g.sig_flags & ubx::NavSigSignal::kPrUsed);
+        ++flagged;
+      }
+    EXPECT_EQ(flagged, smoothed);
+    EXPECT_EQ(smoothed, k > 0 ? fix.num_used : 0);
+  }
+}
+
 // The status messages of what navemu does not model say so as the part would: NAV-SBAS with SBAS
 // on and no GEO (mode 1, system -1, no blocks) on both parts; NAV-DGPS (M8) reports PR + PRR
 // corrections only in DGPS mode; TIM-VRFY has no time aiding (src 0) and carries the epoch's

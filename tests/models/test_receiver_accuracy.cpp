@@ -1,5 +1,5 @@
-// Honest accuracy estimates: the receiver's 1-sigma horizontal and vertical accuracies (what
-// NAV-PVT hAcc/vAcc, GST and PGRME report) against the errors of its own fixes.
+// Honest accuracy estimates: the receiver's 1-sigma horizontal, vertical and speed accuracies
+// (what NAV-PVT hAcc/vAcc/sAcc, GST and PGRME report) against the errors of its own fixes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@ namespace {
 
 struct ErrorAndSigma {
   double err_h_sq = 0.0, err_v_sq = 0.0, sigma_h_sq = 0.0, sigma_v_sq = 0.0;
+  double err_s_sq = 0.0, sigma_s_sq = 0.0;  // velocity (3D; the truth is at rest)
   int n = 0;
   void add(const ReceiverFix& fix, const Geodetic& truth) {
     const Vec3 e = enu_from_ecef(fix.p_ecef_m, truth);
@@ -22,10 +23,13 @@ struct ErrorAndSigma {
     err_v_sq += e.z() * e.z();
     sigma_h_sq += fix.sigma_h_m * fix.sigma_h_m;
     sigma_v_sq += fix.sigma_v_m * fix.sigma_v_m;
+    err_s_sq += fix.v_ned_mps.value_or(Vec3::Constant(1e3)).squaredNorm();
+    sigma_s_sq += fix.sigma_speed_mps * fix.sigma_speed_mps;
     ++n;
   }
   double ratio_h() const { return std::sqrt(err_h_sq / sigma_h_sq); }
   double ratio_v() const { return std::sqrt(err_v_sq / sigma_v_sq); }
+  double ratio_s() const { return std::sqrt(err_s_sq / sigma_s_sq); }
 };
 
 struct ReceiverKind {
@@ -37,7 +41,7 @@ struct ReceiverKind {
   double carrier_smoothing_s;  // the profile's (configs/gnss)
 };
 
-// RMS error over RMS reported sigma, horizontal and vertical, pooled over 24 one-hour static
+// RMS error over RMS reported sigma, horizontal, vertical and speed, pooled over 24 one-hour static
 // runs (seeds 1-24, starts 3 h apart, so the day's ionosphere and each seed's slowly varying
 // orbit, clock and ionosphere errors are sampled; one epoch per 10 s). The errors vary over
 // tens of minutes, so a single hour is one or two samples of them: a run alone reads 0.8-1.5
@@ -85,9 +89,10 @@ TEST(ReceiverAccuracy, ErrorsMatchTheReportedSigmaInOpenSkyAndWithHalfTheSkyMask
                                    ReceiverKind{"M8-like (consumer class, GPS + GLONASS, 5 deg)", ReceiverClass::kConsumer, kGps | kGlo, 5.0, 16, 0.0}}) {
     SCOPED_TRACE(kind.name);
     const Ratios r = pooled_ratios(kind);
-    std::printf("%s: RMS error / RMS sigma, open sky h %.2f v %.2f (%d fixes), half the sky masked h %.2f v %.2f (%d)\n",
-                kind.name, r.open.ratio_h(), r.open.ratio_v(), r.open.n, r.masked.ratio_h(), r.masked.ratio_v(),
-                r.masked.n);
+    std::printf("%s: RMS error / RMS sigma, open sky h %.2f v %.2f speed %.2f (%d fixes), half the sky masked "
+                "h %.2f v %.2f speed %.2f (%d)\n",
+                kind.name, r.open.ratio_h(), r.open.ratio_v(), r.open.ratio_s(), r.open.n, r.masked.ratio_h(),
+                r.masked.ratio_v(), r.masked.ratio_s(), r.masked.n);
     ASSERT_GT(r.open.n, 4000);
     ASSERT_GT(r.masked.n, 4000);
     for (const ErrorAndSigma* e : {&r.open, &r.masked}) {
@@ -95,6 +100,8 @@ TEST(ReceiverAccuracy, ErrorsMatchTheReportedSigmaInOpenSkyAndWithHalfTheSkyMask
       EXPECT_LE(e->ratio_h(), 1.25);
       EXPECT_GE(e->ratio_v(), 0.8);
       EXPECT_LE(e->ratio_v(), 1.25);
+      EXPECT_GE(e->ratio_s(), 0.8);
+      EXPECT_LE(e->ratio_s(), 1.25);
     }
   }
 }

@@ -427,5 +427,29 @@ TEST(SolverRaim, AFailingFixWithoutRoomForExclusionIsNoFix) {
   EXPECT_EQ(solve(meas, s.t_tag, opt).fix, FixType::k3D);
 }
 
+
+// The receiver's way (raim_keeps_failed_fix): the fix no exclusion rescues is kept over every
+// satellite, flagged, and its covariance scaled by chi^2 / dof, the a-posteriori variance
+// factor: the same position as without the test, an accuracy grown to its residuals.
+TEST(SolverRaim, AReceiverKeepsTheFailedFixWithItsCovarianceScaledToItsResiduals) {
+  const Scenario s;
+  auto meas = exact_measurements(s, 5.0);
+  meas.resize(5);
+  meas[2].pseudorange_m += 500.0;
+  SolverOptions opt;
+  opt.elevation_mask_deg = 5.0;
+  const Solution plain = solve(meas, s.t_tag, opt);
+  opt.raim = true;
+  opt.raim_keeps_failed_fix = true;
+  const Solution kept = solve(meas, s.t_tag, opt);
+  ASSERT_EQ(kept.fix, FixType::k3D);
+  EXPECT_TRUE(kept.integrity_failed);
+  EXPECT_EQ(kept.p_ecef_m, plain.p_ecef_m);
+  ASSERT_EQ(kept.degrees_of_freedom, 1);
+  EXPECT_GT(kept.chi_square, 100.0);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(kept.cov_ecef_m2(i, i), plain.cov_ecef_m2(i, i) * kept.chi_square, 1e-9 * kept.cov_ecef_m2(i, i));
+}
+
 }  // namespace
 }  // namespace navemu
