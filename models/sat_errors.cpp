@@ -43,7 +43,8 @@ SatErrors::SatErrors(const SatErrorParams& p, std::uint64_t seed) : p_(p), seed_
 double SatErrors::range_error_m(SatId sat, double t_s, const Vec3& sat_p_ecef_m,
                                 const Vec3& sat_v_ecef_mps, const Vec3& los_unit_ecef) {
   Sat* found = sats_.find(sat);
-  if (found == nullptr) {
+  const bool first = found == nullptr;
+  if (first) {
     // One stream per satellite; the four processes draw from it in a fixed order (radial,
     // along, cross, clock) so a satellite's errors do not depend on which others were seen.
     RandomStream rng(seed_, stream_id("sat_errors", sat.stream_index()));
@@ -52,11 +53,12 @@ double SatErrors::range_error_m(SatId sat, double t_s, const Vec3& sat_p_ecef_m,
     InterpolatedGaussMarkov along(k * p_.along_sigma_m, p_.tau_s, p_.knot_s, rng);
     InterpolatedGaussMarkov cross(k * p_.cross_sigma_m, p_.tau_s, p_.knot_s, rng);
     InterpolatedGaussMarkov clock(k * p_.clock_sigma_m, p_.tau_s, p_.knot_s, rng);
-    found = &sats_.try_emplace(sat, Sat{t_s - 1.0, radial, along, cross, clock, rng}).first;
+    found = &sats_.try_emplace(sat, Sat{t_s, radial, along, cross, clock, rng}).first;
   }
-  // (The first call anchors the knots.) A time not after the last leaves the values alone.
+  // The first call anchors the knots; a later time moves the processes on, an earlier or the
+  // same one leaves them alone.
   Sat& s = *found;
-  if (t_s > s.t_s) {
+  if (first || t_s > s.t_s) {
     for (InterpolatedGaussMarkov* x : {&s.radial, &s.along, &s.cross, &s.clock}) x->at(t_s, s.rng);
     s.t_s = t_s;
   }

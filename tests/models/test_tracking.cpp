@@ -191,7 +191,6 @@ TEST(CarrierArcs, AmbiguityIsUniformOverPlusMinusOneMillion) {
   EXPECT_GT(hi, 0.99e6);
 }
 
-
 // The Hatch filter on a satellite whose range grows 800 m/s, with a carrier offset by its
 // ambiguity: 4000 seeded arcs of 300 epochs at 1 s, T = 100 s, code noise 1 m (white) or code
 // multipath 1 m (Gauss-Markov, 60 s). The smoothed code's error variance against what the

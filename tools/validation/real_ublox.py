@@ -260,10 +260,11 @@ def main():
                            pct(sim_jumps, 0.95))
             res["bands"] = []
             for k in ("hacc", "vacc", "jump"):
-                ratio = (res["jump"][2] / res["jump"][0] if k == "jump"
-                         else res["sim"][k][0] / res["real"][k][0])
                 if k == "jump" and len(real_jumps) < JUMP_MIN_EPOCHS:
                     continue
+                real_median = res["jump"][0] if k == "jump" else res["real"][k][0]
+                sim_median = res["jump"][2] if k == "jump" else res["sim"][k][0]
+                ratio = sim_median / real_median if real_median > 0 else float("inf")
                 if checked:
                     status = common.print_band(f"real_ublox {label.replace(' ', '_')} median {k} ratio",
                                                ratio, 1 / FACTOR, FACTOR)
