@@ -818,8 +818,7 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
     // code's tracking noise at its C/N0; multipath as the statistical model sizes it here.
     const double sisre_m = sisre_gps_m * sisre_relative_to_gps(m.sat.system());
     // (Both as much as the carrier smoothing leaves of them.)
-    const double noise_fraction = m.smoothed_noise_fraction;
-    const double noise1_m = on.noise ? m.signals[0]->sigma.code_m * std::sqrt(noise_fraction) : 0.0;
+    const double noise1_m = on.noise ? m.signals[0]->sigma.code_m * std::sqrt(m.smoothed_noise_fraction) : 0.0;
     const double multipath_m = on.multipath ? multipath_sigma_m(cfg_.multipath_zenith_sigma_m, sin_el) *
                                                   std::sqrt(m.smoothed_multipath_fraction)
                                             : 0.0;
@@ -839,7 +838,7 @@ void MeasurementGenerator::solver_input(const EpochMeasurements& e,
         // 1 / (g12 - 1); the multipath both bands share passes unchanged.
         const SignalObs& s2 = *m.signals[1];
         const double g12 = gamma(s2.carrier_hz) / gamma(m.signals[0]->carrier_hz);
-        const double noise2_m = on.noise ? s2.sigma.code_m * std::sqrt(noise_fraction) : 0.0;
+        const double noise2_m = on.noise ? s2.sigma.code_m * std::sqrt(m.smoothed_noise_fraction) : 0.0;
         r.sat_variance_m2 = sisre_m * sisre_m;
         variance_m2 = (g12 * g12 * noise1_m * noise1_m + noise2_m * noise2_m) / ((g12 - 1.0) * (g12 - 1.0)) +
                       multipath_m * multipath_m;

@@ -79,7 +79,6 @@ class InterpolatedGaussMarkov {
   // The value at t_s; calls come in increasing time.
   double at(double t_s, RandomStream& rng);
   double value() const { return value_; }
-  double sigma() const { return gm_.sigma(); }
 
  private:
   GaussMarkov gm_;
